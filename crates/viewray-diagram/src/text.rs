@@ -1,0 +1,553 @@
+//! Text labels: the bundled DejaVu Sans faces, a small sub/superscript markup, layout
+//! with kerning, and glyph outlines shared by the PNG and SVG outputs.
+
+use std::sync::OnceLock;
+
+use ab_glyph::{Font, FontRef, GlyphId, OutlineCurve};
+use glam::{Affine2, Mat2, Vec2};
+use tiny_skia::{Path, PathBuilder};
+
+use crate::{Color, Rect, style};
+
+/// Size of sub- and superscripts relative to the label's size.
+const SCRIPT_SCALE: f32 = 0.7;
+/// How far a subscript's baseline sits below the label's, in ems of the label's size.
+const SUBSCRIPT_DROP: f32 = 0.2;
+/// How far a superscript's baseline sits above the label's, in ems of the label's size.
+const SUPERSCRIPT_RISE: f32 = 0.38;
+
+/// One of the four bundled DejaVu Sans faces.
+///
+/// The lecture writes vectors in bold (**e**, **u**, **v**, **w**) and scalars in
+/// italics (*u*, *v*, *d*, *vw*, *vh*, *i*, *j*); [`Label::vector`] and [`Label::math`]
+/// choose those faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum FontFace {
+    /// DejaVu Sans: ordinary words and numbers.
+    #[default]
+    Regular,
+    /// DejaVu Sans Oblique: scalar symbols such as *d* and *vw*.
+    Italic,
+    /// DejaVu Sans Bold: vectors such as **u** and the eye **e**.
+    Bold,
+    /// DejaVu Sans Bold Oblique.
+    BoldItalic,
+}
+
+/// The four faces, parsed once.
+struct Faces {
+    regular: FontRef<'static>,
+    italic: FontRef<'static>,
+    bold: FontRef<'static>,
+    bold_italic: FontRef<'static>,
+}
+
+impl FontFace {
+    /// The parsed font of this face.
+    fn font(self) -> &'static FontRef<'static> {
+        static FACES: OnceLock<Faces> = OnceLock::new();
+        let faces = FACES.get_or_init(|| {
+            let load = |bytes: &'static [u8]| {
+                FontRef::try_from_slice(bytes).expect("the bundled DejaVu fonts are valid")
+            };
+            Faces {
+                regular: load(dejavu::sans::regular()),
+                italic: load(dejavu::sans::oblique()),
+                bold: load(dejavu::sans::bold()),
+                bold_italic: load(dejavu::sans::bold_oblique()),
+            }
+        });
+        match self {
+            FontFace::Regular => &faces.regular,
+            FontFace::Italic => &faces.italic,
+            FontFace::Bold => &faces.bold,
+            FontFace::BoldItalic => &faces.bold_italic,
+        }
+    }
+
+    /// The SVG `font-style` and `font-weight` of this face.
+    pub(crate) fn svg_style_weight(self) -> (&'static str, &'static str) {
+        match self {
+            FontFace::Regular => ("normal", "normal"),
+            FontFace::Italic => ("italic", "normal"),
+            FontFace::Bold => ("normal", "bold"),
+            FontFace::BoldItalic => ("italic", "bold"),
+        }
+    }
+}
+
+/// Which point of the text's width a label's `position` marks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Anchor {
+    /// The start (left end) of the text.
+    Start,
+    /// The middle of the text's advance width.
+    #[default]
+    Middle,
+    /// The end (right end) of the text.
+    End,
+}
+
+/// Which height of the text a label's `position` marks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Baseline {
+    /// The baseline the letters sit on.
+    Alphabetic,
+    /// Halfway between the top of [`TextExtent::ascent`] and the bottom of
+    /// [`TextExtent::descent`]: the label is centred on its position.
+    #[default]
+    Middle,
+    /// The top of the ascent: the label hangs below its position.
+    Top,
+    /// The bottom of the descent: the label stands above its position.
+    Bottom,
+}
+
+/// The size of a line of text, in pixels, from [`measure_text`] or [`Label::extent`].
+///
+/// The box `width` x (`ascent` + `descent`) uses the font's line metrics rather than the
+/// ink of the particular letters, so "u" and "d" measure equally tall and labels line up;
+/// [`Label::bounds`] adds any ink that overhangs the box (an italic letter's tail).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextExtent {
+    /// The advance width, kerning included.
+    pub width: f32,
+    /// Height above the baseline, raised superscripts included.
+    pub ascent: f32,
+    /// Depth below the baseline (positive), lowered subscripts included.
+    pub descent: f32,
+}
+
+/// Measures one line of `text` (with [markup](Label#markup)) set at `size` pixels per em
+/// in `face`.
+///
+/// ```
+/// # use viewray_diagram::{measure_text, FontFace};
+/// let e = measure_text("v_h", 40.0, FontFace::Italic);
+/// assert!(e.width > measure_text("v", 40.0, FontFace::Italic).width);
+/// assert!(e.ascent > 0.0 && e.descent > 0.0);
+/// ```
+pub fn measure_text(text: &str, size: f32, face: FontFace) -> TextExtent {
+    layout_text(text, size, face).extent
+}
+
+/// A text label drawn at `position` in figure pixels.
+///
+/// `anchor` and `baseline` say which point of the text `position` is (by default its
+/// centre); `rotation` turns the text about that point, radians counter-clockwise on
+/// screen.
+///
+/// # Markup
+/// A label's text is one line. `_` makes the next character a subscript and `^` a
+/// superscript; braces take several: `v_h`, `x_{ij}`, `r^2`. A backslash takes the next
+/// character literally: `file\_name`. Scripts are 70 % of the label's size, subscripts
+/// lowered by 0.2 em and superscripts raised by 0.38 em.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// The text, one line, with markup.
+    pub text: String,
+    /// The anchor point in figure pixels.
+    pub position: Vec2,
+    /// Font size in pixels per em (as CSS and SVG `font-size`).
+    pub size: f32,
+    /// Text colour.
+    pub color: Color,
+    /// Which face.
+    pub face: FontFace,
+    /// Horizontal anchoring.
+    pub anchor: Anchor,
+    /// Vertical anchoring.
+    pub baseline: Baseline,
+    /// Rotation about `position`, radians counter-clockwise on screen.
+    pub rotation: f32,
+}
+
+impl Label {
+    /// A label in the regular face, [`style::LABEL_SIZE`], [`style::TEXT`] colour, centred
+    /// on `position`.
+    pub fn new(text: impl Into<String>, position: Vec2) -> Label {
+        Label {
+            text: text.into(),
+            position,
+            size: style::LABEL_SIZE,
+            color: style::TEXT,
+            face: FontFace::Regular,
+            anchor: Anchor::default(),
+            baseline: Baseline::default(),
+            rotation: 0.0,
+        }
+    }
+
+    /// A scalar symbol in italics, as the lecture writes *d*, *vw* or *v_h*.
+    pub fn math(text: impl Into<String>, position: Vec2) -> Label {
+        Label::new(text, position).with_face(FontFace::Italic)
+    }
+
+    /// A vector symbol in bold, as the lecture writes **e**, **u**, **v**, **w**.
+    pub fn vector(text: impl Into<String>, position: Vec2) -> Label {
+        Label::new(text, position).with_face(FontFace::Bold)
+    }
+
+    /// The same label at `size` pixels per em.
+    pub fn with_size(self, size: f32) -> Label {
+        Label { size, ..self }
+    }
+
+    /// The same label in `color`.
+    pub fn with_color(self, color: Color) -> Label {
+        Label { color, ..self }
+    }
+
+    /// The same label in `face`.
+    pub fn with_face(self, face: FontFace) -> Label {
+        Label { face, ..self }
+    }
+
+    /// The same label anchored at `anchor` and `baseline`.
+    pub fn with_anchor(self, anchor: Anchor, baseline: Baseline) -> Label {
+        Label {
+            anchor,
+            baseline,
+            ..self
+        }
+    }
+
+    /// The same label turned by `rotation` radians, counter-clockwise on screen.
+    pub fn with_rotation(self, rotation: f32) -> Label {
+        Label { rotation, ..self }
+    }
+
+    /// The measured size of the text, as [`measure_text`].
+    pub fn extent(&self) -> TextExtent {
+        self.layout().extent
+    }
+
+    /// The axis-aligned box in figure pixels that holds the label's text box and all of
+    /// its ink, rotation included: what to test against the canvas or other labels.
+    pub fn bounds(&self) -> Rect {
+        let layout = self.layout();
+        let e = layout.extent;
+        let mut local =
+            Rect::from_corners(Vec2::new(0.0, -e.ascent), Vec2::new(e.width, e.descent));
+        if let Some(ink) = layout.ink {
+            local = local.union(&ink);
+        }
+        let to_figure = self.local_to_figure(&e);
+        let corners = [
+            local.min,
+            Vec2::new(local.max.x, local.min.y),
+            local.max,
+            Vec2::new(local.min.x, local.max.y),
+        ]
+        .map(|p| to_figure.transform_point2(p));
+        let first = Rect::from_corners(corners[0], corners[0]);
+        corners
+            .iter()
+            .fold(first, |r, &p| r.union(&Rect::from_corners(p, p)))
+    }
+
+    /// Lays the text out in label-local coordinates: pen x from 0, y down, the label's
+    /// baseline at y = 0.
+    pub(crate) fn layout(&self) -> TextLayout {
+        layout_text(&self.text, self.size, self.face)
+    }
+
+    /// The map from label-local coordinates to figure pixels.
+    ///
+    /// ```text
+    /// figure = position + R(rotation) (local + (-anchor * width, baseline offset))
+    /// ```
+    pub(crate) fn local_to_figure(&self, extent: &TextExtent) -> Affine2 {
+        let dx = match self.anchor {
+            Anchor::Start => 0.0,
+            Anchor::Middle => -0.5 * extent.width,
+            Anchor::End => -extent.width,
+        };
+        let dy = match self.baseline {
+            Baseline::Alphabetic => 0.0,
+            Baseline::Middle => 0.5 * (extent.ascent - extent.descent),
+            Baseline::Top => extent.ascent,
+            Baseline::Bottom => -extent.descent,
+        };
+        // Counter-clockwise on screen, where y points down.
+        let (sin, cos) = self.rotation.sin_cos();
+        let rotation = Mat2::from_cols(Vec2::new(cos, -sin), Vec2::new(sin, cos));
+        Affine2::from_translation(self.position)
+            * Affine2::from_mat2(rotation)
+            * Affine2::from_translation(Vec2::new(dx, dy))
+    }
+
+    /// The glyph outlines in figure pixels, or `None` for text without ink.
+    pub(crate) fn outline_path(&self) -> Option<Path> {
+        let layout = self.layout();
+        let to_figure = self.local_to_figure(&layout.extent);
+        let font = self.face.font();
+        let mut builder = PathBuilder::new();
+        for glyph in &layout.glyphs {
+            let Some(outline) = font.outline(glyph.id) else {
+                continue;
+            };
+            // Font units have y up; label-local coordinates have y down.
+            let map = |p: ab_glyph::Point| {
+                let local = glyph.origin + Vec2::new(p.x, -p.y) * glyph.scale;
+                to_figure.transform_point2(local)
+            };
+            append_outline(&mut builder, &outline.curves, map);
+        }
+        builder.finish()
+    }
+}
+
+/// Whether a run of text is set normally or as a script.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Script {
+    Normal,
+    Sub,
+    Super,
+}
+
+/// A run of characters in one script, after markup parsing.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Span {
+    pub script: Script,
+    pub text: String,
+    /// Font size of the run, pixels per em.
+    pub size: f32,
+    /// Baseline offset of the run, pixels, positive down.
+    pub shift: f32,
+}
+
+/// A glyph placed in label-local coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PlacedGlyph {
+    id: GlyphId,
+    /// The glyph origin (pen position on its baseline), y down.
+    origin: Vec2,
+    /// Pixels per font unit.
+    scale: f32,
+}
+
+/// A laid-out line of text in label-local coordinates (pen from x = 0, baseline y = 0,
+/// y down).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct TextLayout {
+    pub spans: Vec<Span>,
+    glyphs: Vec<PlacedGlyph>,
+    pub extent: TextExtent,
+    /// The union of the glyphs' outline boxes, `None` without ink.
+    pub ink: Option<Rect>,
+}
+
+/// Splits `text` into runs of normal, subscript and superscript characters.
+fn parse_markup(text: &str) -> Vec<(Script, String)> {
+    let mut runs: Vec<(Script, String)> = Vec::new();
+    let mut push = |script: Script, c: char| match runs.last_mut() {
+        Some((s, run)) if *s == script => run.push(c),
+        _ => runs.push((script, c.to_string())),
+    };
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        let script = match c {
+            '_' => Script::Sub,
+            '^' => Script::Super,
+            '\\' => {
+                push(Script::Normal, chars.next().unwrap_or('\\'));
+                continue;
+            }
+            _ => {
+                push(Script::Normal, c);
+                continue;
+            }
+        };
+        match chars.next() {
+            None => push(Script::Normal, c),
+            Some('{') => {
+                while let Some(inner) = chars.next() {
+                    match inner {
+                        '}' => break,
+                        '\\' => push(script, chars.next().unwrap_or('\\')),
+                        _ => push(script, inner),
+                    }
+                }
+            }
+            Some('\\') => push(script, chars.next().unwrap_or('\\')),
+            Some(next) => push(script, next),
+        }
+    }
+    runs
+}
+
+/// Lays out one line of `text` at `size` pixels per em in `face`, with kerning between
+/// neighbouring glyphs of a run.
+fn layout_text(text: &str, size: f32, face: FontFace) -> TextLayout {
+    let font = face.font();
+    let units_per_em = font.units_per_em().unwrap_or(2048.0);
+    let mut extent = TextExtent {
+        width: 0.0,
+        ascent: font.ascent_unscaled() * size / units_per_em,
+        descent: -font.descent_unscaled() * size / units_per_em,
+    };
+    let mut spans = Vec::new();
+    let mut glyphs = Vec::new();
+    let mut ink: Option<Rect> = None;
+    let mut pen = 0.0;
+    for (script, run) in parse_markup(text) {
+        let (span_size, shift) = match script {
+            Script::Normal => (size, 0.0),
+            Script::Sub => (size * SCRIPT_SCALE, size * SUBSCRIPT_DROP),
+            Script::Super => (size * SCRIPT_SCALE, -size * SUPERSCRIPT_RISE),
+        };
+        let scale = span_size / units_per_em;
+        extent.ascent = extent.ascent.max(font.ascent_unscaled() * scale - shift);
+        extent.descent = extent.descent.max(-font.descent_unscaled() * scale + shift);
+        let mut previous: Option<GlyphId> = None;
+        for c in run.chars().filter(|c| !c.is_control()) {
+            let id = font.glyph_id(c);
+            if let Some(previous) = previous {
+                pen += font.kern_unscaled(previous, id) * scale;
+            }
+            let origin = Vec2::new(pen, shift);
+            if let Some(outline) = font.outline(id) {
+                let b = outline.bounds;
+                let glyph_ink = Rect::from_corners(
+                    origin + Vec2::new(b.min.x, -b.min.y) * scale,
+                    origin + Vec2::new(b.max.x, -b.max.y) * scale,
+                );
+                ink = Some(ink.map_or(glyph_ink, |r| r.union(&glyph_ink)));
+            }
+            glyphs.push(PlacedGlyph { id, origin, scale });
+            pen += font.h_advance_unscaled(id) * scale;
+            previous = Some(id);
+        }
+        spans.push(Span {
+            script,
+            text: run,
+            size: span_size,
+            shift,
+        });
+    }
+    extent.width = pen;
+    TextLayout {
+        spans,
+        glyphs,
+        extent,
+        ink,
+    }
+}
+
+/// Appends a glyph's curves to `builder`, starting a new contour wherever a curve does
+/// not begin where the previous one ended.
+fn append_outline(
+    builder: &mut PathBuilder,
+    curves: &[OutlineCurve],
+    map: impl Fn(ab_glyph::Point) -> Vec2,
+) {
+    let mut last: Option<ab_glyph::Point> = None;
+    for curve in curves {
+        let (start, end) = match *curve {
+            OutlineCurve::Line(a, b)
+            | OutlineCurve::Quad(a, _, b)
+            | OutlineCurve::Cubic(a, _, _, b) => (a, b),
+        };
+        if last != Some(start) {
+            if last.is_some() {
+                builder.close();
+            }
+            let p = map(start);
+            builder.move_to(p.x, p.y);
+        }
+        match *curve {
+            OutlineCurve::Line(_, b) => {
+                let b = map(b);
+                builder.line_to(b.x, b.y);
+            }
+            OutlineCurve::Quad(_, c, b) => {
+                let (c, b) = (map(c), map(b));
+                builder.quad_to(c.x, c.y, b.x, b.y);
+            }
+            OutlineCurve::Cubic(_, c1, c2, b) => {
+                let (c1, c2, b) = (map(c1), map(c2), map(b));
+                builder.cubic_to(c1.x, c1.y, c2.x, c2.y, b.x, b.y);
+            }
+        }
+        last = Some(end);
+    }
+    if last.is_some() {
+        builder.close();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[track_caller]
+    fn check_markup(text: &str, expected: &[(Script, &str)]) {
+        let got = parse_markup(text);
+        let got: Vec<(Script, &str)> = got.iter().map(|(s, t)| (*s, t.as_str())).collect();
+        assert_eq!(got, expected, "markup of {text:?}");
+    }
+
+    #[test]
+    fn markup() {
+        use Script::*;
+        check_markup("vw", &[(Normal, "vw")]);
+        check_markup("v_h", &[(Normal, "v"), (Sub, "h")]);
+        check_markup("v_hw", &[(Normal, "v"), (Sub, "h"), (Normal, "w")]);
+        check_markup("x_{ij}^2", &[(Normal, "x"), (Sub, "ij"), (Super, "2")]);
+        check_markup("file\\_name", &[(Normal, "file_name")]);
+        check_markup("a_", &[(Normal, "a_")]);
+        check_markup("a_{b", &[(Normal, "a"), (Sub, "b")]);
+        check_markup("", &[]);
+    }
+
+    #[test]
+    fn kerning_tightens_av() {
+        // DejaVu Sans kerns "AV": the pair is narrower than its letters apart.
+        let size = 100.0;
+        let pair = measure_text("AV", size, FontFace::Regular).width;
+        let apart = measure_text("A", size, FontFace::Regular).width
+            + measure_text("V", size, FontFace::Regular).width;
+        assert!(pair < apart - 1.0, "AV {pair} vs A + V {apart}");
+    }
+
+    #[test]
+    fn scripts_are_smaller_and_extend_the_box() {
+        let plain = measure_text("vh", 40.0, FontFace::Italic);
+        let sub = measure_text("v_h", 40.0, FontFace::Italic);
+        let sup = measure_text("v^h", 40.0, FontFace::Italic);
+        assert!(sub.width < plain.width);
+        assert!(sub.descent > plain.descent);
+        assert_eq!(sub.ascent, plain.ascent);
+        assert!(sup.ascent > plain.ascent);
+    }
+
+    #[test]
+    fn width_scales_with_size() {
+        let small = measure_text("vw", 20.0, FontFace::Italic);
+        let large = measure_text("vw", 40.0, FontFace::Italic);
+        assert!((large.width - 2.0 * small.width).abs() < 1e-3);
+        assert!((large.ascent - 2.0 * small.ascent).abs() < 1e-3);
+    }
+
+    #[test]
+    fn bounds_follow_anchor_baseline_and_rotation() {
+        let at = Vec2::new(500.0, 300.0);
+        let label = Label::math("d", at).with_anchor(Anchor::Start, Baseline::Alphabetic);
+        let b = label.bounds();
+        let e = label.extent();
+        assert!((b.min.x - at.x).abs() < 2.0, "{b:?}");
+        assert!((b.min.y - (at.y - e.ascent)).abs() < 1e-3);
+        assert!((b.max.y - (at.y + e.descent)).abs() < 1e-3);
+
+        let centred = Label::math("d", at).bounds();
+        assert!(centred.center().abs_diff_eq(at, 2.0), "{centred:?}");
+
+        let wide = Label::new("viewing ray", at);
+        let upright = wide.bounds();
+        let turned = wide.with_rotation(std::f32::consts::FRAC_PI_2).bounds();
+        assert!(upright.width() > upright.height());
+        assert!(turned.height() > turned.width());
+        assert!((turned.height() - upright.width()).abs() < 1.0);
+    }
+}
