@@ -1,0 +1,239 @@
+//! Axis-aligned boxes: the BVH's bound type and the scene's `Box` primitive.
+
+use glam::{Vec2, Vec3};
+
+use crate::Ray;
+
+/// An axis-aligned box `[min.x, max.x] x [min.y, max.y] x [min.z, max.z]`.
+///
+/// The same type bounds BVH nodes and is the scene's solid `Box` primitive (see
+/// [`Aabb::intersect`]). [`Aabb::EMPTY`] (min = +inf, max = -inf) contains nothing and is
+/// the identity of [`Aabb::union`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// The corner with the smallest coordinates.
+    pub min: Vec3,
+    /// The corner with the largest coordinates.
+    pub max: Vec3,
+}
+
+/// Where a ray meets a solid box: the parameter, the face and which side it came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct BoxCrossing {
+    pub(crate) t: f32,
+    /// The axis (0 = x, 1 = y, 2 = z) of the face that was hit.
+    pub(crate) axis: u32,
+    /// Whether the face hit is the `max` face of that axis.
+    pub(crate) max_face: bool,
+    /// Whether the ray entered the box there (it started outside).
+    pub(crate) entering: bool,
+}
+
+impl Default for Aabb {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl Aabb {
+    /// The empty box, which contains no point: `min = +inf`, `max = -inf`.
+    pub const EMPTY: Self = Self {
+        min: Vec3::INFINITY,
+        max: Vec3::NEG_INFINITY,
+    };
+
+    /// The box with corners `min` and `max` (expected `min <= max` on every axis).
+    #[inline]
+    pub const fn new(min: Vec3, max: Vec3) -> Self {
+        Self { min, max }
+    }
+
+    /// The smallest box holding every point of `points` ([`Aabb::EMPTY`] for none).
+    pub fn from_points(points: impl IntoIterator<Item = Vec3>) -> Self {
+        points.into_iter().fold(Self::EMPTY, Self::grow)
+    }
+
+    /// This box grown to hold `point`.
+    #[inline]
+    #[must_use]
+    pub fn grow(self, point: Vec3) -> Self {
+        Self::new(self.min.min(point), self.max.max(point))
+    }
+
+    /// The smallest box holding both boxes.
+    #[inline]
+    #[must_use]
+    pub fn union(self, other: Self) -> Self {
+        Self::new(self.min.min(other.min), self.max.max(other.max))
+    }
+
+    /// Whether the box holds no point (some `min` exceeds its `max`).
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    /// Whether `point` lies inside or on the boundary of the box.
+    #[inline]
+    pub fn contains(&self, point: Vec3) -> bool {
+        point.cmpge(self.min).all() && point.cmple(self.max).all()
+    }
+
+    /// The edge lengths `max - min` (zero for an empty box).
+    #[inline]
+    pub fn extent(&self) -> Vec3 {
+        if self.is_empty() {
+            Vec3::ZERO
+        } else {
+            self.max - self.min
+        }
+    }
+
+    /// The center `(min + max) / 2`.
+    #[inline]
+    pub fn center(&self) -> Vec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// The surface area (zero for an empty box), the measure the SAH weighs children by:
+    ///
+    /// ```text
+    /// area = 2 (dx dy + dy dz + dz dx),   (dx, dy, dz) = max - min
+    /// ```
+    #[inline]
+    pub fn surface_area(&self) -> f32 {
+        let d = self.extent();
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    /// The box's eight corners, `min` first and `max` last.
+    pub fn corners(&self) -> [Vec3; 8] {
+        std::array::from_fn(|i| {
+            Vec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            )
+        })
+    }
+
+    /// The parameter interval `(t_enter, t_exit)` where the line of `ray` is inside the
+    /// box (slab method), or `None` when the line misses it.
+    ///
+    /// ```text
+    /// t_enter = max over axes of min((min_k - o_k) / d_k, (max_k - o_k) / d_k)
+    /// t_exit  = min over axes of max((min_k - o_k) / d_k, (max_k - o_k) / d_k)
+    /// ```
+    ///
+    /// An axis with `d_k = 0` constrains nothing when `o_k` is within the slab and
+    /// rejects the ray otherwise, so no NaN arises. The interval is not clipped to
+    /// `t >= 0`.
+    pub fn slab_interval(&self, ray: &Ray) -> Option<(f32, f32)> {
+        self.crossings(ray)
+            .map(|((t_enter, _), (t_exit, _))| (t_enter, t_exit))
+    }
+
+    /// The entry and exit parameters with the axis of the face each one crosses.
+    fn crossings(&self, ray: &Ray) -> Option<((f32, usize), (f32, usize))> {
+        let mut enter = (f32::NEG_INFINITY, 0);
+        let mut exit = (f32::INFINITY, 0);
+        for axis in 0..3 {
+            let (o, d) = (ray.origin[axis], ray.direction[axis]);
+            let (lo, hi) = (self.min[axis], self.max[axis]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return None;
+                }
+                continue;
+            }
+            let (mut t0, mut t1) = ((lo - o) / d, (hi - o) / d);
+            if t0 > t1 {
+                std::mem::swap(&mut t0, &mut t1);
+            }
+            if t0 > enter.0 {
+                enter = (t0, axis);
+            }
+            if t1 < exit.0 {
+                exit = (t1, axis);
+            }
+        }
+        (enter.0 <= exit.0).then_some((enter, exit))
+    }
+
+    /// The first crossing of the box's surface with `t` in `t_min <= t < t_max`: the
+    /// entry when the ray starts outside, the exit when it starts inside.
+    pub(crate) fn intersect_solid(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<BoxCrossing> {
+        let ((t_enter, enter_axis), (t_exit, exit_axis)) = self.crossings(ray)?;
+        let (t, axis, entering) = if t_enter >= t_min && t_enter.is_finite() {
+            (t_enter, enter_axis, true)
+        } else if t_exit >= t_min && t_exit.is_finite() {
+            (t_exit, exit_axis, false)
+        } else {
+            return None;
+        };
+        if t >= t_max {
+            return None;
+        }
+        // Entering through a face whose outward normal opposes the direction: the max face
+        // when the direction is negative on that axis; leaving, the other way round.
+        let negative = ray.direction[axis] < 0.0;
+        Some(BoxCrossing {
+            t,
+            axis: axis as u32,
+            max_face: negative == entering,
+            entering,
+        })
+    }
+
+    /// The outward unit normal of the face `axis` / `max_face`.
+    pub(crate) fn face_normal(axis: u32, max_face: bool) -> Vec3 {
+        let mut n = Vec3::ZERO;
+        n[axis as usize] = if max_face { 1.0 } else { -1.0 };
+        n
+    }
+
+    /// Texture coordinates of `point` on face `axis`: the two other coordinates,
+    /// relative to the box, each in [0, 1].
+    ///
+    /// ```text
+    /// uv = ((p_a - min_a) / (max_a - min_a), (p_b - min_b) / (max_b - min_b)),
+    /// a = (axis + 1) mod 3, b = (axis + 2) mod 3
+    /// ```
+    pub(crate) fn face_uv(&self, axis: u32, point: Vec3) -> Vec2 {
+        let relative = |k: usize| {
+            let size = self.max[k] - self.min[k];
+            if size > 0.0 {
+                ((point[k] - self.min[k]) / size).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        };
+        let axis = axis as usize;
+        Vec2::new(relative((axis + 1) % 3), relative((axis + 2) % 3))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_is_the_identity_of_union() {
+        let b = Aabb::new(Vec3::new(-1.0, 0.0, 2.0), Vec3::new(1.0, 3.0, 4.0));
+        assert_eq!(Aabb::EMPTY.union(b), b);
+        assert!(Aabb::EMPTY.is_empty());
+        assert_eq!(Aabb::EMPTY.surface_area(), 0.0);
+        assert_eq!(b.surface_area(), 2.0 * (2.0 * 3.0 + 3.0 * 2.0 + 2.0 * 2.0));
+        assert_eq!(Aabb::from_points(b.corners()), b);
+    }
+
+    #[test]
+    fn slab_interval_handles_axis_parallel_rays() {
+        let b = Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0));
+        // A ray lying in the plane of a face (o_x = max.x, d_x = 0) still gets an interval.
+        let ray = Ray::new(Vec3::new(1.0, 0.0, 5.0), Vec3::new(0.0, 0.0, -2.0));
+        assert_eq!(b.slab_interval(&ray), Some((2.0, 3.0)));
+        let outside = Ray::new(Vec3::new(1.5, 0.0, 5.0), Vec3::new(0.0, 0.0, -2.0));
+        assert_eq!(b.slab_interval(&outside), None);
+    }
+}

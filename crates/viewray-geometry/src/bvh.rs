@@ -1,0 +1,899 @@
+//! A four-wide bounding volume hierarchy, built by binned SAH and traversed front to back.
+//!
+//! One [`Bvh`] type serves every level: a [`Mesh`](crate::Mesh) indexes its triangles
+//! (leaves point at packets of four), and a [`World`](crate::World) indexes its bounded
+//! objects. The BVH only knows boxes: callers build it from a slice of anything
+//! [`Bounded`] and intersect the items of a leaf themselves, in a closure.
+
+use glam::{Vec3, Vec3A, Vec4};
+use rayon::prelude::*;
+
+use crate::{Aabb, Ray};
+
+/// Anything with a bounding box, so that a [`Bvh`] can be built over it.
+pub trait Bounded {
+    /// The axis-aligned box that holds the item.
+    fn bounds(&self) -> Aabb;
+}
+
+impl Bounded for Aabb {
+    fn bounds(&self) -> Aabb {
+        *self
+    }
+}
+
+/// Parameters of the binned SAH build.
+///
+/// The surface area heuristic estimates the cost of a subtree as the probability of a
+/// ray entering a box (its surface area relative to the parent's) times the work done
+/// there:
+///
+/// ```text
+/// cost(split) = traversal_cost + (A_left blocks(N_left) + A_right blocks(N_right)) / A
+/// cost(leaf)  = blocks(N),   blocks(n) = ceil(n / block_size)
+/// ```
+///
+/// A leaf is made when it is no dearer than the best split and holds at most
+/// `max_leaf_items` items.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BuildParams {
+    /// How many items one intersection test handles at once (4 for triangle packets).
+    pub block_size: u32,
+    /// The most items a leaf may hold (at most 16).
+    pub max_leaf_items: u32,
+    /// The cost of visiting a node, relative to intersecting one block.
+    pub traversal_cost: f32,
+}
+
+impl Default for BuildParams {
+    /// One item per test, leaves of up to 4 items: the settings for a list of objects.
+    fn default() -> Self {
+        Self {
+            block_size: 1,
+            max_leaf_items: 4,
+            traversal_cost: 1.0,
+        }
+    }
+}
+
+/// A node with up to four children whose boxes are stored as structure of arrays, so
+/// that one ray is tested against all four boxes with one SIMD instruction per slab.
+///
+/// 128 bytes, two cache lines: `planes[axis + 3 * is_max][child]` and the child refs.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub(crate) struct Node {
+    planes: [[f32; 4]; 6],
+    children: [u32; 4],
+    _pad: [u32; 4],
+}
+
+/// Child ref flag: the child is a leaf `(start, count)` rather than a node index.
+const LEAF: u32 = 1 << 31;
+/// Bits of a leaf ref that hold `count - 1`.
+const COUNT_BITS: u32 = 4;
+/// The most items a leaf can refer to.
+const MAX_LEAF: u32 = 1 << COUNT_BITS;
+/// The first item of a leaf must be below this (2^27 = 134 million).
+pub(crate) const MAX_ITEMS: usize = 1 << (31 - COUNT_BITS);
+/// The ref of an unused child slot (never a valid leaf: its items would end past
+/// `MAX_ITEMS`); its box is empty, so no ray enters it.
+const EMPTY_REF: u32 = u32::MAX;
+/// Depth (in nodes) after which the build stops using SAH and halves ranges by count.
+/// Each level then at least halves the largest range, so with fewer than 2^27 items
+/// the depth stays below `FORCE_MEDIAN_DEPTH + 27 = 67`.
+const FORCE_MEDIAN_DEPTH: u32 = 40;
+/// The traversal stack: a node pushes at most 3 entries more than it pops, and the
+/// tree is less than 67 nodes deep.
+const STACK_SIZE: usize = 3 * 67 + 1;
+/// Ranges at least this large are split with parallel binning and built in parallel.
+const PARALLEL_ITEMS: usize = 16 * 1024;
+
+impl Node {
+    const EMPTY: Self = Self {
+        planes: [
+            [f32::INFINITY; 4],
+            [f32::INFINITY; 4],
+            [f32::INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+        ],
+        children: [EMPTY_REF; 4],
+        _pad: [0; 4],
+    };
+
+    fn set_child(&mut self, slot: usize, bounds: &Aabb, child: u32) {
+        for axis in 0..3 {
+            self.planes[axis][slot] = bounds.min[axis];
+            self.planes[axis + 3][slot] = bounds.max[axis];
+        }
+        self.children[slot] = child;
+    }
+
+    #[cfg(test)]
+    fn child_bounds(&self, slot: usize) -> Aabb {
+        let p = &self.planes;
+        Aabb::new(
+            Vec3::new(p[0][slot], p[1][slot], p[2][slot]),
+            Vec3::new(p[3][slot], p[4][slot], p[5][slot]),
+        )
+    }
+}
+
+fn leaf_ref(start: usize, count: usize) -> u32 {
+    debug_assert!(start < MAX_ITEMS && (1..=MAX_LEAF as usize).contains(&count));
+    LEAF | ((start as u32) << COUNT_BITS) | (count as u32 - 1)
+}
+
+fn decode_leaf(child: u32) -> (u32, u32) {
+    ((child & !LEAF) >> COUNT_BITS, (child & (MAX_LEAF - 1)) + 1)
+}
+
+/// A bounding volume hierarchy over items with boxes, with four children per node.
+///
+/// Leaves refer to runs of consecutive positions in [`Bvh::item_order`]: position `i`
+/// holds the index (in the slice it was built from) of the `i`-th item in leaf order,
+/// so callers can store their items reordered by leaf and read a leaf's items from one
+/// contiguous run.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    item_order: Vec<u32>,
+    bounds: Aabb,
+}
+
+/// A ray prepared for box tests: origin and reciprocal direction splatted across lanes,
+/// and for each axis the plane rows (`planes[axis + 3 * is_max]`) crossed first and last.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BoxRay {
+    origin_near: [Vec4; 3],
+    origin_far: [Vec4; 3],
+    inverse: [Vec4; 3],
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl BoxRay {
+    pub(crate) fn new(ray: &Ray) -> Self {
+        let (o, d) = (ray.origin, ray.direction);
+        let mut origin_near = [Vec4::ZERO; 3];
+        let mut origin_far = [Vec4::ZERO; 3];
+        let mut inverse = [Vec4::ZERO; 3];
+        for axis in 0..3 {
+            let sign = if d[axis].is_sign_negative() {
+                -1.0
+            } else {
+                1.0
+            };
+            let (mut o_near, mut o_far) = (o[axis], o[axis]);
+            let mut d_axis = d[axis];
+            if d_axis.abs() < 1e-30 {
+                // A ray parallel to the slabs never leaves the slab it starts in. With
+                // 1 / 0 = inf, a ray exactly on a box face would give 0 * inf = NaN; a
+                // huge finite reciprocal avoids the NaN, and moving the origin a little
+                // into the slab for each plane (toward the far plane for the near one,
+                // and back for the far one) keeps a ray on the face inside the closed
+                // slab: (max - o) * 1e30 would otherwise make it leave at t = 0.
+                let shift = (o[axis].abs() * 1e-6).max(1e-20);
+                o_near += sign * shift;
+                o_far -= sign * shift;
+                d_axis = sign * 1e-30;
+            }
+            origin_near[axis] = Vec4::splat(o_near);
+            origin_far[axis] = Vec4::splat(o_far);
+            inverse[axis] = Vec4::splat(1.0 / d_axis);
+        }
+        let negative = |axis: usize| usize::from(d[axis].is_sign_negative());
+        Self {
+            origin_near,
+            origin_far,
+            inverse,
+            near: std::array::from_fn(|axis| axis + 3 * negative(axis)),
+            far: std::array::from_fn(|axis| axis + 3 * (1 - negative(axis))),
+        }
+    }
+
+    /// Tests the ray against a node's four boxes; returns the bit mask of boxes whose
+    /// slab interval meets `[t_min, t_max]`, and the entry distances.
+    ///
+    /// The exit distance is enlarged by `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
+    /// Traversal", JCGT 2013) so that rounding never culls a box the ray grazes.
+    #[inline(always)]
+    fn hit_children(&self, node: &Node, t_min: Vec4, t_max: Vec4) -> (u32, Vec4) {
+        const ROBUST: f32 = 1.0 + 2.0 * 3.0 * f32::EPSILON;
+        let p = &node.planes;
+        // Choosing the near and far plane by the direction's sign (rather than taking
+        // min and max) keeps an empty box (min > max) empty, so unused slots never hit.
+        let slab = |axis: usize| {
+            let near = (Vec4::from_array(p[self.near[axis]]) - self.origin_near[axis])
+                * self.inverse[axis];
+            let far =
+                (Vec4::from_array(p[self.far[axis]]) - self.origin_far[axis]) * self.inverse[axis];
+            (near, far)
+        };
+        let (nx, fx) = slab(0);
+        let (ny, fy) = slab(1);
+        let (nz, fz) = slab(2);
+        let t_near = nx.max(ny).max(nz).max(t_min);
+        let t_far = (fx.min(fy).min(fz) * ROBUST).min(t_max);
+        (t_near.cmple(t_far).bitmask(), t_near)
+    }
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `items` with the binned SAH (see [`BuildParams`]).
+    ///
+    /// Large ranges are binned and built in parallel on the current rayon pool.
+    /// `items` must hold fewer than 2^27 items with finite boxes; more are not indexed.
+    pub fn build<T: Bounded + Sync>(items: &[T], params: BuildParams) -> Self {
+        let count = items.len().min(MAX_ITEMS);
+        let mut build_items: Vec<BuildItem> = items[..count]
+            .par_iter()
+            .enumerate()
+            .map(|(index, item)| BuildItem::new(item.bounds(), index as u32))
+            .collect();
+        Self::build_from(&mut build_items, params)
+    }
+
+    /// Builds from prepared items (boxes with their indices); used by meshes, which
+    /// compute the boxes of their triangles themselves.
+    pub(crate) fn build_from(items: &mut [BuildItem], params: BuildParams) -> Self {
+        let params = BuildParams {
+            block_size: params.block_size.max(1),
+            max_leaf_items: params.max_leaf_items.clamp(1, MAX_LEAF),
+            ..params
+        };
+        if items.is_empty() {
+            return Self::default();
+        }
+        let range = RangeInfo::of(items, 0);
+        let bounds = range.bounds;
+        let builder = Builder { params };
+        let mut nodes = Vec::with_capacity(items.len() / 2 + 1);
+        builder.build_node(items, range, 0, &mut nodes);
+        let item_order = items.iter().map(|item| item.index).collect();
+        Self {
+            nodes,
+            item_order,
+            bounds,
+        }
+    }
+
+    /// For each position in leaf order, the index of the item (in the slice the
+    /// hierarchy was built from) stored there.
+    pub fn item_order(&self) -> &[u32] {
+        &self.item_order
+    }
+
+    /// The box around all items ([`Aabb::EMPTY`] when there are none).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The memory held by the nodes and the item order, in bytes.
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node>() + self.item_order.len() * 4
+    }
+
+    /// Every leaf as `(first position, item count)`, in node order.
+    pub fn leaves(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.nodes
+            .iter()
+            .flat_map(|node| node.children)
+            .filter(|&child| child & LEAF != 0 && child != EMPTY_REF)
+            .map(decode_leaf)
+    }
+
+    /// Drops the item order, for callers that store their items in leaf order.
+    pub(crate) fn clear_item_order(&mut self) {
+        self.item_order = Vec::new();
+    }
+
+    /// Rewrites every leaf `(start, count)` to `f(start, count)`: a mesh re-points its
+    /// leaves from triangle positions to packet positions.
+    pub(crate) fn remap_leaves(&mut self, mut f: impl FnMut(u32, u32) -> (u32, u32)) {
+        for node in &mut self.nodes {
+            for child in &mut node.children {
+                if *child & LEAF != 0 && *child != EMPTY_REF {
+                    let (start, count) = decode_leaf(*child);
+                    let (start, count) = f(start, count);
+                    *child = leaf_ref(start as usize, count as usize);
+                }
+            }
+        }
+    }
+
+    /// Finds the closest hit: visits the leaves the ray may reach, nearest box first,
+    /// and calls `leaf(start, count, t_max)`, which intersects the items at positions
+    /// `start..start + count` and returns the new `t_max` (the closest hit so far, or
+    /// `t_max` unchanged). Boxes entered beyond the current `t_max` are skipped.
+    /// Returns the final `t_max`.
+    ///
+    /// No allocation: the stack is a fixed array.
+    pub fn closest(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u32, u32, f32) -> f32,
+    ) -> f32 {
+        self.closest_prepared(&BoxRay::new(ray), t_min, t_max, leaf)
+    }
+
+    pub(crate) fn closest_prepared(
+        &self,
+        ray: &BoxRay,
+        t_min: f32,
+        mut t_max: f32,
+        mut leaf: impl FnMut(u32, u32, f32) -> f32,
+    ) -> f32 {
+        if self.nodes.is_empty() {
+            return t_max;
+        }
+        let mut stack_refs = [0u32; STACK_SIZE];
+        let mut stack_t = [0f32; STACK_SIZE];
+        let mut sp = 0usize;
+        let mut current = 0u32;
+        let t_min4 = Vec4::splat(t_min);
+        loop {
+            if current & LEAF != 0 {
+                let (start, count) = decode_leaf(current);
+                t_max = leaf(start, count, t_max);
+            } else {
+                let node = &self.nodes[current as usize];
+                let (mask, t_near) = ray.hit_children(node, t_min4, Vec4::splat(t_max));
+                if mask != 0 {
+                    if mask.count_ones() == 1 {
+                        current = node.children[mask.trailing_zeros() as usize];
+                        continue;
+                    }
+                    // Sort the hit children far to near, push all but the nearest and
+                    // descend into it.
+                    let t_near = t_near.to_array();
+                    let mut refs = [0u32; 4];
+                    let mut dists = [0f32; 4];
+                    let mut k = 0;
+                    let mut bits = mask;
+                    while bits != 0 {
+                        let slot = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        let (child, dist) = (node.children[slot], t_near[slot]);
+                        let mut j = k;
+                        while j > 0 && dists[j - 1] < dist {
+                            refs[j] = refs[j - 1];
+                            dists[j] = dists[j - 1];
+                            j -= 1;
+                        }
+                        refs[j] = child;
+                        dists[j] = dist;
+                        k += 1;
+                    }
+                    stack_refs[sp..sp + k - 1].copy_from_slice(&refs[..k - 1]);
+                    stack_t[sp..sp + k - 1].copy_from_slice(&dists[..k - 1]);
+                    sp += k - 1;
+                    current = refs[k - 1];
+                    continue;
+                }
+            }
+            // Pop the nearest pending subtree that can still hold a closer hit.
+            loop {
+                if sp == 0 {
+                    return t_max;
+                }
+                sp -= 1;
+                if stack_t[sp] <= t_max {
+                    current = stack_refs[sp];
+                    break;
+                }
+            }
+        }
+    }
+
+    /// Whether any leaf reports a hit: calls `leaf(start, count)` for the leaves whose
+    /// boxes the ray meets within `[t_min, t_max]` and stops at the first `true`.
+    pub fn any(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u32, u32) -> bool,
+    ) -> bool {
+        self.any_prepared(&BoxRay::new(ray), t_min, t_max, leaf)
+    }
+
+    pub(crate) fn any_prepared(
+        &self,
+        ray: &BoxRay,
+        t_min: f32,
+        t_max: f32,
+        mut leaf: impl FnMut(u32, u32) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = [0u32; STACK_SIZE];
+        let mut sp = 0usize;
+        let mut current = 0u32;
+        let (t_min4, t_max4) = (Vec4::splat(t_min), Vec4::splat(t_max));
+        loop {
+            if current & LEAF != 0 {
+                let (start, count) = decode_leaf(current);
+                if leaf(start, count) {
+                    return true;
+                }
+            } else {
+                let node = &self.nodes[current as usize];
+                let (mut mask, _) = ray.hit_children(node, t_min4, t_max4);
+                while mask != 0 {
+                    stack[sp] = node.children[mask.trailing_zeros() as usize];
+                    sp += 1;
+                    mask &= mask - 1;
+                }
+            }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            current = stack[sp];
+        }
+    }
+
+    /// Checks the structure: every child box holds its subtree, leaves tile the items.
+    #[cfg(test)]
+    pub(crate) fn validate(&self, item_bounds: &dyn Fn(u32) -> Aabb) {
+        let mut seen = vec![false; self.item_order.len()];
+        let mut stack = vec![(0u32, self.bounds)];
+        while let Some((node_index, bounds)) = stack.pop() {
+            let node = &self.nodes[node_index as usize];
+            for slot in 0..4 {
+                let child = node.children[slot];
+                let child_bounds = node.child_bounds(slot);
+                if child == EMPTY_REF {
+                    assert!(child_bounds.is_empty());
+                    continue;
+                }
+                assert_eq!(
+                    child_bounds.union(bounds),
+                    bounds,
+                    "child box outside its parent"
+                );
+                if child & LEAF != 0 {
+                    let (start, count) = decode_leaf(child);
+                    for position in start..start + count {
+                        assert!(!seen[position as usize], "item in two leaves");
+                        seen[position as usize] = true;
+                        let item = item_bounds(self.item_order[position as usize]);
+                        assert_eq!(
+                            item.union(child_bounds),
+                            child_bounds,
+                            "item outside its leaf"
+                        );
+                    }
+                } else {
+                    stack.push((child, child_bounds));
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s), "item in no leaf");
+    }
+}
+
+/// An item during the build: its box and its index in the input.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub(crate) struct BuildItem {
+    min: Vec3,
+    index: u32,
+    max: Vec3,
+    _pad: u32,
+}
+
+impl BuildItem {
+    pub(crate) fn new(bounds: Aabb, index: u32) -> Self {
+        Self {
+            min: bounds.min,
+            index,
+            max: bounds.max,
+            _pad: 0,
+        }
+    }
+
+    /// Twice the box center: the point binned (the factor 2 cancels out).
+    #[inline(always)]
+    fn centroid2(&self) -> Vec3A {
+        Vec3A::from(self.min) + Vec3A::from(self.max)
+    }
+}
+
+/// A contiguous range of build items with its box and the box of its centroids.
+#[derive(Clone, Copy, Debug)]
+struct RangeInfo {
+    start: usize,
+    end: usize,
+    bounds: Aabb,
+    centroids: Aabb,
+    /// Decided: this range becomes a leaf.
+    leaf: bool,
+}
+
+impl RangeInfo {
+    fn of(items: &[BuildItem], start: usize) -> Self {
+        let fold = |items: &[BuildItem]| {
+            items.iter().fold(
+                (
+                    Vec3A::INFINITY,
+                    Vec3A::NEG_INFINITY,
+                    Vec3A::INFINITY,
+                    Vec3A::NEG_INFINITY,
+                ),
+                |(lo, hi, clo, chi), item| {
+                    let c = item.centroid2();
+                    (
+                        lo.min(item.min.into()),
+                        hi.max(item.max.into()),
+                        clo.min(c),
+                        chi.max(c),
+                    )
+                },
+            )
+        };
+        let (lo, hi, clo, chi) = if items.len() >= PARALLEL_ITEMS {
+            items.par_chunks(PARALLEL_ITEMS / 4).map(fold).reduce(
+                || {
+                    (
+                        Vec3A::INFINITY,
+                        Vec3A::NEG_INFINITY,
+                        Vec3A::INFINITY,
+                        Vec3A::NEG_INFINITY,
+                    )
+                },
+                |a, b| (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3)),
+            )
+        } else {
+            fold(items)
+        };
+        Self {
+            start,
+            end: start + items.len(),
+            bounds: Aabb::new(lo.into(), hi.into()),
+            centroids: Aabb::new(clo.into(), chi.into()),
+            leaf: false,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.end - self.start
+    }
+}
+
+/// Number of bins per axis.
+const BINS: usize = 32;
+
+/// Per-axis bins: boxes and counts of the items whose centroids fall in each.
+#[derive(Clone, Copy)]
+struct Bins {
+    min: [[Vec3A; BINS]; 3],
+    max: [[Vec3A; BINS]; 3],
+    count: [[u32; BINS]; 3],
+}
+
+impl Bins {
+    fn new() -> Self {
+        Self {
+            min: [[Vec3A::INFINITY; BINS]; 3],
+            max: [[Vec3A::NEG_INFINITY; BINS]; 3],
+            count: [[0; BINS]; 3],
+        }
+    }
+
+    fn add(&mut self, items: &[BuildItem], origin: Vec3A, scale: Vec3A) {
+        let last = (BINS - 1) as f32;
+        for item in items {
+            let (lo, hi) = (Vec3A::from(item.min), Vec3A::from(item.max));
+            let bin = ((item.centroid2() - origin) * scale)
+                .min(Vec3A::splat(last))
+                .max(Vec3A::ZERO);
+            let bin = bin.as_uvec3();
+            for axis in 0..3 {
+                let b = bin[axis] as usize;
+                self.min[axis][b] = self.min[axis][b].min(lo);
+                self.max[axis][b] = self.max[axis][b].max(hi);
+                self.count[axis][b] += 1;
+            }
+        }
+    }
+
+    fn merge(mut self, other: &Self) -> Self {
+        for axis in 0..3 {
+            for b in 0..BINS {
+                self.min[axis][b] = self.min[axis][b].min(other.min[axis][b]);
+                self.max[axis][b] = self.max[axis][b].max(other.max[axis][b]);
+                self.count[axis][b] += other.count[axis][b];
+            }
+        }
+        self
+    }
+}
+
+fn half_area(lo: Vec3A, hi: Vec3A) -> f32 {
+    let d = (hi - lo).max(Vec3A::ZERO);
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+/// How to divide a range.
+enum Split {
+    /// Make it a leaf.
+    Leaf,
+    /// Items whose bin on `axis` is below `bin` go left.
+    Plane {
+        axis: usize,
+        bin: usize,
+        origin: Vec3A,
+        scale: Vec3A,
+    },
+    /// Halve by count (no usable SAH split, or the tree is too deep).
+    Median,
+}
+
+struct Builder {
+    params: BuildParams,
+}
+
+impl Builder {
+    fn blocks(&self, n: u32) -> f32 {
+        n.div_ceil(self.params.block_size) as f32
+    }
+
+    /// Chooses how to split `items` (the items of `range`) with the binned SAH.
+    fn choose_split(&self, items: &[BuildItem], range: &RangeInfo, depth: u32) -> Split {
+        let n = items.len();
+        let small = n <= self.params.max_leaf_items as usize;
+        if n <= 1 {
+            return Split::Leaf;
+        }
+        if depth >= FORCE_MEDIAN_DEPTH {
+            return if small { Split::Leaf } else { Split::Median };
+        }
+        let origin = Vec3A::from(range.centroids.min);
+        let extent = Vec3A::from(range.centroids.max) - origin;
+        let scale = Vec3A::select(
+            extent.cmpgt(Vec3A::ZERO),
+            Vec3A::splat(BINS as f32 * (1.0 - 1e-6)) / extent,
+            Vec3A::ZERO,
+        );
+        if scale == Vec3A::ZERO {
+            return if small { Split::Leaf } else { Split::Median };
+        }
+        let bins = if n >= PARALLEL_ITEMS {
+            items
+                .par_chunks(PARALLEL_ITEMS / 4)
+                .map(|chunk| {
+                    let mut bins = Bins::new();
+                    bins.add(chunk, origin, scale);
+                    bins
+                })
+                .reduce(Bins::new, |a, b| a.merge(&b))
+        } else {
+            let mut bins = Bins::new();
+            bins.add(items, origin, scale);
+            bins
+        };
+
+        let mut best: Option<(f32, usize, usize)> = None;
+        for axis in 0..3 {
+            if scale[axis] == 0.0 {
+                continue;
+            }
+            // Sweep from the right: cost contribution of bins b..BINS.
+            let mut right_cost = [0.0f32; BINS];
+            let (mut lo, mut hi, mut count) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0u32);
+            for b in (1..BINS).rev() {
+                lo = lo.min(bins.min[axis][b]);
+                hi = hi.max(bins.max[axis][b]);
+                count += bins.count[axis][b];
+                right_cost[b] = if count == 0 {
+                    f32::INFINITY
+                } else {
+                    half_area(lo, hi) * self.blocks(count)
+                };
+            }
+            let (mut lo, mut hi, mut count) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0u32);
+            for (b, right) in right_cost.iter().enumerate().skip(1) {
+                lo = lo.min(bins.min[axis][b - 1]);
+                hi = hi.max(bins.max[axis][b - 1]);
+                count += bins.count[axis][b - 1];
+                if count == 0 {
+                    continue;
+                }
+                let cost = half_area(lo, hi) * self.blocks(count) + right;
+                if best.is_none_or(|(c, _, _)| cost < c) {
+                    best = Some((cost, axis, b));
+                }
+            }
+        }
+        let Some((split_cost, axis, bin)) = best.filter(|(c, _, _)| c.is_finite()) else {
+            return if small { Split::Leaf } else { Split::Median };
+        };
+        let area = half_area(range.bounds.min.into(), range.bounds.max.into());
+        let leaf_cost = area * self.blocks(n as u32);
+        if small && leaf_cost <= area * self.params.traversal_cost + split_cost {
+            return Split::Leaf;
+        }
+        Split::Plane {
+            axis,
+            bin,
+            origin,
+            scale,
+        }
+    }
+
+    /// Splits `range` (whose items are `items`) into two, or decides it is a leaf.
+    fn split(
+        &self,
+        items: &mut [BuildItem],
+        range: RangeInfo,
+        depth: u32,
+    ) -> Result<(RangeInfo, RangeInfo), RangeInfo> {
+        let mid = match self.choose_split(items, &range, depth) {
+            Split::Leaf => {
+                return Err(RangeInfo {
+                    leaf: true,
+                    ..range
+                });
+            }
+            Split::Plane {
+                axis,
+                bin,
+                origin,
+                scale,
+            } => {
+                let goes_left = |item: &BuildItem| {
+                    let b = ((item.centroid2()[axis] - origin[axis]) * scale[axis])
+                        .clamp(0.0, (BINS - 1) as f32);
+                    (b as usize) < bin
+                };
+                partition(items, goes_left)
+            }
+            Split::Median => {
+                let axis = Vec3A::from(range.centroids.max - range.centroids.min).max_position();
+                let mid = items.len() / 2;
+                items.select_nth_unstable_by(mid, |a, b| {
+                    a.centroid2()[axis].total_cmp(&b.centroid2()[axis])
+                });
+                mid
+            }
+        };
+        let (left, right) = items.split_at(mid);
+        let (left, right) = if items.len() >= PARALLEL_ITEMS {
+            rayon::join(
+                || RangeInfo::of(left, range.start),
+                || RangeInfo::of(right, range.start + mid),
+            )
+        } else {
+            (
+                RangeInfo::of(left, range.start),
+                RangeInfo::of(right, range.start + mid),
+            )
+        };
+        Ok((left, right))
+    }
+
+    /// Builds the node for `range` (whose items are `items`) and its subtree, appending
+    /// the nodes to `out`; returns the node's index.
+    fn build_node(
+        &self,
+        items: &mut [BuildItem],
+        range: RangeInfo,
+        depth: u32,
+        out: &mut Vec<Node>,
+    ) -> u32 {
+        let index = out.len();
+        out.push(Node::EMPTY);
+
+        // Open the range into up to four children, always splitting the largest one.
+        let mut children = vec![range];
+        while children.len() < 4 {
+            let candidate = children
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| !c.leaf)
+                .max_by(|a, b| {
+                    a.1.bounds
+                        .surface_area()
+                        .total_cmp(&b.1.bounds.surface_area())
+                })
+                .map(|(i, _)| i);
+            let Some(i) = candidate else { break };
+            let child = children[i];
+            let local = child.start - range.start..child.end - range.start;
+            match self.split(&mut items[local], child, depth) {
+                Ok((left, right)) => {
+                    children[i] = left;
+                    children.push(right);
+                }
+                Err(leaf) => children[i] = leaf,
+            }
+        }
+        children.sort_by_key(|c| c.start);
+
+        // Cut the item slice into the children's disjoint slices.
+        let mut slices = Vec::with_capacity(children.len());
+        let mut rest = items;
+        for child in &children {
+            let (head, tail) = rest.split_at_mut(child.len());
+            slices.push(head);
+            rest = tail;
+        }
+
+        let mut node = Node::EMPTY;
+        if range.len() >= PARALLEL_ITEMS {
+            // Build the inner children's subtrees in parallel, each into its own array,
+            // then append them with their node indices shifted.
+            let subtrees: Vec<Option<Vec<Node>>> = children
+                .par_iter()
+                .zip(slices.into_par_iter())
+                .map(|(child, slice)| {
+                    (!child.leaf).then(|| {
+                        let mut nodes = Vec::new();
+                        self.build_node(slice, *child, depth + 1, &mut nodes);
+                        nodes
+                    })
+                })
+                .collect();
+            for (slot, (child, subtree)) in children.iter().zip(subtrees).enumerate() {
+                let child_ref = match subtree {
+                    None => leaf_ref(child.start, child.len()),
+                    Some(subtree) => {
+                        let base = out.len() as u32;
+                        out.extend(subtree.into_iter().map(|mut n| {
+                            for c in &mut n.children {
+                                if *c & LEAF == 0 {
+                                    *c += base;
+                                }
+                            }
+                            n
+                        }));
+                        base
+                    }
+                };
+                node.set_child(slot, &child.bounds, child_ref);
+            }
+        } else {
+            for (slot, (child, slice)) in children.iter().zip(slices).enumerate() {
+                let child_ref = if child.leaf {
+                    leaf_ref(child.start, child.len())
+                } else {
+                    self.build_node(slice, *child, depth + 1, out)
+                };
+                node.set_child(slot, &child.bounds, child_ref);
+            }
+        }
+        out[index] = node;
+        index as u32
+    }
+}
+
+/// Moves the items for which `goes_left` holds to the front; returns how many there are.
+fn partition(items: &mut [BuildItem], goes_left: impl Fn(&BuildItem) -> bool) -> usize {
+    let (mut i, mut j) = (0, items.len());
+    loop {
+        while i < j && goes_left(&items[i]) {
+            i += 1;
+        }
+        while i < j && !goes_left(&items[j - 1]) {
+            j -= 1;
+        }
+        if i >= j {
+            return i;
+        }
+        items.swap(i, j - 1);
+        i += 1;
+        j -= 1;
+    }
+}

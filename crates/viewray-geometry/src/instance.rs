@@ -1,0 +1,127 @@
+//! Meshes placed in the world by affine transforms.
+
+use std::ops::Range;
+use std::sync::Arc;
+
+use glam::{Affine3A, Mat3A, Vec3};
+
+use crate::hit::{Hit, RawHit};
+use crate::{Aabb, GeometryError, Mesh, Ray};
+
+/// A shared [`Mesh`] placed by an affine transform (scale, rotation, translation).
+///
+/// The mesh and its BVH are built once, in object space, and shared through the
+/// [`Arc`]; a ray is carried into object space instead of the mesh into the world:
+///
+/// ```text
+/// o' = object_from_world o,   d' = object_from_world d   (linear part only)
+/// ```
+///
+/// The ray parameter is unchanged by an affine map, so `t` needs no conversion; normals
+/// go back to the world by the inverse transpose, `n = (M^-1)^T n'`, which keeps them
+/// perpendicular to the surface under non-uniform scale.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    mesh: Arc<Mesh>,
+    world_from_object: Affine3A,
+    object_from_world: Affine3A,
+    normal_matrix: Mat3A,
+    bounds: Aabb,
+}
+
+impl Instance {
+    /// `mesh` placed by `world_from_object`.
+    ///
+    /// # Errors
+    ///
+    /// [`GeometryError::SingularTransform`] when the transform is not finite or its
+    /// linear part cannot be inverted (a zero scale, for example).
+    pub fn new(mesh: Arc<Mesh>, world_from_object: Affine3A) -> Result<Self, GeometryError> {
+        let determinant = world_from_object.matrix3.determinant();
+        if !world_from_object.is_finite() || determinant == 0.0 || !determinant.is_finite() {
+            return Err(GeometryError::SingularTransform { determinant });
+        }
+        let object_from_world = world_from_object.inverse();
+        if !object_from_world.is_finite() {
+            return Err(GeometryError::SingularTransform { determinant });
+        }
+        let normal_matrix = object_from_world.matrix3.transpose();
+        let mesh_bounds = mesh.bounds();
+        let bounds = if mesh_bounds.is_empty() {
+            Aabb::EMPTY
+        } else {
+            Aabb::from_points(
+                mesh_bounds
+                    .corners()
+                    .map(|p| world_from_object.transform_point3(p)),
+            )
+        };
+        Ok(Self {
+            mesh,
+            world_from_object,
+            object_from_world,
+            normal_matrix,
+            bounds,
+        })
+    }
+
+    /// The mesh, untransformed (the identity placement).
+    pub fn from_mesh(mesh: Arc<Mesh>) -> Self {
+        let bounds = mesh.bounds();
+        Self {
+            mesh,
+            world_from_object: Affine3A::IDENTITY,
+            object_from_world: Affine3A::IDENTITY,
+            normal_matrix: Mat3A::IDENTITY,
+            bounds,
+        }
+    }
+
+    /// The shared mesh.
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.mesh
+    }
+
+    /// The placement: world coordinates from mesh coordinates.
+    pub fn world_from_object(&self) -> Affine3A {
+        self.world_from_object
+    }
+
+    /// The world-space box around the transformed mesh box.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn object_ray(&self, ray: &Ray) -> Ray {
+        Ray::new(
+            self.object_from_world.transform_point3(ray.origin),
+            self.object_from_world.transform_vector3(ray.direction),
+        )
+    }
+
+    /// The closest hit with `t` in `t_range`, in world space.
+    pub fn closest_hit(&self, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
+        let raw = self.intersect(ray, t_range.start, t_range.end)?;
+        Some(self.surface(ray, &raw))
+    }
+
+    /// Whether the mesh is hit with `t` in `t_range`.
+    pub fn any_hit(&self, ray: &Ray, t_range: Range<f32>) -> bool {
+        self.mesh.any_hit(&self.object_ray(ray), t_range)
+    }
+
+    pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
+        self.mesh.intersect(&self.object_ray(ray), t_min, t_max)
+    }
+
+    pub(crate) fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {
+        let local = self.mesh.surface(&self.object_ray(ray), raw);
+        let to_world = |n: Vec3| (self.normal_matrix * n).normalize_or(n);
+        Hit {
+            point: ray.at(raw.t),
+            normal: to_world(local.normal),
+            shading_normal: to_world(local.shading_normal),
+            ..local
+        }
+    }
+}

@@ -1,0 +1,529 @@
+//! Triangle meshes: validated vertex data, triangle packets in leaf order, and the BVH.
+
+use std::collections::HashMap;
+use std::ops::Range;
+
+use glam::{BVec4A, Vec2, Vec3, Vec4};
+use rayon::prelude::*;
+
+use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS};
+use crate::hit::{Hit, RawHit, face_toward};
+use crate::shapes::{WatertightRay, edge_functions_f64};
+use crate::{Aabb, GeometryError, Ray};
+
+/// The vertex and face data of a triangle mesh, before validation.
+///
+/// Vertex attributes are indexed together (one index per corner, as tobj delivers them
+/// with `single_index = true`). Build it from vectors with [`MeshData::new`] and the
+/// `with_` methods, or from tobj's flat arrays with [`MeshData::from_flat`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Triangles as three vertex indices, counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// Per-vertex normals for smooth shading, if any.
+    pub normals: Option<Vec<Vec3>>,
+    /// Per-vertex texture coordinates, if any.
+    pub uvs: Option<Vec<Vec2>>,
+}
+
+impl MeshData {
+    /// Positions and triangles, without normals or texture coordinates.
+    pub fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Self {
+        Self {
+            positions,
+            triangles,
+            normals: None,
+            uvs: None,
+        }
+    }
+
+    /// The same data with per-vertex normals.
+    #[must_use]
+    pub fn with_normals(mut self, normals: Vec<Vec3>) -> Self {
+        self.normals = Some(normals);
+        self
+    }
+
+    /// The same data with per-vertex texture coordinates.
+    #[must_use]
+    pub fn with_uvs(mut self, uvs: Vec<Vec2>) -> Self {
+        self.uvs = Some(uvs);
+        self
+    }
+
+    /// Mesh data from flat arrays as tobj's `Mesh` holds them: `positions` and `normals`
+    /// as `x, y, z` triples, `texcoords` as `u, v` pairs, `indices` as triangle
+    /// corners. An empty `normals` or `texcoords` means the mesh has none.
+    ///
+    /// # Errors
+    ///
+    /// [`GeometryError::FlatLength`] when an array does not hold whole elements.
+    pub fn from_flat(
+        positions: &[f32],
+        indices: &[u32],
+        normals: &[f32],
+        texcoords: &[f32],
+    ) -> Result<Self, GeometryError> {
+        fn chunks<const N: usize>(
+            attribute: &'static str,
+            values: &[f32],
+        ) -> Result<Vec<[f32; N]>, GeometryError> {
+            let (chunks, rest) = values.as_chunks::<N>();
+            if rest.is_empty() {
+                Ok(chunks.to_vec())
+            } else {
+                Err(GeometryError::FlatLength {
+                    attribute,
+                    len: values.len(),
+                    stride: N,
+                })
+            }
+        }
+        let (triangles, rest) = indices.as_chunks::<3>();
+        if !rest.is_empty() {
+            return Err(GeometryError::FlatLength {
+                attribute: "indices",
+                len: indices.len(),
+                stride: 3,
+            });
+        }
+        let to_vec3 = |v: Vec<[f32; 3]>| v.into_iter().map(Vec3::from).collect::<Vec<_>>();
+        let positions = to_vec3(chunks::<3>("positions", positions)?);
+        let normals = chunks::<3>("normals", normals)?;
+        let uvs = chunks::<2>("texture coordinates", texcoords)?;
+        Ok(Self {
+            positions,
+            triangles: triangles.to_vec(),
+            normals: (!normals.is_empty()).then(|| to_vec3(normals)),
+            uvs: (!uvs.is_empty()).then(|| uvs.into_iter().map(Vec2::from).collect()),
+        })
+    }
+
+    /// An icosphere: a regular icosahedron whose faces are each split into four
+    /// `subdivisions` times, with every vertex pushed onto the sphere of radius `radius`
+    /// around the origin; `20 * 4^subdivisions` triangles sharing their vertices
+    /// exactly (a closed, watertight mesh), with the sphere's normals.
+    pub fn icosphere(subdivisions: u32, radius: f32) -> Self {
+        let phi = (1.0 + 5f32.sqrt()) / 2.0;
+        let mut unit: Vec<Vec3> = [
+            (-1.0, phi, 0.0),
+            (1.0, phi, 0.0),
+            (-1.0, -phi, 0.0),
+            (1.0, -phi, 0.0),
+            (0.0, -1.0, phi),
+            (0.0, 1.0, phi),
+            (0.0, -1.0, -phi),
+            (0.0, 1.0, -phi),
+            (phi, 0.0, -1.0),
+            (phi, 0.0, 1.0),
+            (-phi, 0.0, -1.0),
+            (-phi, 0.0, 1.0),
+        ]
+        .map(|(x, y, z)| Vec3::new(x, y, z).normalize())
+        .to_vec();
+        let mut triangles: Vec<[u32; 3]> = vec![
+            [0, 11, 5],
+            [0, 5, 1],
+            [0, 1, 7],
+            [0, 7, 10],
+            [0, 10, 11],
+            [1, 5, 9],
+            [5, 11, 4],
+            [11, 10, 2],
+            [10, 7, 6],
+            [7, 1, 8],
+            [3, 9, 4],
+            [3, 4, 2],
+            [3, 2, 6],
+            [3, 6, 8],
+            [3, 8, 9],
+            [4, 9, 5],
+            [2, 4, 11],
+            [6, 2, 10],
+            [8, 6, 7],
+            [9, 8, 1],
+        ];
+        for _ in 0..subdivisions {
+            let mut midpoints: HashMap<(u32, u32), u32> =
+                HashMap::with_capacity(triangles.len() * 3 / 2);
+            let mut midpoint = |a: u32, b: u32, unit: &mut Vec<Vec3>| {
+                *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    unit.push((unit[a as usize] + unit[b as usize]).normalize());
+                    unit.len() as u32 - 1
+                })
+            };
+            let mut next = Vec::with_capacity(triangles.len() * 4);
+            for [a, b, c] in triangles {
+                let ab = midpoint(a, b, &mut unit);
+                let bc = midpoint(b, c, &mut unit);
+                let ca = midpoint(c, a, &mut unit);
+                next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+            }
+            triangles = next;
+        }
+        let positions = unit.iter().map(|&n| n * radius).collect();
+        Self::new(positions, triangles).with_normals(unit)
+    }
+
+    /// The closed box mesh of `bounds`: 8 shared corners, 12 outward-facing triangles.
+    pub fn cuboid(bounds: Aabb) -> Self {
+        let faces = [
+            [0, 2, 3, 1], // -z
+            [4, 5, 7, 6], // +z
+            [0, 1, 5, 4], // -y
+            [2, 6, 7, 3], // +y
+            [0, 4, 6, 2], // -x
+            [1, 3, 7, 5], // +x
+        ];
+        let triangles = faces
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        Self::new(bounds.corners().to_vec(), triangles)
+    }
+}
+
+/// Four triangles in structure-of-arrays layout, for one SIMD watertight test.
+///
+/// `vertices[corner][axis][lane]`; a leaf with a number of triangles that is not a
+/// multiple of four repeats its last triangle (a duplicate can only report the same
+/// hit). 160 bytes for four triangles.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+struct TrianglePacket {
+    vertices: [[[f32; 4]; 3]; 3],
+    faces: [u32; 4],
+}
+
+/// A ray prepared for packet tests: [`WatertightRay`] with its numbers splatted.
+#[derive(Clone, Copy, Debug)]
+struct PacketRay {
+    k: [usize; 3],
+    origin: [Vec4; 3],
+    shear: [Vec4; 3],
+}
+
+impl PacketRay {
+    fn new(ray: &WatertightRay) -> Self {
+        Self {
+            k: ray.k,
+            origin: ray.k.map(|k| Vec4::splat(ray.origin[k])),
+            shear: [
+                Vec4::splat(ray.shear.x),
+                Vec4::splat(ray.shear.y),
+                Vec4::splat(ray.shear.z),
+            ],
+        }
+    }
+
+    /// The four triangles' lanes that the ray hits with `t_min <= t < t_max`, with
+    /// their `t`, edge functions and determinants (see [`WatertightRay`]).
+    #[inline(always)]
+    fn test(
+        &self,
+        packet: &TrianglePacket,
+        t_min: Vec4,
+        t_max: Vec4,
+    ) -> (BVec4A, Vec4, [Vec4; 3], Vec4) {
+        let [kx, ky, kz] = self.k;
+        let corner = |i: usize| {
+            let v = &packet.vertices[i];
+            let z = Vec4::from_array(v[kz]) - self.origin[2];
+            let x = Vec4::from_array(v[kx]) - self.origin[0] - self.shear[0] * z;
+            let y = Vec4::from_array(v[ky]) - self.origin[1] - self.shear[1] * z;
+            (x, y, z)
+        };
+        let (ax, ay, az) = corner(0);
+        let (bx, by, bz) = corner(1);
+        let (cx, cy, cz) = corner(2);
+        let mut u = cx * by - cy * bx;
+        let mut v = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        let zero = Vec4::ZERO;
+        if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).any() {
+            [u, v, w] = recompute_edges_f64([ax, ay, bx, by, cx, cy], [u, v, w]);
+        }
+        let negative = u.cmplt(zero) | v.cmplt(zero) | w.cmplt(zero);
+        let positive = u.cmpgt(zero) | v.cmpgt(zero) | w.cmpgt(zero);
+        let det = u + v + w;
+        let sz = self.shear[2];
+        let t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det;
+        let valid = !(negative & positive) & det.cmpne(zero) & t.cmpge(t_min) & t.cmplt(t_max);
+        (valid, t, [u, v, w], det)
+    }
+}
+
+/// Recomputes in `f64` the lanes where an edge function rounded to exactly zero.
+#[cold]
+#[inline(never)]
+fn recompute_edges_f64(coords: [Vec4; 6], edges: [Vec4; 3]) -> [Vec4; 3] {
+    let [ax, ay, bx, by, cx, cy] = coords.map(|c| c.to_array());
+    let [mut u, mut v, mut w] = edges.map(|e| e.to_array());
+    for lane in 0..4 {
+        if u[lane] == 0.0 || v[lane] == 0.0 || w[lane] == 0.0 {
+            (u[lane], v[lane], w[lane]) = edge_functions_f64(
+                [ax[lane], ay[lane]],
+                [bx[lane], by[lane]],
+                [cx[lane], cy[lane]],
+            );
+        }
+    }
+    [u, v, w].map(Vec4::from_array)
+}
+
+/// A triangle mesh with its own BVH, built once and shared by any number of
+/// [`Instance`](crate::Instance)s.
+///
+/// [`Mesh::new`] validates the data, drops zero-area triangles, and builds a four-wide
+/// BVH by binned SAH whose leaves point at [packets](crate#design) of four triangles
+/// stored in leaf order.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    data: MeshData,
+    bvh: Bvh,
+    packets: Vec<TrianglePacket>,
+    triangle_count: usize,
+}
+
+impl Mesh {
+    /// Validates `data`, drops its zero-area triangles and builds the BVH (in parallel
+    /// on the current rayon pool).
+    ///
+    /// # Errors
+    ///
+    /// - [`GeometryError::NonFinitePosition`] for an infinite or NaN position;
+    /// - [`GeometryError::VertexOutOfRange`] for a face naming a missing vertex;
+    /// - [`GeometryError::AttributeCount`] when normals or texture coordinates are not
+    ///   one per vertex.
+    pub fn new(data: MeshData) -> Result<Self, GeometryError> {
+        validate(&data)?;
+        Ok(Self::new_unchecked(data))
+    }
+
+    /// The icosphere of [`MeshData::icosphere`], built.
+    pub fn icosphere(subdivisions: u32, radius: f32) -> Self {
+        Self::new_unchecked(MeshData::icosphere(subdivisions, radius))
+    }
+
+    fn new_unchecked(data: MeshData) -> Self {
+        let positions = &data.positions;
+        // Keep the faces with nonzero area, as build items with their boxes.
+        let mut items: Vec<BuildItem> = data
+            .triangles
+            .par_iter()
+            .enumerate()
+            .take(MAX_ITEMS)
+            .filter_map(|(face, &[a, b, c])| {
+                let [a, b, c] = [a, b, c].map(|i| positions[i as usize]);
+                let area_normal = (b - a).cross(c - a);
+                (area_normal != Vec3::ZERO)
+                    .then(|| BuildItem::new(Aabb::from_points([a, b, c]), face as u32))
+            })
+            .collect();
+        let triangle_count = items.len();
+        let params = BuildParams {
+            block_size: 4,
+            max_leaf_items: 8,
+            traversal_cost: 1.0,
+        };
+        let mut bvh = Bvh::build_from(&mut items, params);
+        drop(items);
+
+        // Store the triangles leaf by leaf in packets of four, and point the leaves at
+        // their packets instead of their triangles.
+        let order = bvh.item_order().to_vec();
+        let mut packets = Vec::with_capacity(triangle_count.div_ceil(4) + triangle_count / 8);
+        bvh.remap_leaves(|start, count| {
+            let first_packet = packets.len() as u32;
+            let faces = &order[start as usize..(start + count) as usize];
+            for chunk in faces.chunks(4) {
+                let face = |lane: usize| chunk[lane.min(chunk.len() - 1)];
+                let vertex = |lane: usize, corner: usize| {
+                    positions[data.triangles[face(lane) as usize][corner] as usize]
+                };
+                packets.push(TrianglePacket {
+                    vertices: std::array::from_fn(|corner| {
+                        std::array::from_fn(|axis| {
+                            std::array::from_fn(|lane| vertex(lane, corner)[axis])
+                        })
+                    }),
+                    faces: std::array::from_fn(face),
+                });
+            }
+            (first_packet, packets.len() as u32 - first_packet)
+        });
+        bvh.clear_item_order();
+        Self {
+            data,
+            bvh,
+            packets,
+            triangle_count,
+        }
+    }
+
+    /// The vertex and face data the mesh was built from.
+    pub fn data(&self) -> &MeshData {
+        &self.data
+    }
+
+    /// The number of triangles intersected: the faces less the zero-area ones.
+    pub fn triangle_count(&self) -> usize {
+        self.triangle_count
+    }
+
+    /// The box around every triangle.
+    pub fn bounds(&self) -> Aabb {
+        self.bvh.bounds()
+    }
+
+    /// The memory of the acceleration data: BVH nodes and triangle packets, in bytes.
+    pub fn acceleration_bytes(&self) -> usize {
+        self.bvh.memory_bytes() + self.packets.len() * std::mem::size_of::<TrianglePacket>()
+    }
+
+    /// The closest hit with `t` in `t_range` (`t_range.start <= t < t_range.end`).
+    ///
+    /// [`Hit::primitive`] is the face index; [`Hit::object`] is 0.
+    pub fn closest_hit(&self, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
+        let raw = self.intersect(ray, t_range.start, t_range.end)?;
+        Some(self.surface(ray, &raw))
+    }
+
+    /// Whether any triangle is hit with `t` in `t_range`; stops at the first one found.
+    pub fn any_hit(&self, ray: &Ray, t_range: Range<f32>) -> bool {
+        let packet_ray = PacketRay::new(&WatertightRay::new(ray));
+        let (t_min, t_max) = (Vec4::splat(t_range.start), Vec4::splat(t_range.end));
+        self.bvh.any_prepared(
+            &BoxRay::new(ray),
+            t_range.start,
+            t_range.end,
+            |start, count| {
+                self.packets[start as usize..(start + count) as usize]
+                    .iter()
+                    .any(|packet| packet_ray.test(packet, t_min, t_max).0.any())
+            },
+        )
+    }
+
+    /// The closest hit as a raw hit: `t`, face and barycentrics.
+    pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
+        let packet_ray = PacketRay::new(&WatertightRay::new(ray));
+        let t_min4 = Vec4::splat(t_min);
+        let mut best = None;
+        self.bvh.closest_prepared(
+            &BoxRay::new(ray),
+            t_min,
+            t_max,
+            |start, count, mut t_max| {
+                for packet in &self.packets[start as usize..(start + count) as usize] {
+                    let (valid, t, [_, v, w], det) =
+                        packet_ray.test(packet, t_min4, Vec4::splat(t_max));
+                    if valid.any() {
+                        let t_valid = Vec4::select(valid, t, Vec4::INFINITY);
+                        t_max = t_valid.min_element();
+                        let lane =
+                            t_valid.cmpeq(Vec4::splat(t_max)).bitmask().trailing_zeros() as usize;
+                        let (v, w, det) =
+                            (v.to_array()[lane], w.to_array()[lane], det.to_array()[lane]);
+                        best = Some(RawHit {
+                            t: t_max,
+                            object: 0,
+                            primitive: packet.faces[lane],
+                            barycentric: Vec2::new(v / det, w / det),
+                        });
+                    }
+                }
+                t_max
+            },
+        );
+        best
+    }
+
+    /// The surface details of a raw hit on face `raw.primitive`.
+    pub(crate) fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {
+        let data = &self.data;
+        let [ia, ib, ic] = data.triangles[raw.primitive as usize].map(|i| i as usize);
+        let [a, b, c] = [ia, ib, ic].map(|i| data.positions[i]);
+        let Vec2 { x: b1, y: b2 } = raw.barycentric;
+        let b0 = 1.0 - b1 - b2;
+        let geometric = (b - a).cross(c - a).normalize_or(Vec3::Z);
+        let shading = data
+            .normals
+            .as_ref()
+            .and_then(|n| (b0 * n[ia] + b1 * n[ib] + b2 * n[ic]).try_normalize())
+            .unwrap_or(geometric);
+        let uv = data.uvs.as_ref().map_or(raw.barycentric, |uv| {
+            b0 * uv[ia] + b1 * uv[ib] + b2 * uv[ic]
+        });
+        let (normal, shading_normal, front_face) = face_toward(ray.direction, geometric, shading);
+        Hit {
+            t: raw.t,
+            point: ray.at(raw.t),
+            normal,
+            shading_normal,
+            front_face,
+            uv,
+            primitive: raw.primitive,
+            object: 0,
+        }
+    }
+
+    /// The closest hit by testing every triangle, without the BVH: the reference the
+    /// tests hold the BVH to.
+    #[cfg(test)]
+    pub(crate) fn brute_force(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
+        let w = WatertightRay::new(ray);
+        let mut best: Option<RawHit> = None;
+        for (face, tri) in self.data.triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| self.data.positions[i as usize]);
+            let limit = best.map_or(t_max, |b| b.t);
+            if (b - a).cross(c - a) == Vec3::ZERO {
+                continue;
+            }
+            if let Some(hit) = w.intersect(a, b, c, t_min, limit) {
+                best = Some(RawHit {
+                    primitive: face as u32,
+                    ..hit
+                });
+            }
+        }
+        best
+    }
+}
+
+fn validate(data: &MeshData) -> Result<(), GeometryError> {
+    let vertex_count = data.positions.len();
+    if let Some((vertex, &position)) = data
+        .positions
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !p.is_finite())
+    {
+        return Err(GeometryError::NonFinitePosition { vertex, position });
+    }
+    for (face, triangle) in data.triangles.iter().enumerate() {
+        if let Some(&vertex) = triangle.iter().find(|&&v| v as usize >= vertex_count) {
+            return Err(GeometryError::VertexOutOfRange {
+                face,
+                vertex,
+                vertex_count,
+            });
+        }
+    }
+    let counts = [
+        ("normals", data.normals.as_ref().map(Vec::len)),
+        ("texture coordinates", data.uvs.as_ref().map(Vec::len)),
+    ];
+    for (attribute, count) in counts {
+        if let Some(count) = count.filter(|&c| c != vertex_count) {
+            return Err(GeometryError::AttributeCount {
+                attribute,
+                count,
+                vertex_count,
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,497 @@
+//! Cross-module tests: the BVH against brute force, watertightness, errors, instances.
+
+use std::sync::Arc;
+
+use glam::{Affine3A, Quat, Vec2, Vec3};
+use proptest::prelude::*;
+
+use crate::{
+    Aabb, BuildParams, Bvh, GeometryError, Hit, Instance, Mesh, MeshData, Object, Plane, Ray,
+    Sphere, Triangle, World,
+};
+
+fn vec3(range: std::ops::Range<f32>) -> impl Strategy<Value = Vec3> {
+    (range.clone(), range.clone(), range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+/// Directions of arbitrary length, some along an axis or in a coordinate plane.
+fn direction() -> impl Strategy<Value = Vec3> {
+    let general = vec3(-1.0..1.0).prop_filter("nonzero", |d| d.length() > 1e-3);
+    let axis = (0usize..3, prop::bool::ANY).prop_map(|(axis, negative)| {
+        let mut d = Vec3::ZERO;
+        d[axis] = if negative { -1.0 } else { 1.0 };
+        d
+    });
+    let planar = (vec3(-1.0..1.0), 0usize..3)
+        .prop_map(|(mut d, axis)| {
+            d[axis] = 0.0;
+            d
+        })
+        .prop_filter("nonzero", |d| d.length() > 1e-3);
+    let length = prop_oneof![Just(1.0f32), 1e-3f32..1e3];
+    (prop_oneof![3 => general, 1 => axis, 1 => planar], length).prop_map(|(d, length)| d * length)
+}
+
+/// Rays with origins inside and around `[-1, 1]^3`.
+fn ray() -> impl Strategy<Value = Ray> {
+    (vec3(-1.5..1.5), direction()).prop_map(|(o, d)| Ray::new(o, d))
+}
+
+/// A soup of triangles in `[-1, 1]^3`, some small, some large, some degenerate.
+fn soup() -> impl Strategy<Value = MeshData> {
+    let triangle = (vec3(-1.0..1.0), vec3(-0.3..0.3), vec3(-0.3..0.3), 0u8..10).prop_map(
+        |(a, e1, e2, kind)| match kind {
+            0 => [a, a + e1, a + 2.0 * e1],       // zero area: collinear
+            1 => [a, a + 4.0 * e1, a + 4.0 * e2], // large
+            _ => [a, a + e1, a + e2],
+        },
+    );
+    prop::collection::vec(triangle, 1..300).prop_map(|tris| {
+        let positions = tris.iter().flatten().copied().collect();
+        let triangles = (0..tris.len() as u32)
+            .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+            .collect();
+        MeshData::new(positions, triangles)
+    })
+}
+
+#[track_caller]
+fn check_against_brute_force(mesh: &Mesh, ray: &Ray, t_range: std::ops::Range<f32>) {
+    let expected = mesh.brute_force(ray, t_range.start, t_range.end);
+    let actual = mesh.closest_hit(ray, t_range.clone());
+    assert_eq!(
+        mesh.any_hit(ray, t_range.clone()),
+        expected.is_some(),
+        "any_hit disagrees for {ray:?}"
+    );
+    match (actual, expected) {
+        (None, None) => {}
+        (Some(hit), Some(raw)) => {
+            assert_eq!(hit.t, raw.t, "t differs for {ray:?}");
+            if hit.primitive != raw.primitive {
+                // A tie: the face the BVH reports must be hit at the same t.
+                let [a, b, c] = mesh.data().triangles[hit.primitive as usize]
+                    .map(|i| mesh.data().positions[i as usize]);
+                let alone = Triangle::new(a, b, c).closest_hit(ray, t_range);
+                assert_eq!(
+                    alone.map(|h| h.t),
+                    Some(raw.t),
+                    "face {} is not a tie for {ray:?}",
+                    hit.primitive
+                );
+            }
+            assert!(hit.normal.dot(ray.direction) <= 0.0);
+            assert!(hit.normal.is_normalized() && hit.shading_normal.is_normalized());
+        }
+        (actual, expected) => panic!("BVH {actual:?} but brute force {expected:?} for {ray:?}"),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn bvh_closest_and_any_hit_match_brute_force(data in soup(), rays in prop::collection::vec(ray(), 64)) {
+        let mesh = Mesh::new(data).unwrap();
+        for ray in &rays {
+            check_against_brute_force(&mesh, ray, 0.0..f32::INFINITY);
+            check_against_brute_force(&mesh, ray, 0.5..2.0);
+        }
+    }
+
+    #[test]
+    fn bvh_holds_every_item_in_exactly_one_leaf(boxes in prop::collection::vec((vec3(-10.0..10.0), vec3(0.0..3.0)), 0..600), max_leaf in 1u32..17) {
+        let boxes: Vec<Aabb> = boxes.into_iter().map(|(lo, size)| Aabb::new(lo, lo + size)).collect();
+        let bvh = Bvh::build(&boxes, BuildParams { block_size: 4, max_leaf_items: max_leaf, traversal_cost: 1.0 });
+        bvh.validate(&|i| boxes[i as usize]);
+        prop_assert!(bvh.leaves().all(|(_, count)| count <= max_leaf));
+        prop_assert_eq!(bvh.leaves().map(|(_, count)| count as usize).sum::<usize>(), boxes.len());
+    }
+
+    #[test]
+    fn world_matches_a_linear_scan(objects in prop::collection::vec(object(), 1..40), rays in prop::collection::vec(ray(), 32)) {
+        let world = World::new(objects.clone()).unwrap();
+        for ray in &rays {
+            let expected = objects.iter().enumerate().filter_map(|(i, o)| closest_alone(o, ray).map(|h| (i, h))).min_by(|a, b| a.1.t.total_cmp(&b.1.t));
+            let actual = world.closest_hit(ray, 0.0..f32::INFINITY);
+            prop_assert_eq!(world.any_hit(ray, 0.0..f32::INFINITY), expected.is_some());
+            match (actual, expected) {
+                (None, None) => {}
+                (Some(hit), Some((_, e))) => {
+                    prop_assert!((hit.t - e.t).abs() <= 1e-6 * e.t.max(1.0), "t {} != {}", hit.t, e.t);
+                    let alone = closest_alone(&objects[hit.object as usize], ray).unwrap();
+                    prop_assert_eq!(alone.t, hit.t);
+                }
+                (a, e) => prop_assert!(false, "world {:?} but scan {:?}", a, e),
+            }
+        }
+    }
+}
+
+fn shared_mesh() -> Arc<Mesh> {
+    static MESH: std::sync::OnceLock<Arc<Mesh>> = std::sync::OnceLock::new();
+    MESH.get_or_init(|| Arc::new(Mesh::icosphere(2, 0.5)))
+        .clone()
+}
+
+fn object() -> impl Strategy<Value = Object> {
+    prop_oneof![
+        (vec3(-2.0..2.0), 0.05f32..1.0).prop_map(|(c, r)| Object::Sphere(Sphere::new(c, r))),
+        (vec3(-2.0..2.0), vec3(0.0..1.0)).prop_map(|(lo, s)| Object::Box(Aabb::new(lo, lo + s))),
+        (vec3(-2.0..2.0), vec3(-1.0..1.0), vec3(-1.0..1.0))
+            .prop_map(|(a, e1, e2)| Object::Triangle(Triangle::new(a, a + e1, a + e2))),
+        (vec3(-3.0..3.0), direction()).prop_map(|(p, n)| Object::Plane(Plane::new(p, n))),
+        (vec3(-2.0..2.0), vec3(0.2..2.0), vec3(-3.0..3.0)).prop_map(|(t, s, r)| {
+            let transform = Affine3A::from_scale_rotation_translation(
+                s,
+                Quat::from_euler(glam::EulerRot::XYZ, r.x, r.y, r.z),
+                t,
+            );
+            Object::Instance(Instance::new(shared_mesh(), transform).unwrap())
+        }),
+    ]
+}
+
+fn closest_alone(object: &Object, ray: &Ray) -> Option<Hit> {
+    let all = 0.0..f32::INFINITY;
+    match object {
+        Object::Sphere(s) => s.closest_hit(ray, all),
+        Object::Plane(p) => p.closest_hit(ray, all),
+        Object::Triangle(t) => t.closest_hit(ray, all),
+        Object::Box(b) => World::box_closest_hit(b, ray, all),
+        Object::Instance(i) => i.closest_hit(ray, all),
+    }
+}
+
+/// Rays aimed exactly at `target` from outside and from the center, in several lengths.
+fn rays_through(target: Vec3, center: Vec3) -> [Ray; 3] {
+    let outside = center + 3.0 * (target - center);
+    [
+        Ray::new(outside, target - outside),
+        Ray::new(outside, 0.1 * (target - outside)),
+        Ray::new(center, 7.0 * (target - center)),
+    ]
+}
+
+#[track_caller]
+fn check_watertight(mesh: &Mesh, targets: impl IntoIterator<Item = Vec3>) {
+    let center = mesh.bounds().center();
+    let mut count = 0;
+    for target in targets {
+        for ray in rays_through(target, center) {
+            let hit = mesh.closest_hit(&ray, 0.0..f32::INFINITY);
+            assert!(
+                hit.is_some(),
+                "ray {ray:?} through {target} slipped through the mesh"
+            );
+            assert!(mesh.any_hit(&ray, 0.0..f32::INFINITY));
+            count += 1;
+        }
+    }
+    assert!(count > 0);
+}
+
+/// Points on every edge of the mesh: its vertices and points along the edges.
+fn edge_points(data: &MeshData) -> Vec<Vec3> {
+    let mut points = data.positions.clone();
+    for tri in &data.triangles {
+        for k in 0..3 {
+            let (a, b) = (
+                data.positions[tri[k] as usize],
+                data.positions[tri[(k + 1) % 3] as usize],
+            );
+            points.extend([0.5, 0.25, 1.0 / 3.0, 0.9].map(|s| a.lerp(b, s)));
+        }
+    }
+    points
+}
+
+#[test]
+fn icosphere_is_watertight_at_vertices_and_edges() {
+    let mesh = Mesh::icosphere(3, 1.0);
+    assert_eq!(mesh.triangle_count(), 20 * 4usize.pow(3));
+    check_watertight(&mesh, edge_points(mesh.data()));
+}
+
+#[test]
+fn cube_is_watertight_along_diagonals_edges_and_corners() {
+    let mesh = Mesh::new(MeshData::cuboid(Aabb::new(
+        Vec3::splat(-1.0),
+        Vec3::splat(1.0),
+    )))
+    .unwrap();
+    check_watertight(&mesh, edge_points(mesh.data()));
+    // Axis-parallel rays exactly through face diagonals, edges and corners, where the edge
+    // functions are exactly zero.
+    let steps = (-8..=8).map(|i| i as f32 / 8.0);
+    for s in steps {
+        for (o, d) in [
+            (Vec3::new(s, s, 5.0), Vec3::NEG_Z),
+            (Vec3::new(s, -s, -5.0), Vec3::Z),
+            (Vec3::new(5.0, s, s), Vec3::NEG_X * 3.0),
+            (Vec3::new(s, 5.0, 1.0), Vec3::NEG_Y),
+            (Vec3::new(1.0, -5.0, s), Vec3::Y * 0.25),
+            (Vec3::new(0.0, 0.0, 0.0), Vec3::new(s, 1.0, s)),
+        ] {
+            let ray = Ray::new(o, d);
+            assert!(
+                mesh.closest_hit(&ray, 0.0..f32::INFINITY).is_some(),
+                "{ray:?} slipped through"
+            );
+        }
+    }
+}
+
+#[test]
+fn mesh_errors_say_what_is_wrong() {
+    let square = || {
+        MeshData::new(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE],
+            vec![[0, 1, 2], [1, 3, 2]],
+        )
+    };
+    let cases: [(MeshData, &str); 4] = [
+        (
+            MeshData {
+                triangles: vec![[0, 1, 2], [1, 40, 2]],
+                ..square()
+            },
+            "face 1 refers to vertex 40 but the mesh has 4 vertices",
+        ),
+        (
+            MeshData {
+                positions: vec![Vec3::ZERO, Vec3::X, Vec3::NAN, Vec3::ONE],
+                ..square()
+            },
+            "vertex 2 has the non-finite position [NaN, NaN, NaN]",
+        ),
+        (
+            square().with_normals(vec![Vec3::Z; 3]),
+            "the mesh has 4 vertices but 3 normals",
+        ),
+        (
+            square().with_uvs(vec![Vec2::ZERO; 5]),
+            "the mesh has 4 vertices but 5 texture coordinates",
+        ),
+    ];
+    for (data, message) in cases {
+        assert_eq!(Mesh::new(data).unwrap_err().to_string(), message);
+    }
+    assert_eq!(
+        MeshData::from_flat(&[0.0; 10], &[0, 1, 2], &[], &[]).unwrap_err(),
+        GeometryError::FlatLength {
+            attribute: "positions",
+            len: 10,
+            stride: 3
+        }
+    );
+    assert_eq!(
+        MeshData::from_flat(&[0.0; 9], &[0, 1], &[], &[])
+            .unwrap_err()
+            .to_string(),
+        "indices has 2 numbers, which is not a multiple of 3"
+    );
+    let world = World::new(vec![
+        Object::Sphere(Sphere::new(Vec3::ZERO, 1.0)),
+        Object::Sphere(Sphere::new(Vec3::ZERO, -1.0)),
+    ]);
+    assert_eq!(
+        world.unwrap_err().to_string(),
+        "object 1: sphere with center [0, 0, 0] and radius -1 needs a finite center and a positive radius"
+    );
+    let singular = Instance::new(
+        shared_mesh(),
+        Affine3A::from_scale(Vec3::new(1.0, 0.0, 1.0)),
+    );
+    assert_eq!(
+        singular.unwrap_err(),
+        GeometryError::SingularTransform { determinant: 0.0 }
+    );
+}
+
+#[test]
+fn flat_arrays_build_the_same_mesh_and_attributes_interpolate() {
+    let data = MeshData::from_flat(
+        &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 2.0, 2.0, 0.0],
+        &[0, 1, 2, 1, 1, 2, 1, 3, 2],
+        &[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, -1.0],
+        &[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+    )
+    .unwrap();
+    assert_eq!(data.positions[3], Vec3::new(2.0, 2.0, 0.0));
+    let mesh = Mesh::new(data).unwrap();
+    // Face 1 has a repeated vertex (zero area) and is skipped.
+    assert_eq!(mesh.triangle_count(), 2);
+    let ray = Ray::new(Vec3::new(0.0, 0.5, -1.0), Vec3::new(0.0, 0.0, 2.0));
+    let hit = mesh.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+    assert_eq!(hit.t, 0.5);
+    assert_eq!(hit.primitive, 0);
+    assert!(
+        !hit.front_face,
+        "seen from -z the counter-clockwise face is the back"
+    );
+    assert_eq!(hit.normal, Vec3::NEG_Z);
+    // Half way between vertex 0 (normal +z) and vertex 2 (normal (0, 1, 1)/|..|),
+    // flipped with the geometric normal.
+    let expected = -(Vec3::Z + Vec3::new(0.0, 1.0, 1.0)).normalize();
+    assert!(
+        hit.shading_normal.abs_diff_eq(expected, 1e-6),
+        "{}",
+        hit.shading_normal
+    );
+    assert!(hit.uv.abs_diff_eq(Vec2::new(0.0, 0.5), 1e-6), "{}", hit.uv);
+}
+
+#[test]
+fn instances_transform_rays_hits_and_normals() {
+    let cube = Arc::new(
+        Mesh::new(MeshData::cuboid(Aabb::new(
+            Vec3::splat(-1.0),
+            Vec3::splat(1.0),
+        )))
+        .unwrap(),
+    );
+    // Scale x by 2, rotate 90 degrees about z (x -> y), move up 10.
+    let transform = Affine3A::from_scale_rotation_translation(
+        Vec3::new(2.0, 1.0, 1.0),
+        Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        Vec3::new(0.0, 10.0, 0.0),
+    );
+    let instance = Instance::new(cube.clone(), transform).unwrap();
+    assert!(
+        instance
+            .bounds()
+            .min
+            .abs_diff_eq(Vec3::new(-1.0, 8.0, -1.0), 1e-5)
+    );
+    assert!(
+        instance
+            .bounds()
+            .max
+            .abs_diff_eq(Vec3::new(1.0, 12.0, 1.0), 1e-5)
+    );
+    let world = World::new(vec![
+        Object::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+        Object::Instance(instance),
+        Object::Instance(Instance::from_mesh(cube)),
+    ])
+    .unwrap();
+    assert_eq!(world.triangle_count(), 24);
+    let cases = [
+        // Down onto the top of the stretched cube (y = 12), t in units of |d| = 2.
+        (
+            Ray::new(Vec3::new(0.5, 20.0, 0.5), Vec3::new(0.0, -2.0, 0.0)),
+            4.0,
+            Vec3::Y,
+            1,
+        ),
+        // From the side: x = 1 face.
+        (
+            Ray::new(Vec3::new(5.0, 9.0, 0.0), Vec3::NEG_X),
+            4.0,
+            Vec3::X,
+            1,
+        ),
+        // Between the two: down to the identity cube's top at y = 1 ...
+        (
+            Ray::new(Vec3::new(0.0, 5.0, 0.3), Vec3::NEG_Y),
+            4.0,
+            Vec3::Y,
+            2,
+        ),
+        // ... and past everything onto the plane.
+        (
+            Ray::new(Vec3::new(3.0, 5.0, 0.0), Vec3::NEG_Y * 0.5),
+            10.0,
+            Vec3::Y,
+            0,
+        ),
+    ];
+    for (ray, t, normal, object) in cases {
+        let hit = world.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+        assert!((hit.t - t).abs() < 1e-5, "{ray:?}: t = {}", hit.t);
+        assert!(
+            hit.normal.abs_diff_eq(normal, 1e-5),
+            "{ray:?}: normal = {}",
+            hit.normal
+        );
+        assert_eq!(hit.object, object);
+        assert!(hit.front_face);
+        assert!(hit.point.abs_diff_eq(ray.at(t), 1e-4));
+        assert!(world.any_hit(&ray, 0.0..t * 1.001));
+        assert!(!world.any_hit(&ray, 0.0..t * 0.999));
+    }
+    // From inside the stretched cube: back face, normal facing the ray.
+    let inside = world
+        .closest_hit(
+            &Ray::new(Vec3::new(0.0, 10.0, 0.0), Vec3::Z),
+            0.0..f32::INFINITY,
+        )
+        .unwrap();
+    assert_eq!((inside.object, inside.front_face), (1, false));
+    assert!(inside.normal.abs_diff_eq(Vec3::NEG_Z, 1e-5));
+}
+
+#[test]
+fn normals_of_sheared_instances_stay_perpendicular() {
+    let square = Arc::new(
+        Mesh::new(MeshData::new(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)],
+            vec![[0, 1, 2], [1, 3, 2]],
+        ))
+        .unwrap(),
+    );
+    let shear =
+        Affine3A::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+    // A rotation and non-uniform scale: the square lies in a tilted plane.
+    let transform =
+        Affine3A::from_rotation_x(0.7) * Affine3A::from_scale(Vec3::new(3.0, 0.5, 1.0)) * shear;
+    let instance = Instance::new(square, transform).unwrap();
+    let target = transform.transform_point3(Vec3::new(0.3, 0.6, 0.0));
+    let ray = Ray::new(
+        target + Vec3::new(0.2, 1.0, 2.0),
+        Vec3::new(-0.2, -1.0, -2.0),
+    );
+    let hit = instance.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+    assert!((hit.t - 1.0).abs() < 1e-5);
+    for edge in [Vec3::X, Vec3::Y] {
+        let world_edge = transform.transform_vector3(edge);
+        assert!(
+            hit.normal.dot(world_edge).abs() < 1e-5,
+            "normal {} not perpendicular to {}",
+            hit.normal,
+            world_edge
+        );
+    }
+}
+
+#[test]
+fn empty_meshes_and_worlds_report_no_hits() {
+    let mesh = Mesh::new(MeshData::default()).unwrap();
+    let ray = Ray::new(Vec3::ZERO, Vec3::X);
+    assert_eq!(mesh.closest_hit(&ray, 0.0..f32::INFINITY), None);
+    assert!(!mesh.any_hit(&ray, 0.0..f32::INFINITY));
+    assert!(mesh.bounds().is_empty());
+    let world = World::new(Vec::new()).unwrap();
+    assert_eq!(world.closest_hit(&ray, 0.0..f32::INFINITY), None);
+    assert!(world.bounds().is_empty());
+}
+
+#[test]
+fn rays_starting_on_the_surface_report_the_next_surface() {
+    let mesh = Mesh::icosphere(2, 1.0);
+    let mut seen = 0;
+    for hit_ray in [
+        Ray::new(Vec3::new(0.1, 0.2, 5.0), Vec3::NEG_Z),
+        Ray::new(Vec3::new(-3.0, 0.3, 0.1), Vec3::X * 2.0),
+    ] {
+        let first = mesh.closest_hit(&hit_ray, 0.0..f32::INFINITY).unwrap();
+        assert!(first.front_face);
+        // Continue from the hit point, with a small offset in t.
+        let next = Ray::new(first.point, hit_ray.direction);
+        let second = mesh.closest_hit(&next, 1e-4..f32::INFINITY).unwrap();
+        assert!(!second.front_face && second.t.is_finite() && second.t > 0.1);
+        seen += 1;
+    }
+    assert_eq!(seen, 2);
+}
