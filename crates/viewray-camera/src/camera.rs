@@ -1,0 +1,224 @@
+//! The camera: a frame, a projection and an image size; pixel -> ray and point -> pixel.
+
+use glam::{DVec2, DVec3};
+use viewray_geometry::DRay;
+
+use crate::{CameraError, Frame, Projection, sample_unit_disk_concentric};
+
+/// Where in a pixel, and where on the lens, a viewing ray is taken (pbrt's
+/// `CameraSample`).
+///
+/// Both are points of the unit square `[0, 1)^2`: `p_film = (sx, sy)` is the offset
+/// inside the pixel from its top-left corner, `p_lens` is mapped to the unit disk by
+/// [`sample_unit_disk_concentric`]. [`CameraSample::CENTER`] is the pixel centre and the
+/// lens centre, the lecture's sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSample {
+    /// The offset `(sx, sy)` inside the pixel; `(0.5, 0.5)` is its centre.
+    pub p_film: DVec2,
+    /// The lens sample in the unit square; `(0.5, 0.5)` is the lens centre.
+    pub p_lens: DVec2,
+}
+
+impl CameraSample {
+    /// The pixel's centre through the lens's centre: the lecture's viewing ray.
+    pub const CENTER: CameraSample = CameraSample {
+        p_film: DVec2::splat(0.5),
+        p_lens: DVec2::splat(0.5),
+    };
+}
+
+impl Default for CameraSample {
+    fn default() -> Self {
+        Self::CENTER
+    }
+}
+
+/// A camera: where it is ([`Frame`]), how it projects ([`Projection`]) and the image it
+/// makes, `W` columns by `H` rows.
+///
+/// Every `Camera` is valid: [`Camera::new`] checks the projection's parameters and the
+/// image size, so ray generation never produces NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    frame: Frame,
+    projection: Projection,
+    width: u32,
+    height: u32,
+}
+
+impl Camera {
+    /// A camera with the given pose, projection and image size.
+    ///
+    /// # Errors
+    /// [`CameraError::EmptyImage`] if `width` or `height` is zero, and the projection's
+    /// first invalid parameter (see [`Projection::validate`]).
+    pub fn new(
+        frame: Frame,
+        projection: Projection,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage { width, height });
+        }
+        crate::frame::check_finite_vector("eye", frame.e)?;
+        projection.validate()?;
+        Ok(Self {
+            frame,
+            projection,
+            width,
+            height,
+        })
+    }
+
+    /// The lecture's canonical camera: eye at the origin looking down `-z`, `d = 1`, a
+    /// 1 x 1 viewport, with a `width x height` image.
+    ///
+    /// # Errors
+    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    pub fn canonical(width: u32, height: u32) -> Result<Self, CameraError> {
+        Self::new(
+            Frame::CANONICAL,
+            Projection::Perspective(crate::Perspective::CANONICAL),
+            width,
+            height,
+        )
+    }
+
+    /// The same camera making an image of another size (the projection is unchanged).
+    ///
+    /// # Errors
+    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
+        Self::new(self.frame, self.projection, width, height)
+    }
+
+    /// The camera's pose.
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// The camera's projection.
+    pub fn projection(&self) -> &Projection {
+        &self.projection
+    }
+
+    /// `W`: the number of columns.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// `H`: the number of rows.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// `(W, H)` as floating-point numbers.
+    fn size(&self) -> DVec2 {
+        DVec2::new(f64::from(self.width), f64::from(self.height))
+    }
+
+    /// The viewing ray for pixel `(row, col)` (0-based, row 0 at the top) through the
+    /// film and lens points of `sample`, with the lecture's unnormalized direction.
+    ///
+    /// For a planar projection, the pixel maps to the image plane by
+    /// [`pixel_to_image_plane`]; the ray is then the family's rule (see
+    /// [`Projection`]). Returns `None` only where the projection has no ray (outside a
+    /// fisheye's image circle). Pixels outside the image are extrapolated.
+    pub fn generate_ray(&self, row: u32, col: u32, sample: CameraSample) -> Option<DRay> {
+        let image = DVec2::new(f64::from(col), f64::from(row)) + sample.p_film;
+        self.generate_ray_through(image, sample.p_lens)
+    }
+
+    /// The viewing ray through the continuous image point `image = (x, y)` (`x` from the
+    /// left edge, `y` from the top, in pixels) for the lens sample `p_lens` in
+    /// `[0, 1)^2`.
+    pub fn generate_ray_through(&self, image: DVec2, p_lens: DVec2) -> Option<DRay> {
+        let lens = if self.projection.has_lens() {
+            sample_unit_disk_concentric(p_lens)
+        } else {
+            DVec2::ZERO
+        };
+        let ray = self.projection.camera_space_ray(image, self.size(), lens)?;
+        Some(DRay::new(
+            self.frame.world_from_camera_point(ray.origin),
+            self.frame.world_from_camera_vector(ray.direction),
+        ))
+    }
+
+    /// Where the world point `p` appears: continuous image coordinates `(x, y)`, `x` from
+    /// the left edge and `y` from the top, so pixel `(row, col)` spans
+    /// `[col, col + 1) x [row, row + 1)`.
+    ///
+    /// The inverse of ray generation: `project(ray(row, col, (sx, sy)).at(t)) ==
+    /// (col + sx, row + sy)` for every `t > 0` (through the lens centre for a thin lens).
+    /// `None` where the point is not visible: behind a perspective eye or behind a
+    /// parallel camera's image plane, at a panoramic camera's eye, or outside a
+    /// fisheye's field of view. Points beyond the image's edges still project (to
+    /// coordinates outside `[0, W) x [0, H)`).
+    pub fn project(&self, p: DVec3) -> Option<DVec2> {
+        let q = self.frame.camera_from_world_point(p);
+        self.projection.project_camera_space(q, self.size())
+    }
+
+    /// The pixel `(row, col)` holding the continuous image point `image`, or `None` if it
+    /// lies outside the image.
+    pub fn pixel_at(&self, image: DVec2) -> Option<(u32, u32)> {
+        let inside =
+            image.x >= 0.0 && image.y >= 0.0 && image.x < self.size().x && image.y < self.size().y;
+        // Truncation is floor here: both coordinates are non-negative and below W or H.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        inside.then_some((image.y as u32, image.x as u32))
+    }
+}
+
+/// The point `(u, v)` on the image plane of pixel `(row, col)` at the film offset
+/// `p_film = (sx, sy)`, for an image of `W x H` pixels and a viewport of `vw x vh`.
+///
+/// ```text
+/// u =  ((col + sx) / W - 1/2) * vw
+/// v = -((row + sy) / H - 1/2) * vh
+/// ```
+///
+/// Indices are 0-based, row 0 at the top, and `(sx, sy) = (0.5, 0.5)` is the pixel
+/// centre. With the lecture's 1-based indices `i = row + 1`, `j = col + 1` and the centre
+/// sample this is exactly the lecture's
+///
+/// ```text
+/// u =  ((j - 1/2) / W - 1/2) vw
+/// v = -((i - 1/2) / H - 1/2) vh
+/// ```
+pub fn pixel_to_image_plane(
+    row: u32,
+    col: u32,
+    p_film: DVec2,
+    (width, height): (u32, u32),
+    viewport: DVec2,
+) -> DVec2 {
+    let image = DVec2::new(f64::from(col), f64::from(row)) + p_film;
+    image_to_image_plane(
+        image,
+        DVec2::new(f64::from(width), f64::from(height)),
+        viewport,
+    )
+}
+
+/// The image-plane point `(u, v)` of the continuous image point `(x, y)`:
+/// `u = (x / W - 1/2) vw`, `v = -(y / H - 1/2) vh`.
+#[inline]
+pub(crate) fn image_to_image_plane(image: DVec2, size: DVec2, viewport: DVec2) -> DVec2 {
+    DVec2::new(
+        (image.x / size.x - 0.5) * viewport.x,
+        -(image.y / size.y - 0.5) * viewport.y,
+    )
+}
+
+/// The inverse of [`image_to_image_plane`]: `x = (u / vw + 1/2) W`, `y = (1/2 - v / vh) H`.
+#[inline]
+pub(crate) fn image_plane_to_image(uv: DVec2, size: DVec2, viewport: DVec2) -> DVec2 {
+    DVec2::new(
+        (uv.x / viewport.x + 0.5) * size.x,
+        (0.5 - uv.y / viewport.y) * size.y,
+    )
+}

@@ -1,0 +1,52 @@
+//! The one error type of the camera crate.
+
+/// Why a frame, projection or camera could not be built.
+///
+/// Cameras are validated where they are built, so every [`crate::Camera`] that exists
+/// generates finite rays.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CameraError {
+    /// The view direction is the zero vector (for `look_at`: the eye is the target).
+    #[error("the view direction is zero (is the look-at point the eye itself?)")]
+    ZeroView,
+    /// The up vector is the zero vector.
+    #[error("the up vector is zero")]
+    ZeroUp,
+    /// Up is parallel to view, so `u = up x w` is undefined: the camera's roll is ambiguous.
+    #[error("the up vector is parallel to the view direction, so the camera's roll is undefined")]
+    UpParallelToView,
+    /// A number is NaN or infinite.
+    #[error("{name} must be finite, found {value}")]
+    NotFinite {
+        /// The parameter's name in the lecture's notation, e.g. `"d"` or `"eye"`.
+        name: &'static str,
+        /// The offending value, printed.
+        value: String,
+    },
+    /// A number that must be positive is zero or negative.
+    #[error("{name} must be positive, found {value}")]
+    NotPositive {
+        /// The parameter's name in the lecture's notation, e.g. `"vw"`.
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// A number is outside its valid range.
+    #[error("{name} must be {expected}, found {value}")]
+    OutOfRange {
+        /// The parameter's name.
+        name: &'static str,
+        /// The range it must lie in, in words.
+        expected: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// The image has no pixels.
+    #[error("the image must be at least 1 x 1 pixels, found {width} x {height}")]
+    EmptyImage {
+        /// Columns.
+        width: u32,
+        /// Rows.
+        height: u32,
+    },
+}

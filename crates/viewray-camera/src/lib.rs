@@ -1,0 +1,60 @@
+//! The lecture's cameras, made exact: camera frames, every projection family, the
+//! pixel -> viewing ray rule and its inverse, point -> pixel.
+//!
+//! This crate is pure: it does no I/O and never panics on user input. Invalid parameters
+//! are rejected where a value is built ([`Frame::from_eye_view_up`], [`Camera::new`]),
+//! so a [`Camera`] that exists always produces finite rays.
+//!
+//! # Conventions
+//!
+//! These hold everywhere in viewray; other docs link here.
+//!
+//! - **World space** is right-handed. Presets and the default scenes take `+y` as up.
+//! - **The camera frame** `(e; u, v, w)` is orthonormal and right-handed: `u` points right
+//!   in the image, `v` up, `w` back; the camera looks along `-w` (the lecture's canonical
+//!   camera looks down `-z`). In formulas, `U`, `V`, `W` are the basis vectors and `u`, `v`
+//!   the image-plane coordinates.
+//! - **Pixels**: an image is `W` columns by `H` rows. Indices are 0-based, `row` from the
+//!   top and `col` from the left. The lecture's `(i, j)` are 1-based: `i = row + 1`,
+//!   `j = col + 1`.
+//! - **Continuous image coordinates** `(x, y)`: `x` from the left edge, `y` from the top,
+//!   in pixels. Pixel `(row, col)` covers `[col, col + 1) x [row, row + 1)` and its centre
+//!   is `(col + 1/2, row + 1/2)`. A film sample `(sx, sy)` in `[0, 1)^2` picks the point
+//!   `(col + sx, row + sy)`.
+//! - **The image plane**: `u = (x / W - 1/2) vw`, `v = -(y / H - 1/2) vh` (see
+//!   [`pixel_to_image_plane`]).
+//! - **Viewing rays** are `origin + t direction` with `t > 0`, and their directions are
+//!   *not* normalized: they are exactly the lecture's, so `(u, v, -d)` for the canonical
+//!   camera, and a printed ray can be checked against a homework answer.
+//! - **Angles** are radians in this API and degrees in scene files.
+//! - Everything is computed in `f64`; [`viewray_geometry::DRay::as_ray`] rounds a ray for
+//!   the tracer.
+//!
+//! # Families
+//!
+//! | family | origin | direction |
+//! |---|---|---|
+//! | [`Perspective`] | `e` | `(u+sx) U + (v+sy) V - d W` |
+//! | [`ThinLens`] | `e + r(lx U + ly V)` | `(f/d)((u+sx) U + (v+sy) V - d W) - r(lx U + ly V)` |
+//! | [`Orthographic`] | `e + u U + v V` | `-W` |
+//! | [`Oblique`] | `e + u U + v V` | `-W - L (cos phi U + sin phi V)` |
+//! | [`Projection::Equirectangular`] | `e` | longitude and latitude from `(x, y)` |
+//! | [`Fisheye`] | `e` | equidistant: angle from `-W` proportional to the radius |
+//!
+//! The classical taxonomy (multiview, axonometric, oblique, one/two/three-point
+//! perspective) is a set of [`Preset`]s over these rules.
+
+mod camera;
+mod error;
+mod frame;
+mod presets;
+mod projection;
+mod sampling;
+
+pub use camera::{Camera, CameraSample, pixel_to_image_plane};
+pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
+pub use error::CameraError;
+pub use frame::Frame;
+pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
+pub use projection::{Fisheye, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens};
+pub use sampling::sample_unit_disk_concentric;

@@ -1,0 +1,257 @@
+//! Viewing rays checked against the lecture's formulas: hand-worked homework cases and
+//! snapshot tables of every family.
+
+use std::f64::consts::FRAC_PI_4;
+
+use glam::{DVec2, DVec3};
+use viewray_camera::{
+    Camera, CameraSample, Fisheye, Frame, Lens, Oblique, Orthographic, Perspective, Projection,
+    ThinLens, pixel_to_image_plane,
+};
+
+/// Formats a number for a student: at most six decimals, no trailing zeros, no `-0`.
+fn num(x: f64) -> String {
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}
+
+fn vec3(v: DVec3) -> String {
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
+}
+
+/// The table of viewing rays of every pixel at `sample`, one line per pixel, with both
+/// index conventions.
+fn ray_table(camera: &Camera, sample: CameraSample) -> String {
+    let f = camera.frame();
+    let mut out = format!(
+        "{:?}\ne = {}, u = {}, v = {}, w = {}; image {} x {}\n",
+        camera.projection(),
+        vec3(f.e),
+        vec3(f.u),
+        vec3(f.v),
+        vec3(f.w),
+        camera.width(),
+        camera.height()
+    );
+    out += "row col (i, j) | origin | direction\n";
+    for row in 0..camera.height() {
+        for col in 0..camera.width() {
+            let ray = camera.generate_ray(row, col, sample);
+            let text = match ray {
+                Some(ray) => format!("{} | {}", vec3(ray.origin), vec3(ray.direction)),
+                None => "no ray".to_owned(),
+            };
+            out += &format!("{row:>3} {col:>3} ({}, {}) | {text}\n", row + 1, col + 1);
+        }
+    }
+    out
+}
+
+fn camera(frame: Frame, projection: Projection) -> Camera {
+    Camera::new(frame, projection, 3, 2).unwrap()
+}
+
+fn tilted_frame() -> Frame {
+    Frame::from_eye_look_at_up(DVec3::new(1.0, 2.0, 3.0), DVec3::ZERO, DVec3::Y).unwrap()
+}
+
+#[track_caller]
+fn check_ray(camera: &Camera, (i, j): (u32, u32), origin: [f64; 3], direction: [f64; 3]) {
+    let ray = camera
+        .generate_ray(i - 1, j - 1, CameraSample::CENTER)
+        .unwrap();
+    let (origin, direction) = (DVec3::from(origin), DVec3::from(direction));
+    assert!(
+        ray.origin.abs_diff_eq(origin, 1e-12) && ray.direction.abs_diff_eq(direction, 1e-12),
+        "pixel (i, j) = ({i}, {j}): got {ray:?}, expected origin {origin}, direction {direction}"
+    );
+}
+
+#[test]
+fn canonical_camera_two_by_two_by_hand() {
+    // u = (j - 1/2)/W - 1/2 and v = -((i - 1/2)/H - 1/2) with W = H = 2: u, v = +-1/4.
+    let camera = Camera::canonical(2, 2).unwrap();
+    let o = [0.0; 3];
+    check_ray(&camera, (1, 1), o, [-0.25, 0.25, -1.0]);
+    check_ray(&camera, (1, 2), o, [0.25, 0.25, -1.0]);
+    check_ray(&camera, (2, 1), o, [-0.25, -0.25, -1.0]);
+    check_ray(&camera, (2, 2), o, [0.25, -0.25, -1.0]);
+}
+
+#[test]
+fn breaking_the_assumptions_one_by_one() {
+    // d = 2, vw = 4, vh = 2, eye at (1, 2, 3), W = 4, H = 2; pixel (i, j) = (1, 4):
+    // u = ((4 - 1/2)/4 - 1/2) 4 = 1.5, v = -((1 - 1/2)/2 - 1/2) 2 = 0.5.
+    let frame = Frame {
+        e: DVec3::new(1.0, 2.0, 3.0),
+        ..Frame::CANONICAL
+    };
+    let projection = Projection::Perspective(Perspective {
+        distance: 2.0,
+        viewport: DVec2::new(4.0, 2.0),
+        shift: DVec2::ZERO,
+    });
+    let camera = Camera::new(frame, projection, 4, 2).unwrap();
+    check_ray(&camera, (1, 4), [1.0, 2.0, 3.0], [1.5, 0.5, -2.0]);
+    assert_eq!(
+        pixel_to_image_plane(0, 3, DVec2::splat(0.5), (4, 2), DVec2::new(4.0, 2.0)),
+        DVec2::new(1.5, 0.5)
+    );
+}
+
+#[test]
+fn general_basis_by_hand() {
+    // Eye (1, 2, 3) looking at the origin with up = y (worked in the frame tests):
+    // w = (1, 2, 3)/sqrt 14, u = (3, 0, -1)/sqrt 10, v = (-2, 10, -6)/sqrt 140.
+    // The centre pixel of a 1 x 1 image with d = 1 looks along -w.
+    let camera = Camera::new(
+        tilted_frame(),
+        Projection::Perspective(Perspective::CANONICAL),
+        1,
+        1,
+    )
+    .unwrap();
+    let w = DVec3::new(1.0, 2.0, 3.0) / 14f64.sqrt();
+    check_ray(&camera, (1, 1), [1.0, 2.0, 3.0], (-w).to_array());
+}
+
+#[test]
+fn orthographic_and_oblique_by_hand() {
+    // vw = 4, vh = 2, W = 2, H = 1: the pixel centres are at u = -1 and u = +1, v = 0.
+    let viewport = DVec2::new(4.0, 2.0);
+    let ortho = Camera::new(
+        Frame::CANONICAL,
+        Projection::Orthographic(Orthographic {
+            viewport,
+            lens: None,
+        }),
+        2,
+        1,
+    )
+    .unwrap();
+    check_ray(&ortho, (1, 1), [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]);
+    check_ray(&ortho, (1, 2), [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]);
+    // Cabinet at 90 degrees: depth recedes straight up at half length.
+    let cabinet = Camera::new(
+        Frame::CANONICAL,
+        Projection::Oblique(Oblique::cabinet(viewport, std::f64::consts::FRAC_PI_2)),
+        2,
+        1,
+    )
+    .unwrap();
+    let ray = cabinet.generate_ray(0, 1, CameraSample::CENTER).unwrap();
+    assert!(
+        ray.direction
+            .abs_diff_eq(DVec3::new(0.0, -0.5, -1.0), 1e-12)
+    );
+}
+
+fn families() -> Vec<(&'static str, Camera)> {
+    let viewport = DVec2::new(1.5, 1.0);
+    vec![
+        (
+            "perspective_canonical",
+            camera(
+                Frame::CANONICAL,
+                Projection::Perspective(Perspective::CANONICAL),
+            ),
+        ),
+        (
+            "perspective_general",
+            camera(
+                tilted_frame(),
+                Projection::Perspective(Perspective {
+                    distance: 2.0,
+                    viewport,
+                    shift: DVec2::new(0.0, 0.25),
+                }),
+            ),
+        ),
+        (
+            "thin_lens",
+            camera(
+                Frame::CANONICAL,
+                Projection::ThinLens(ThinLens {
+                    distance: 1.0,
+                    viewport,
+                    shift: DVec2::ZERO,
+                    aperture: 0.1,
+                    focus: 4.0,
+                }),
+            ),
+        ),
+        (
+            "orthographic",
+            camera(
+                Frame::CANONICAL,
+                Projection::Orthographic(Orthographic {
+                    viewport,
+                    lens: None,
+                }),
+            ),
+        ),
+        (
+            "orthographic_lens",
+            camera(
+                Frame::CANONICAL,
+                Projection::Orthographic(Orthographic {
+                    viewport,
+                    lens: Some(Lens {
+                        aperture: 0.1,
+                        focus: 4.0,
+                    }),
+                }),
+            ),
+        ),
+        (
+            "oblique_cavalier",
+            camera(
+                Frame::CANONICAL,
+                Projection::Oblique(Oblique::cavalier(viewport, FRAC_PI_4)),
+            ),
+        ),
+        (
+            "oblique_cabinet",
+            camera(
+                Frame::CANONICAL,
+                Projection::Oblique(Oblique::cabinet(viewport, FRAC_PI_4)),
+            ),
+        ),
+        (
+            "equirectangular",
+            camera(Frame::CANONICAL, Projection::Equirectangular),
+        ),
+        (
+            "fisheye",
+            camera(
+                Frame::CANONICAL,
+                Projection::Fisheye(Fisheye {
+                    fov: 180f64.to_radians(),
+                }),
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn ray_tables_of_every_family() {
+    for (name, camera) in families() {
+        let mut table = ray_table(&camera, CameraSample::CENTER);
+        if camera.projection().has_lens() {
+            table += "\nlens sample (1, 0.5), the right edge of the lens:\n";
+            table += &ray_table(
+                &camera,
+                CameraSample {
+                    p_film: DVec2::splat(0.5),
+                    p_lens: DVec2::new(1.0, 0.5),
+                },
+            );
+        }
+        insta::assert_snapshot!(name, table);
+    }
+}
