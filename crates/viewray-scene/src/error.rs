@@ -1,0 +1,63 @@
+//! The scene crate's one error type: what went wrong, and where in which file.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A scene file that could not be loaded: the file, the position when known, and a
+/// sentence saying what was found and what was expected.
+///
+/// Displays as `path:line:column: message`, the form compilers use, so editors and
+/// terminals can jump to the spot.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError {
+    path: PathBuf,
+    position: Option<Position>,
+    message: String,
+}
+
+/// A 1-based line and column in a scene file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Position {
+    /// The line, from 1.
+    pub line: usize,
+    /// The column in characters, from 1.
+    pub column: usize,
+}
+
+impl SceneError {
+    /// An error at `position` of the file `path`.
+    pub(crate) fn at(path: &Path, position: Option<Position>, message: impl Into<String>) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            position,
+            message: message.into(),
+        }
+    }
+
+    /// The file the error is about.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Where in the file, when known.
+    pub fn position(&self) -> Option<Position> {
+        self.position
+    }
+
+    /// What went wrong, without the location.
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.path.display())?;
+        if let Some(Position { line, column }) = self.position {
+            write!(f, ":{line}:{column}")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}

@@ -1,0 +1,184 @@
+//! The serde types of a scene file. They mirror the RON text and stay inside this crate:
+//! [`crate::load::parse`] turns them into the runtime [`crate::Scene`].
+//!
+//! Field and variant names here are a contract with every scene file ever written:
+//! rename nothing, only add.
+
+use ron::value::RawValue;
+use serde::Deserialize;
+
+/// A point or vector written `(x, y, z)`.
+pub(crate) type V3 = (f64, f64, f64);
+/// A pair written `(a, b)`.
+pub(crate) type V2 = (f64, f64);
+
+/// The whole file. `camera` is kept as raw text and parsed in a second step, because it
+/// is either an explicit camera `( eye: .. )` or a preset `Isometric( .. )`, a choice RON's
+/// self-describing parser cannot make without losing the preset's name.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "scene")]
+pub(crate) struct SceneFile<'a> {
+    /// Parsed in a second step so its errors can point at it.
+    #[serde(default, borrow)]
+    pub(crate) image: Option<&'a RawValue>,
+    #[serde(borrow)]
+    pub(crate) camera: &'a RawValue,
+}
+
+/// `image: (width: 320, height: 240, samples: 16)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "image", default)]
+pub(crate) struct ImageDef {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) samples: u32,
+}
+
+impl Default for ImageDef {
+    fn default() -> Self {
+        Self {
+            width: 320,
+            height: 240,
+            samples: 1,
+        }
+    }
+}
+
+/// `camera: (eye: .., look_at: .. | view: .., up: .., projection: ..)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "camera")]
+pub(crate) struct ExplicitCamera {
+    pub(crate) eye: V3,
+    #[serde(default)]
+    pub(crate) look_at: Option<V3>,
+    #[serde(default)]
+    pub(crate) view: Option<V3>,
+    #[serde(default = "default_up")]
+    pub(crate) up: V3,
+    pub(crate) projection: ProjectionDef,
+}
+
+fn default_up() -> V3 {
+    (0.0, 1.0, 0.0)
+}
+
+fn default_distance() -> f64 {
+    1.0
+}
+
+/// `projection: Perspective(..) | ThinLens(..) | Orthographic(..) | Oblique(..) |
+/// Equirectangular | Fisheye(..)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "projection")]
+pub(crate) enum ProjectionDef {
+    Perspective {
+        #[serde(default = "default_distance")]
+        distance: f64,
+        #[serde(default)]
+        viewport: Option<V2>,
+        #[serde(default)]
+        fov_y: Option<f64>,
+        #[serde(default)]
+        fov_x: Option<f64>,
+        #[serde(default)]
+        shift: V2,
+    },
+    ThinLens {
+        #[serde(default = "default_distance")]
+        distance: f64,
+        #[serde(default)]
+        viewport: Option<V2>,
+        #[serde(default)]
+        fov_y: Option<f64>,
+        #[serde(default)]
+        fov_x: Option<f64>,
+        #[serde(default)]
+        shift: V2,
+        aperture: f64,
+        focus: f64,
+    },
+    Orthographic {
+        #[serde(default)]
+        viewport: Option<V2>,
+        #[serde(default)]
+        height: Option<f64>,
+        #[serde(default)]
+        aperture: Option<f64>,
+        #[serde(default)]
+        focus: Option<f64>,
+    },
+    Oblique {
+        #[serde(default)]
+        viewport: Option<V2>,
+        #[serde(default)]
+        height: Option<f64>,
+        ratio: f64,
+        /// Degrees.
+        angle: f64,
+    },
+    Equirectangular,
+    Fisheye {
+        /// Degrees.
+        fov: f64,
+    },
+}
+
+fn default_oblique_angle() -> f64 {
+    45.0
+}
+
+/// `camera: Isometric(target: (0, 0, 0), size: 4)` and the other taxonomy presets.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "camera preset")]
+pub(crate) enum PresetDef {
+    Front {
+        target: V3,
+        size: f64,
+    },
+    Top {
+        target: V3,
+        size: f64,
+    },
+    Side {
+        target: V3,
+        size: f64,
+    },
+    Isometric {
+        target: V3,
+        size: f64,
+    },
+    Dimetric {
+        target: V3,
+        size: f64,
+    },
+    Trimetric {
+        target: V3,
+        size: f64,
+    },
+    Cavalier {
+        target: V3,
+        size: f64,
+        /// Degrees.
+        #[serde(default = "default_oblique_angle")]
+        angle: f64,
+    },
+    Cabinet {
+        target: V3,
+        size: f64,
+        /// Degrees.
+        #[serde(default = "default_oblique_angle")]
+        angle: f64,
+    },
+    OnePoint {
+        target: V3,
+        size: f64,
+    },
+    TwoPoint {
+        target: V3,
+        size: f64,
+    },
+    ThreePoint {
+        target: V3,
+        size: f64,
+    },
+}

@@ -1,0 +1,49 @@
+//! Every file in `fixtures/bad/` is rejected with one message naming the file, line and
+//! column where known, what was found and what was expected. The messages are snapshots,
+//! so changing their wording is a visible decision.
+
+use std::path::{Path, PathBuf};
+
+use viewray_scene::Scene;
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
+}
+
+#[test]
+fn every_bad_scene_has_a_clear_error() {
+    let dir = fixtures().join("bad");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 10, "too few bad scenes in {}", dir.display());
+    let mut report = String::new();
+    for path in &paths {
+        let name = path.file_name().unwrap().to_str().unwrap();
+        let text = std::fs::read_to_string(path).unwrap();
+        let error = Scene::parse(&text, Path::new(name))
+            .err()
+            .unwrap_or_else(|| panic!("{name} loaded, but it is a bad scene"));
+        let message = error.to_string();
+        assert!(!message.contains('\n'), "{name}: not one line: {message}");
+        assert!(
+            message.starts_with(name),
+            "{name}: does not name the file: {message}"
+        );
+        report += &format!("{message}\n");
+    }
+    insta::assert_snapshot!(report);
+}
+
+#[test]
+fn a_missing_file_is_named() {
+    let error = Scene::load(Path::new("no/such/scene.ron")).unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .starts_with("no/such/scene.ron: cannot read the scene file")
+    );
+}
