@@ -1,0 +1,258 @@
+//! The command line: clap definitions, vector parsing and one-line usage errors.
+
+use std::ffi::OsString;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+use glam::{DVec2, DVec3};
+
+const CONVENTIONS: &str = "\
+Conventions (the lecture's, made exact): an image is W columns by H rows; pixel (row, col)
+is 0-based from the top-left (the lecture's 1-based (i, j) = (row + 1, col + 1), see
+--one-based). The camera frame is e, u, v, w with u right, v up and w back (the camera looks
+along -w): w = -view/|view|, u = up x w normalized, v = w x u. The pixel centre maps to the
+image plane at u = ((j - 1/2)/W - 1/2) vw, v = -((i - 1/2)/H - 1/2) vh, and the perspective
+viewing ray is origin e, direction u U + v V - d W, not normalized.
+
+Exit codes: 0 success, 1 a comparison failed, 2 bad input or usage, other values internal
+errors.";
+
+/// Ray tracing for learning cameras: render scenes, and check camera frames, viewing rays
+/// and projections number by number.
+#[derive(Parser, Debug)]
+#[command(name = "viewray", version, after_long_help = CONVENTIONS, after_help = CONVENTIONS)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub(crate) enum Command {
+    /// Print the camera frame (e, u, v, w) built from eye, view (or look-at) and up.
+    ///
+    /// w = -view / |view|, u = (up x w) / |up x w|, v = w x u; with --look-at, view =
+    /// look_at - eye. Prints one JSON line: {"e":[..],"u":[..],"v":[..],"w":[..]}.
+    Frame(FrameArgs),
+    /// Print the viewing ray of pixels of a scene's camera.
+    ///
+    /// For pixel (row, col), 0-based from the top-left, the ray goes through the pixel's
+    /// centre (and the lens centre): with the lecture's i = row + 1, j = col + 1,
+    /// u = ((j - 1/2)/W - 1/2) vw, v = -((i - 1/2)/H - 1/2) vh, and for a perspective camera
+    /// origin = e, direction = u U + v V - d W (not normalized). Prints one JSON line per
+    /// pixel: {"row":R,"col":C,"origin":[..],"direction":[..]}. Without --pixel, every
+    /// pixel, row by row.
+    Rays(RaysArgs),
+    /// Print where points appear in a scene's camera image.
+    ///
+    /// x, y are continuous image coordinates: x from the left edge, y from the top, so
+    /// pixel (row, col) spans [col, col + 1) x [row, row + 1) and its centre is
+    /// (col + 0.5, row + 0.5). row and col name the pixel holding the point, null outside
+    /// the image; all four are null where the point is not visible (behind a perspective
+    /// eye). Prints one JSON line per point: {"point":[..],"x":X,"y":Y,"row":R,"col":C}.
+    Project(ProjectArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct FrameArgs {
+    /// The eye position e.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) eye: DVec3,
+    /// The view direction.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
+          required_unless_present = "look_at", conflicts_with = "look_at")]
+    pub(crate) view: Option<DVec3>,
+    /// A point to look at: view = look_at - eye.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) look_at: Option<DVec3>,
+    /// The up vector; it fixes the camera's roll and need not be perpendicular to view.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
+          default_value = "0,1,0")]
+    pub(crate) up: DVec3,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct RaysArgs {
+    /// The scene file whose camera and image size to use.
+    pub(crate) scene: PathBuf,
+    /// A pixel as ROW,COL (repeat the option, or list several after it). Without it,
+    /// every pixel.
+    #[arg(long, value_name = "ROW,COL", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub(crate) pixel: Vec<(i64, i64)>,
+    /// Pixels are given and printed 1-based, as the lecture's (i, j).
+    #[arg(long)]
+    pub(crate) one_based: bool,
+    /// The point inside each pixel as SX,SY in [0, 1); 0.5,0.5 is the centre.
+    #[arg(long, value_name = "SX,SY", value_parser = parse_vec2, default_value = "0.5,0.5")]
+    pub(crate) sample: DVec2,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct ProjectArgs {
+    /// The scene file whose camera and image size to use.
+    pub(crate) scene: PathBuf,
+    /// A world point as X,Y,Z (repeat the option, or list several after it).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
+          required = true)]
+    pub(crate) point: Vec<DVec3>,
+    /// Print row and col 1-based, as the lecture's (i, j).
+    #[arg(long)]
+    pub(crate) one_based: bool,
+}
+
+/// Parses `text` as comma-separated finite numbers, exactly `N` of them.
+fn parse_numbers<const N: usize>(text: &str, example: &str) -> Result<[f64; N], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let wrong = || format!("expected {N} numbers separated by commas, like {example}");
+    if parts.len() != N {
+        return Err(wrong());
+    }
+    let mut numbers = [0.0; N];
+    for (number, part) in numbers.iter_mut().zip(parts) {
+        *number = part.parse::<f64>().map_err(|_| wrong())?;
+        if !number.is_finite() {
+            return Err(format!("`{part}` is not a finite number"));
+        }
+    }
+    Ok(numbers)
+}
+
+fn parse_vec3(text: &str) -> Result<DVec3, String> {
+    parse_numbers::<3>(text, "0,1.5,-2").map(DVec3::from)
+}
+
+fn parse_vec2(text: &str) -> Result<DVec2, String> {
+    parse_numbers::<2>(text, "0.5,0.5").map(DVec2::from)
+}
+
+fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
+    let wrong = || "expected a pixel as two whole numbers ROW,COL, like 2,3".to_owned();
+    let (row, col) = text.split_once(',').ok_or_else(wrong)?;
+    let row = row.trim().parse().map_err(|_| wrong())?;
+    let col = col.trim().parse().map_err(|_| wrong())?;
+    Ok((row, col))
+}
+
+/// Options that take one value each time and may be followed by several:
+/// `--point 1,2,3 -4,5,6` means `--point 1,2,3 --point -4,5,6`.
+const REPEATABLE: [&str; 2] = ["--point", "--pixel"];
+
+/// Rewrites `--point A B` as `--point A --point B`, so that several values may follow one
+/// option while values starting with `-` (negative coordinates) are still values.
+pub(crate) fn expand_repeated_values(args: impl IntoIterator<Item = OsString>) -> Vec<OsString> {
+    let mut out = Vec::new();
+    let mut repeating: Option<OsString> = None;
+    let mut just_saw_option = false;
+    for arg in args {
+        let text = arg.to_str().unwrap_or_default();
+        let looks_like_value = !text.is_empty()
+            && text.contains(',')
+            && text
+                .chars()
+                .all(|c| c.is_ascii_digit() || ".,-+eE ".contains(c));
+        if REPEATABLE.contains(&text) {
+            repeating = Some(arg.clone());
+            just_saw_option = true;
+            out.push(arg);
+            continue;
+        }
+        if let Some(option) = &repeating {
+            if looks_like_value {
+                if !just_saw_option {
+                    out.push(option.clone());
+                }
+                just_saw_option = false;
+                out.push(arg);
+                continue;
+            }
+            repeating = None;
+        }
+        just_saw_option = false;
+        out.push(arg);
+    }
+    out
+}
+
+/// Prints a clap error: help and version as clap formats them, usage errors as one line
+/// `error: ...`, exit code 2.
+pub(crate) fn report_usage_error(error: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(
+        error.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        let _ = error.print();
+        return if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+            ExitCode::from(crate::EXIT_BAD_INPUT)
+        } else {
+            ExitCode::SUCCESS
+        };
+    }
+    let text = error.render().to_string();
+    let line: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .take_while(|line| !line.starts_with("Usage:") && !line.starts_with("For more information"))
+        .filter(|line| !line.is_empty())
+        .collect();
+    let line = line.join(" ");
+    let line = line.strip_prefix("error: ").unwrap_or(&line);
+    eprintln!("error: {line} (see `viewray --help`)");
+    ExitCode::from(crate::EXIT_BAD_INPUT)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn expand(args: &[&str]) -> Vec<String> {
+        expand_repeated_values(args.iter().map(OsString::from))
+            .into_iter()
+            .map(|a| a.into_string().unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn several_values_after_one_option_become_repeated_options() {
+        assert_eq!(
+            expand(&[
+                "viewray",
+                "project",
+                "s.ron",
+                "--point",
+                "1,2,3",
+                "-4,5,6",
+                "--one-based"
+            ]),
+            [
+                "viewray",
+                "project",
+                "s.ron",
+                "--point",
+                "1,2,3",
+                "--point",
+                "-4,5,6",
+                "--one-based"
+            ]
+        );
+        assert_eq!(
+            expand(&["viewray", "rays", "--pixel", "0,0", "s.ron"]),
+            ["viewray", "rays", "--pixel", "0,0", "s.ron"]
+        );
+    }
+
+    #[test]
+    fn vectors_parse_with_negative_numbers_and_spaces() {
+        assert_eq!(parse_vec3("-1, 0,5.5"), Ok(DVec3::new(-1.0, 0.0, 5.5)));
+        assert!(parse_vec3("1,2").is_err());
+        assert!(parse_vec3("1,2,x").is_err());
+        assert!(parse_vec3("1,2,inf").is_err());
+        assert_eq!(parse_pixel("2, 3"), Ok((2, 3)));
+        assert!(parse_pixel("2.5,3").is_err());
+    }
+}
