@@ -25,22 +25,15 @@
 
 mod error;
 mod load;
+mod mesh;
+mod scene;
 mod schema;
 
 use std::path::Path;
 
 pub use error::{Position, SceneError};
-pub use load::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
-use viewray_camera::Camera;
-
-/// A loaded, validated scene.
-#[derive(Clone, Debug)]
-pub struct Scene {
-    /// The camera, with the image size.
-    pub camera: Camera,
-    /// Samples per pixel.
-    pub samples: u32,
-}
+pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
 
 impl Scene {
     /// Loads the scene file at `path`.
@@ -48,17 +41,34 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] if the file cannot be read or is not a valid scene.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        Self::load_with(path, LoadOptions::default())
+    }
+
+    /// Loads the scene file at `path`, with `options` overriding some of its settings.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
+    pub fn load_with(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
         let text = std::fs::read_to_string(path).map_err(|error| {
             SceneError::at(path, None, format!("cannot read the scene file: {error}"))
         })?;
-        Self::parse(&text, path)
+        Self::parse_with(&text, path, options)
     }
 
-    /// Parses the scene `text`; `path` names it in error messages.
+    /// Parses the scene `text`; `path` names it in error messages, and meshes are found
+    /// relative to its folder.
     ///
     /// # Errors
     /// A [`SceneError`] if `text` is not a valid scene.
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        load::parse(text, path)
+        Self::parse_with(text, path, LoadOptions::default())
+    }
+
+    /// Parses the scene `text` with `options` overriding some of its settings.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if `text` is not a valid scene.
+    pub fn parse_with(text: &str, path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
+        load::parse(text, path, options)
     }
 }

@@ -1,17 +1,25 @@
 //! Scene text -> [`Scene`]: parsing, conversion and validation, with every error placed
 //! at a file, line and column.
 
-use std::path::Path;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-use glam::{DVec2, DVec3};
+use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
 use ron::value::RawValue;
 use viewray_camera::{
     Camera, Fisheye, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection, ThinLens,
 };
 
-use crate::schema::{ExplicitCamera, ImageDef, PresetDef, ProjectionDef, SceneFile, V2, V3};
-use crate::{Position, Scene, SceneError};
+use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
+
+use crate::mesh::MeshCache;
+use crate::schema::{
+    ExplicitCamera, ImageDef, LightDef, MaterialDef, ObjectDef, PresetDef, ProjectionDef, Scale,
+    SceneFile, ShadingDef, Specular, TransformDef, V2, V3,
+};
+use crate::{Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, Shading};
 
 /// The largest image side viewray renders.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -78,27 +86,350 @@ fn ron_options() -> ron::Options {
     ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
 }
 
-/// Parses the scene `text` read from `path` (used in error messages).
-pub(crate) fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+/// Settings that override the scene file's, applied before the camera is built (so a
+/// field of view or a preset follows the new aspect ratio).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Render at `(width, height)` instead of the file's image size.
+    pub size: Option<(u32, u32)>,
+    /// Take this many samples per pixel instead of the file's.
+    pub samples: Option<u32>,
+}
+
+/// Parses the scene `text` read from `path` (used in error messages; meshes are found
+/// relative to its folder).
+pub(crate) fn parse(text: &str, path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
     let file: SceneFile<'_> = ron_options()
         .from_str(text)
         .map_err(|e| ron_error(path, Origin::FILE, &e))?;
-    let (width, height, samples) = match file.image {
-        Some(raw) => {
-            let origin = Origin::FILE.of_slice(text, raw.get_ron());
-            let image: ImageDef = ron_options()
-                .from_str(raw.get_ron())
-                .map_err(|e| ron_error(path, origin, &e))?;
-            check_image(&image, path, origin)?
-        }
-        None => check_image(&ImageDef::default(), path, Origin::FILE)?,
-    };
+    let loader = Loader { text, path };
 
-    let camera_text = file.camera.get_ron();
-    let camera_origin = Origin::FILE.of_slice(text, camera_text);
+    let (mut image, image_origin) = match file.image {
+        Some(raw) => loader.value::<ImageDef>(raw)?,
+        None => (ImageDef::default(), Origin::FILE),
+    };
+    if let Some((width, height)) = options.size {
+        image.width = width;
+        image.height = height;
+    }
+    if let Some(samples) = options.samples {
+        image.samples = samples;
+    }
+    let (width, height, samples) = check_image(&image, path, image_origin)?;
+
+    let camera_origin = Origin::FILE.of_slice(text, file.camera.get_ron());
     let camera = parse_camera(file.camera, camera_origin, path, width, height)?;
 
-    Ok(Scene { camera, samples })
+    let background = color(file.background)
+        .map_err(|m| SceneError::at(path, None, format!("background: {m}")))?;
+
+    let mut materials = Vec::with_capacity(file.materials.len() + 1);
+    let mut material_index = BTreeMap::new();
+    for (name, raw) in &file.materials {
+        let (def, origin) = loader.value::<MaterialDef>(raw)?;
+        let material =
+            material(&def).map_err(|m| loader.error(origin, format!("material `{name}`: {m}")))?;
+        material_index.insert(name.as_str(), index_u32(materials.len()));
+        materials.push(material);
+    }
+    let default_material = index_u32(materials.len());
+    materials.push(Material::default());
+
+    let mut lights = Vec::with_capacity(file.lights.len());
+    for raw in &file.lights {
+        let (def, origin) = loader.value::<LightDef>(raw)?;
+        lights.push(light(&def).map_err(|m| loader.error(origin, format!("light: {m}")))?);
+    }
+
+    let mut objects = Vec::with_capacity(file.objects.len());
+    let mut object_materials = Vec::with_capacity(file.objects.len());
+    let mut meshes = MeshCache::default();
+    for raw in &file.objects {
+        let (def, origin) = loader.value::<ObjectDef>(raw)?;
+        let error = |m: String| loader.error(origin, m);
+        let named = |name: &Option<String>| -> Result<u32, SceneError> {
+            match name {
+                None => Ok(default_material),
+                Some(name) => material_index.get(name.as_str()).copied().ok_or_else(|| {
+                    let known: Vec<&str> = material_index.keys().copied().collect();
+                    error(if known.is_empty() {
+                        format!("unknown material `{name}`: the scene defines no materials")
+                    } else {
+                        format!(
+                            "unknown material `{name}`, expected one of {}",
+                            list(&known)
+                        )
+                    })
+                }),
+            }
+        };
+        let (object, object_material) = match &def {
+            ObjectDef::Sphere {
+                center,
+                radius,
+                material,
+            } => {
+                let sphere = Sphere {
+                    center: point("center", *center).map_err(error)?,
+                    radius: positive("radius", *radius).map_err(error)?,
+                };
+                (
+                    Object::Sphere(sphere),
+                    ObjectMaterial::Single(named(material)?),
+                )
+            }
+            ObjectDef::Plane {
+                point: p,
+                normal,
+                material,
+            } => {
+                let normal = direction("normal", *normal).map_err(error)?;
+                let plane = Plane {
+                    point: point("point", *p).map_err(error)?,
+                    normal,
+                };
+                (
+                    Object::Plane(plane),
+                    ObjectMaterial::Single(named(material)?),
+                )
+            }
+            ObjectDef::Triangle { a, b, c, material } => {
+                let triangle = Triangle {
+                    a: point("a", *a).map_err(error)?,
+                    b: point("b", *b).map_err(error)?,
+                    c: point("c", *c).map_err(error)?,
+                };
+                if triangle.area_normal().length_squared() == 0.0 {
+                    return Err(error(
+                        "the triangle has zero area: its corners are on one line".to_owned(),
+                    ));
+                }
+                (
+                    Object::Triangle(triangle),
+                    ObjectMaterial::Single(named(material)?),
+                )
+            }
+            ObjectDef::Box { min, max, material } => {
+                let (min, max) = (
+                    point("min", *min).map_err(error)?,
+                    point("max", *max).map_err(error)?,
+                );
+                if !min.cmplt(max).all() {
+                    return Err(error(format!(
+                        "the box needs min < max on every axis, found min {min} and max {max}"
+                    )));
+                }
+                (
+                    Object::Box(Aabb { min, max }),
+                    ObjectMaterial::Single(named(material)?),
+                )
+            }
+            ObjectDef::Mesh {
+                path: mesh_path,
+                material,
+                transform,
+            } => {
+                let world_from_object = affine(transform).map_err(error)?;
+                let file = self::mesh_path(path, mesh_path);
+                let loaded = meshes
+                    .load(&file, &mut materials)
+                    .map_err(|m| error(format!("mesh `{mesh_path}`: {m}")))?;
+                let instance = Instance::new(Arc::clone(&loaded.mesh), world_from_object)
+                    .map_err(|e| error(format!("mesh `{mesh_path}`: {e}")))?;
+                let object_material = match (material, &loaded.face_materials) {
+                    (Some(_), _) | (None, None) => ObjectMaterial::Single(named(material)?),
+                    (None, Some(faces)) => ObjectMaterial::PerTriangle(Arc::clone(faces)),
+                };
+                (Object::Instance(instance), object_material)
+            }
+        };
+        objects.push(object);
+        object_materials.push(object_material);
+    }
+    let world = World::new(objects).map_err(|e| SceneError::at(path, None, e.to_string()))?;
+
+    Ok(Scene {
+        camera,
+        samples,
+        background,
+        shading: match file.shading {
+            ShadingDef::Flat => Shading::Flat,
+            ShadingDef::Normals => Shading::Normals,
+            ShadingDef::Depth => Shading::Depth,
+            ShadingDef::Lit => Shading::Lit,
+        },
+        materials,
+        lights,
+        world,
+        object_materials,
+    })
+}
+
+/// Parses the values kept as raw text, placing their errors in the file.
+struct Loader<'a> {
+    text: &'a str,
+    path: &'a Path,
+}
+
+impl Loader<'_> {
+    /// Parses `raw`, a slice of the file, as a `T`; returns it with where it starts.
+    fn value<T: serde::de::DeserializeOwned>(
+        &self,
+        raw: &RawValue,
+    ) -> Result<(T, Origin), SceneError> {
+        let origin = Origin::FILE.of_slice(self.text, raw.get_ron());
+        let value = ron_options()
+            .from_str(raw.get_ron())
+            .map_err(|e| ron_error(self.path, origin, &e))?;
+        Ok((value, origin))
+    }
+
+    fn error(&self, origin: Origin, message: String) -> SceneError {
+        SceneError::at(self.path, Some(origin.position()), message)
+    }
+}
+
+fn index_u32(index: usize) -> u32 {
+    u32::try_from(index).expect("fewer than 2^32 materials")
+}
+
+/// A finite `f64` that stays finite as the `f32` the tracer uses.
+fn finite32(name: &str, x: f64) -> Result<f32, String> {
+    #[allow(clippy::cast_possible_truncation)]
+    let y = x as f32;
+    if y.is_finite() {
+        Ok(y)
+    } else {
+        Err(format!("{name} must be a finite number, found {x}"))
+    }
+}
+
+fn point(name: &str, (x, y, z): V3) -> Result<Vec3, String> {
+    let v = Vec3::new(finite32(name, x)?, finite32(name, y)?, finite32(name, z)?);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("{name} must be finite, found ({x}, {y}, {z})"))
+    }
+}
+
+fn direction(name: &str, v: V3) -> Result<Vec3, String> {
+    point(name, v)?
+        .try_normalize()
+        .ok_or_else(|| format!("{name} must not be the zero vector"))
+}
+
+fn positive(name: &str, x: f64) -> Result<f32, String> {
+    let y = finite32(name, x)?;
+    if y > 0.0 {
+        Ok(y)
+    } else {
+        Err(format!("{name} must be positive, found {x}"))
+    }
+}
+
+fn color(v: V3) -> Result<Vec3, String> {
+    let c = point("colour", v)?;
+    if c.min_element() < 0.0 {
+        return Err(format!(
+            "colours cannot be negative, found ({}, {}, {})",
+            v.0, v.1, v.2
+        ));
+    }
+    Ok(c)
+}
+
+fn material(def: &MaterialDef) -> Result<Material, String> {
+    let specular = match def.specular {
+        None => Vec3::ZERO,
+        Some(Specular::Grey(g)) => color((g, g, g))?,
+        Some(Specular::Color(c)) => color(c)?,
+    };
+    let shininess = match def.shininess {
+        None => Material::default().shininess,
+        Some(s) => positive("shininess", s)?,
+    };
+    let mirror = finite32("mirror", def.mirror)?;
+    if !(0.0..=1.0).contains(&mirror) {
+        return Err(format!(
+            "mirror must be between 0 and 1, found {}",
+            def.mirror
+        ));
+    }
+    let grid = match &def.grid {
+        None => None,
+        Some(grid) => {
+            let spacing = positive("grid spacing", grid.spacing)?;
+            let line_width = positive("grid width", grid.width)?;
+            if line_width >= spacing {
+                return Err(format!(
+                    "grid width {} must be smaller than its spacing {}",
+                    grid.width, grid.spacing
+                ));
+            }
+            Some(Grid {
+                spacing,
+                line_width,
+                color: color(grid.color)?,
+            })
+        }
+    };
+    Ok(Material {
+        color: color(def.color)?,
+        specular,
+        shininess,
+        mirror,
+        grid,
+    })
+}
+
+fn light(def: &LightDef) -> Result<Light, String> {
+    Ok(match *def {
+        LightDef::Point {
+            position,
+            intensity,
+        } => Light::Point {
+            position: point("position", position)?,
+            intensity: color(intensity)?,
+        },
+        LightDef::Directional {
+            direction: d,
+            intensity,
+        } => Light::Directional {
+            direction: direction("direction", d)?,
+            intensity: color(intensity)?,
+        },
+        LightDef::Ambient { intensity } => Light::Ambient {
+            intensity: color(intensity)?,
+        },
+    })
+}
+
+/// The transform of a mesh: scale, then rotate about x, y and z (degrees), then translate.
+fn affine(def: &TransformDef) -> Result<Affine3A, String> {
+    let scale = match def.scale {
+        Scale::Uniform(s) => {
+            let s = finite32("scale", s)?;
+            Vec3::splat(s)
+        }
+        Scale::PerAxis(s) => point("scale", s)?,
+    };
+    if scale.cmpeq(Vec3::ZERO).any() {
+        return Err("scale must not be zero on any axis".to_owned());
+    }
+    let rotate = point("rotate", def.rotate)?;
+    let rotation = Quat::from_rotation_z(rotate.z.to_radians())
+        * Quat::from_rotation_y(rotate.y.to_radians())
+        * Quat::from_rotation_x(rotate.x.to_radians());
+    let translate = point("translate", def.translate)?;
+    Ok(Affine3A::from_scale_rotation_translation(
+        scale, rotation, translate,
+    ))
+}
+
+/// A mesh path as written in the scene file, relative to the file's folder.
+fn mesh_path(scene: &Path, mesh: &str) -> PathBuf {
+    scene.parent().unwrap_or(Path::new("")).join(mesh)
 }
 
 fn check_image(

@@ -4,6 +4,8 @@
 //! Field and variant names here are a contract with every scene file ever written:
 //! rename nothing, only add.
 
+use std::collections::BTreeMap;
+
 use ron::value::RawValue;
 use serde::Deserialize;
 
@@ -23,6 +25,135 @@ pub(crate) struct SceneFile<'a> {
     pub(crate) image: Option<&'a RawValue>,
     #[serde(borrow)]
     pub(crate) camera: &'a RawValue,
+    #[serde(default)]
+    pub(crate) background: V3,
+    #[serde(default)]
+    pub(crate) shading: ShadingDef,
+    /// Material name -> material, each parsed in a second step.
+    #[serde(default, borrow)]
+    pub(crate) materials: BTreeMap<String, &'a RawValue>,
+    #[serde(default, borrow)]
+    pub(crate) lights: Vec<&'a RawValue>,
+    #[serde(default, borrow)]
+    pub(crate) objects: Vec<&'a RawValue>,
+}
+
+/// `shading: Flat | Normals | Depth | Lit`.
+#[derive(Deserialize, Default, Clone, Copy)]
+#[serde(rename = "shading")]
+pub(crate) enum ShadingDef {
+    Flat,
+    Normals,
+    Depth,
+    #[default]
+    Lit,
+}
+
+/// `"red": (color: (0.8, 0.1, 0.1), specular: .., shininess: .., mirror: ..)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "material")]
+pub(crate) struct MaterialDef {
+    pub(crate) color: V3,
+    #[serde(default)]
+    pub(crate) specular: Option<Specular>,
+    #[serde(default)]
+    pub(crate) shininess: Option<f64>,
+    #[serde(default)]
+    pub(crate) mirror: f64,
+    #[serde(default)]
+    pub(crate) grid: Option<GridDef>,
+}
+
+/// `grid: (spacing: 1.0, width: 0.04, color: (0.2, 0.2, 0.2))`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "grid")]
+pub(crate) struct GridDef {
+    pub(crate) spacing: f64,
+    pub(crate) width: f64,
+    pub(crate) color: V3,
+}
+
+/// A specular colour, or one number for a grey.
+#[derive(Deserialize, Clone, Copy)]
+#[serde(untagged)]
+pub(crate) enum Specular {
+    Grey(f64),
+    Color(V3),
+}
+
+/// `Point(..) | Directional(..) | Ambient(..)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "light")]
+pub(crate) enum LightDef {
+    Point { position: V3, intensity: V3 },
+    Directional { direction: V3, intensity: V3 },
+    Ambient { intensity: V3 },
+}
+
+/// `Sphere(..) | Plane(..) | Triangle(..) | Box(..) | Mesh(..)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "object")]
+pub(crate) enum ObjectDef {
+    Sphere {
+        center: V3,
+        radius: f64,
+        #[serde(default)]
+        material: Option<String>,
+    },
+    Plane {
+        point: V3,
+        normal: V3,
+        #[serde(default)]
+        material: Option<String>,
+    },
+    Triangle {
+        a: V3,
+        b: V3,
+        c: V3,
+        #[serde(default)]
+        material: Option<String>,
+    },
+    Box {
+        min: V3,
+        max: V3,
+        #[serde(default)]
+        material: Option<String>,
+    },
+    Mesh {
+        path: String,
+        #[serde(default)]
+        material: Option<String>,
+        #[serde(default)]
+        transform: TransformDef,
+    },
+}
+
+/// `transform: (translate: .., rotate: .., scale: ..)`; rotations in degrees about x, then
+/// y, then z, after scaling and before translating.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "transform", default)]
+pub(crate) struct TransformDef {
+    pub(crate) translate: V3,
+    pub(crate) rotate: V3,
+    pub(crate) scale: Scale,
+}
+
+impl Default for TransformDef {
+    fn default() -> Self {
+        Self {
+            translate: (0.0, 0.0, 0.0),
+            rotate: (0.0, 0.0, 0.0),
+            scale: Scale::Uniform(1.0),
+        }
+    }
+}
+
+/// `scale: 2.0` or `scale: (1.0, 2.0, 1.0)`.
+#[derive(Deserialize, Clone, Copy)]
+#[serde(untagged)]
+pub(crate) enum Scale {
+    Uniform(f64),
+    PerAxis(V3),
 }
 
 /// `image: (width: 320, height: 240, samples: 16)`.

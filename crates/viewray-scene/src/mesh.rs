@@ -1,0 +1,157 @@
+//! OBJ meshes: loaded with tobj, each file once per scene.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::Vec3;
+use viewray_geometry::{Mesh, MeshData};
+
+use crate::Material;
+
+/// A mesh as loaded from an OBJ file.
+pub(crate) struct LoadedMesh {
+    /// The mesh with its BVH, shared by every object that places it.
+    pub(crate) mesh: Arc<Mesh>,
+    /// The material of each face, as indices into the scene's materials, when the OBJ
+    /// assigns MTL materials to its faces.
+    pub(crate) face_materials: Option<Arc<[u32]>>,
+}
+
+/// The meshes of one scene, by file, so a mesh placed twice is loaded (and its BVH built)
+/// once.
+#[derive(Default)]
+pub(crate) struct MeshCache {
+    loaded: HashMap<PathBuf, Arc<LoadedMesh>>,
+}
+
+impl MeshCache {
+    /// The mesh in the OBJ file at `path`, loading it the first time; its MTL materials are
+    /// appended to `materials`.
+    pub(crate) fn load(
+        &mut self,
+        path: &Path,
+        materials: &mut Vec<Material>,
+    ) -> Result<Arc<LoadedMesh>, String> {
+        let key = std::fs::canonicalize(path).map_err(|e| read_error(path, &e))?;
+        if let Some(mesh) = self.loaded.get(&key) {
+            return Ok(Arc::clone(mesh));
+        }
+        let mesh = Arc::new(load_obj(&key, path, materials)?);
+        self.loaded.insert(key, Arc::clone(&mesh));
+        Ok(mesh)
+    }
+}
+
+fn read_error(path: &Path, error: &std::io::Error) -> String {
+    let reason = match error.kind() {
+        std::io::ErrorKind::NotFound => "no such file".to_owned(),
+        _ => error.to_string(),
+    };
+    format!("cannot read {}: {reason}", path.display())
+}
+
+fn load_obj(
+    file: &Path,
+    shown: &Path,
+    materials: &mut Vec<Material>,
+) -> Result<LoadedMesh, String> {
+    if !file.is_file() {
+        return Err(format!("{} is not a file", shown.display()));
+    }
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, mtl) = tobj::load_obj(file, &options)
+        .map_err(|e| format!("{} is not a valid OBJ file: {e}", shown.display()))?;
+    // A missing or broken MTL file leaves the faces with the object's material.
+    let mtl = mtl.unwrap_or_default();
+
+    // Append the MTL materials this mesh uses to the scene's list.
+    let first = materials.len();
+    materials.extend(mtl.iter().map(|m| {
+        let defaults = Material::default();
+        Material {
+            color: m.diffuse.map_or(defaults.color, Vec3::from),
+            specular: m.specular.map_or(defaults.specular, Vec3::from),
+            shininess: m
+                .shininess
+                .filter(|s| s.is_finite() && *s > 0.0)
+                .unwrap_or(defaults.shininess),
+            mirror: 0.0,
+            grid: None,
+        }
+    }));
+
+    // Concatenate the OBJ's models into one mesh.
+    let mut data = MeshData::new(Vec::new(), Vec::new());
+    let mut normals = Vec::new();
+    let mut uvs = Vec::new();
+    let mut face_materials = Vec::new();
+    let every_model_has_normals = models.iter().all(|m| !m.mesh.normals.is_empty());
+    let every_model_has_uvs = models.iter().all(|m| !m.mesh.texcoords.is_empty());
+    let any_material = models.iter().any(|m| m.mesh.material_id.is_some());
+    for model in &models {
+        let part = MeshData::from_flat(
+            &model.mesh.positions,
+            &model.mesh.indices,
+            &model.mesh.normals,
+            &model.mesh.texcoords,
+        )
+        .map_err(|e| format!("{}: {e}", shown.display()))?;
+        let offset = u32::try_from(data.positions.len())
+            .map_err(|_| format!("{} has too many vertices", shown.display()))?;
+        data.triangles.extend(
+            part.triangles
+                .iter()
+                .map(|t| t.map(|i| i.saturating_add(offset))),
+        );
+        data.positions.extend(&part.positions);
+        if every_model_has_normals {
+            normals.extend(part.normals.unwrap_or_default());
+        }
+        if every_model_has_uvs {
+            uvs.extend(part.uvs.unwrap_or_default());
+        }
+        if any_material {
+            let material = model
+                .mesh
+                .material_id
+                .filter(|&id| id < mtl.len())
+                .map_or(u32::MAX, |id| (first + id) as u32);
+            face_materials.extend(std::iter::repeat_n(material, part.triangles.len()));
+        }
+    }
+    if data.triangles.is_empty() {
+        return Err(format!("{} has no faces", shown.display()));
+    }
+    if every_model_has_normals {
+        data = data.with_normals(normals);
+    }
+    if every_model_has_uvs {
+        data = data.with_uvs(uvs);
+    }
+    let mesh = Mesh::new(data).map_err(|e| format!("{}: {e}", shown.display()))?;
+
+    // Faces without an MTL material take the default material, the last of the scene's
+    // list once loading is done; resolve them to an explicit material here instead.
+    let face_materials = if any_material {
+        let fallback = u32::try_from(materials.len()).expect("fewer than 2^32 materials");
+        materials.push(Material::default());
+        Some(
+            face_materials
+                .into_iter()
+                .map(|m| if m == u32::MAX { fallback } else { m })
+                .collect::<Arc<[u32]>>(),
+        )
+    } else {
+        None
+    };
+    Ok(LoadedMesh {
+        mesh: Arc::new(mesh),
+        face_materials,
+    })
+}
