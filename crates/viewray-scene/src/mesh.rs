@@ -44,11 +44,10 @@ impl MeshCache {
 }
 
 fn read_error(path: &Path, error: &std::io::Error) -> String {
-    let reason = match error.kind() {
-        std::io::ErrorKind::NotFound => "no such file".to_owned(),
-        _ => error.to_string(),
-    };
-    format!("cannot read {}: {reason}", path.display())
+    match error.kind() {
+        std::io::ErrorKind::NotFound => format!("no such file (looked for {})", path.display()),
+        _ => format!("cannot read {}: {error}", path.display()),
+    }
 }
 
 fn load_obj(
@@ -59,14 +58,18 @@ fn load_obj(
     if !file.is_file() {
         return Err(format!("{} is not a file", shown.display()));
     }
+    let shown = Path::new(shown.file_name().unwrap_or(shown.as_os_str()));
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, mtl) = tobj::load_obj(file, &options)
-        .map_err(|e| format!("{} is not a valid OBJ file: {e}", shown.display()))?;
+    let (models, mtl) =
+        tobj::load_obj(file, &options).map_err(|e| match locate_obj_error(file) {
+            Some((line, problem)) => format!("{}:{line}: {problem}", shown.display()),
+            None => format!("not a valid OBJ file: {e}"),
+        })?;
     // A missing or broken MTL file leaves the faces with the object's material.
     let mtl = mtl.unwrap_or_default();
 
@@ -154,4 +157,73 @@ fn load_obj(
         mesh: Arc::new(mesh),
         face_materials,
     })
+}
+
+/// Finds the first line of the OBJ file at `path` that tobj would reject, for an error
+/// message that names it: `(line number, what is wrong)`. Only run after tobj failed, so
+/// it only needs to know the usual mistakes.
+fn locate_obj_error(path: &Path) -> Option<(usize, String)> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let (mut positions, mut texcoords, mut normals) = (0i64, 0i64, 0i64);
+    for (number, line) in text.lines().enumerate() {
+        let number = number + 1;
+        let mut words = line.split_whitespace();
+        let keyword = words.next().unwrap_or_default();
+        let values: Vec<&str> = words.collect();
+        let numbers = |min: usize, what: &str| -> Option<String> {
+            let bad = values.iter().find(|v| v.parse::<f32>().is_err());
+            match bad {
+                Some(word) => Some(format!("`{word}` in `{}` is not a number", line.trim())),
+                None if values.len() < min => {
+                    Some(format!("{what} needs {min} numbers: `{}`", line.trim()))
+                }
+                None => None,
+            }
+        };
+        let problem = match keyword {
+            "v" => {
+                positions += 1;
+                numbers(3, "a vertex")
+            }
+            "vt" => {
+                texcoords += 1;
+                numbers(1, "a texture coordinate")
+            }
+            "vn" => {
+                normals += 1;
+                numbers(3, "a normal")
+            }
+            "f" if values.len() < 3 => Some(format!("a face needs 3 vertices: `{}`", line.trim())),
+            "f" => values.iter().find_map(|corner| {
+                let counts = [
+                    ("vertex", positions),
+                    ("texture coordinate", texcoords),
+                    ("normal", normals),
+                ];
+                corner
+                    .split('/')
+                    .zip(counts)
+                    .find_map(|(index, (what, count))| {
+                        if index.is_empty() {
+                            return None;
+                        }
+                        let Ok(i) = index.parse::<i64>() else {
+                            return Some(format!("`{index}` in `{}` is not an index", line.trim()));
+                        };
+                        // OBJ indices are 1-based; negative ones count back from the last.
+                        let resolved = if i < 0 { count + i + 1 } else { i };
+                        (resolved < 1 || resolved > count).then(|| {
+                            format!(
+                                "face refers to {what} {i}, but only {count} are defined before it"
+                            )
+                        })
+                    })
+            }),
+            _ => None,
+        };
+        if let Some(problem) = problem {
+            return Some((number, problem));
+        }
+    }
+    None
 }

@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use viewray_scene::Scene;
 
 fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures")
+        .canonicalize()
+        .unwrap()
 }
 
 #[test]
@@ -23,17 +26,19 @@ fn every_bad_scene_has_a_clear_error() {
     let mut report = String::new();
     for path in &paths {
         let name = path.file_name().unwrap().to_str().unwrap();
-        let text = std::fs::read_to_string(path).unwrap();
-        let error = Scene::parse(&text, Path::new(name))
+        let error = Scene::load(path)
             .err()
             .unwrap_or_else(|| panic!("{name} loaded, but it is a bad scene"));
         let message = error.to_string();
         assert!(!message.contains('\n'), "{name}: not one line: {message}");
+        let shown = path.to_str().unwrap();
         assert!(
-            message.starts_with(name),
+            message.starts_with(shown),
             "{name}: does not name the file: {message}"
         );
-        report += &format!("{message}\n");
+        // The snapshot shows paths from the repository root, wherever it is checked out.
+        let root = format!("{}/", fixtures().parent().unwrap().display());
+        report += &format!("{}\n", message.replace(&root, ""));
     }
     insta::assert_snapshot!(report);
 }
