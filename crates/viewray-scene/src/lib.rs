@@ -35,6 +35,40 @@ pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
 
+/// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
+
+/// Reads a scene file, refusing directories and files too large to be a scene.
+fn read_scene_file(path: &Path) -> Result<String, SceneError> {
+    use std::io::Read;
+    let error = |message: String| SceneError::at(path, None, message);
+    let file = std::fs::File::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => error("no such scene file".to_owned()),
+        _ => error(format!("cannot read the scene file: {e}")),
+    })?;
+    let metadata = file
+        .metadata()
+        .map_err(|e| error(format!("cannot read the scene file: {e}")))?;
+    if metadata.is_dir() {
+        return Err(error("is a directory, not a scene file".to_owned()));
+    }
+    let mut text = String::new();
+    let read = file
+        .take(MAX_SCENE_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(|e| match e.kind() {
+            std::io::ErrorKind::InvalidData => error("is not a text file (not UTF-8)".to_owned()),
+            _ => error(format!("cannot read the scene file: {e}")),
+        })?;
+    if read as u64 > MAX_SCENE_BYTES {
+        return Err(error(format!(
+            "is larger than {} MiB: too large for a scene file",
+            MAX_SCENE_BYTES >> 20
+        )));
+    }
+    Ok(text)
+}
+
 impl Scene {
     /// Loads the scene file at `path`.
     ///
@@ -49,9 +83,7 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] if the file cannot be read or is not a valid scene.
     pub fn load_with(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|error| {
-            SceneError::at(path, None, format!("cannot read the scene file: {error}"))
-        })?;
+        let text = read_scene_file(path)?;
         Self::parse_with(&text, path, options)
     }
 

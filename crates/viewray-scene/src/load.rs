@@ -731,6 +731,9 @@ fn describe(code: &RonError) -> String {
             format!("expected {expected}, found {found} elements")
         }
         RonError::Eof => "unexpected end of file".to_owned(),
+        RonError::ExceededRecursionLimit => {
+            "values are nested too deeply (more than 128 levels)".to_owned()
+        }
         other => {
             // RON's own wording, as a sentence fragment like the others.
             let text = other.to_string();

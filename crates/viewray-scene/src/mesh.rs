@@ -9,6 +9,9 @@ use viewray_geometry::{Mesh, MeshData};
 
 use crate::Material;
 
+/// The largest OBJ file a scene may load: 1 GiB, some 20 million triangles.
+const MAX_OBJ_BYTES: u64 = 1 << 30;
+
 /// A mesh as loaded from an OBJ file.
 pub(crate) struct LoadedMesh {
     /// The mesh with its BVH, shared by every object that places it.
@@ -55,10 +58,17 @@ fn load_obj(
     shown: &Path,
     materials: &mut Vec<Material>,
 ) -> Result<LoadedMesh, String> {
-    if !file.is_file() {
-        return Err(format!("{} is not a file", shown.display()));
+    let metadata = std::fs::metadata(file).map_err(|e| read_error(shown, &e))?;
+    if !metadata.is_file() {
+        return Err("is a directory, not an OBJ file".to_owned());
     }
-    let shown = Path::new(shown.file_name().unwrap_or(shown.as_os_str()));
+    if metadata.len() > MAX_OBJ_BYTES {
+        return Err(format!(
+            "is {} MiB, larger than the {} MiB an OBJ file may have",
+            metadata.len() >> 20,
+            MAX_OBJ_BYTES >> 20
+        ));
+    }
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -67,7 +77,7 @@ fn load_obj(
     };
     let (models, mtl) =
         tobj::load_obj(file, &options).map_err(|e| match locate_obj_error(file) {
-            Some((line, problem)) => format!("{}:{line}: {problem}", shown.display()),
+            Some((line, problem)) => format!("line {line}: {problem}"),
             None => format!("not a valid OBJ file: {e}"),
         })?;
     // A missing or broken MTL file leaves the faces with the object's material.
@@ -104,9 +114,9 @@ fn load_obj(
             &model.mesh.normals,
             &model.mesh.texcoords,
         )
-        .map_err(|e| format!("{}: {e}", shown.display()))?;
-        let offset = u32::try_from(data.positions.len())
-            .map_err(|_| format!("{} has too many vertices", shown.display()))?;
+        .map_err(|e| e.to_string())?;
+        let offset =
+            u32::try_from(data.positions.len()).map_err(|_| "has too many vertices".to_owned())?;
         data.triangles.extend(
             part.triangles
                 .iter()
@@ -129,7 +139,7 @@ fn load_obj(
         }
     }
     if data.triangles.is_empty() {
-        return Err(format!("{} has no faces", shown.display()));
+        return Err("has no faces (is it an OBJ file?)".to_owned());
     }
     if every_model_has_normals {
         data = data.with_normals(normals);
@@ -137,7 +147,13 @@ fn load_obj(
     if every_model_has_uvs {
         data = data.with_uvs(uvs);
     }
-    let mesh = Mesh::new(data).map_err(|e| format!("{}: {e}", shown.display()))?;
+    let faces = data.triangles.len();
+    let mesh = Mesh::new(data).map_err(|e| e.to_string())?;
+    if mesh.triangle_count() == 0 {
+        return Err(format!(
+            "all {faces} faces are degenerate (zero area), so there is nothing to see"
+        ));
+    }
 
     // Faces without an MTL material take the default material, the last of the scene's
     // list once loading is done; resolve them to an explicit material here instead.

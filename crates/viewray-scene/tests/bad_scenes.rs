@@ -49,6 +49,6 @@ fn a_missing_file_is_named() {
     assert!(
         error
             .to_string()
-            .starts_with("no/such/scene.ron: cannot read the scene file")
+            .starts_with("no/such/scene.ron: no such scene file")
     );
 }

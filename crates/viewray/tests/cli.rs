@@ -215,7 +215,7 @@ fn bad_input_gets_one_clear_line() {
         (&["rays", &scene, "--pixel", "a,b"], "two whole numbers"),
         (
             &["rays", "no/such/scene.ron"],
-            "no/such/scene.ron: cannot read the scene file",
+            "no/such/scene.ron: no such scene file",
         ),
         (&["project", &scene], "--point"),
         (&["teleport"], "unrecognized subcommand"),
