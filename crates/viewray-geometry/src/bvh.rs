@@ -150,8 +150,8 @@ pub(crate) struct BoxRay {
     origin_near: [Vec4; 3],
     origin_far: [Vec4; 3],
     inverse: [Vec4; 3],
-    near: [usize; 3],
-    far: [usize; 3],
+    /// Bit `axis` is set when the direction is negative on that axis.
+    octant: u8,
 }
 
 impl BoxRay {
@@ -184,13 +184,14 @@ impl BoxRay {
             origin_far[axis] = Vec4::splat(o_far);
             inverse[axis] = Vec4::splat(1.0 / d_axis);
         }
-        let negative = |axis: usize| usize::from(d[axis].is_sign_negative());
+        let octant = (0..3).fold(0, |bits, axis| {
+            bits | (u8::from(d[axis].is_sign_negative()) << axis)
+        });
         Self {
             origin_near,
             origin_far,
             inverse,
-            near: std::array::from_fn(|axis| axis + 3 * negative(axis)),
-            far: std::array::from_fn(|axis| axis + 3 * (1 - negative(axis))),
+            octant,
         }
     }
 
@@ -200,16 +201,17 @@ impl BoxRay {
     /// The exit distance is enlarged by `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
     /// Traversal", JCGT 2013) so that rounding never culls a box the ray grazes.
     #[inline(always)]
-    fn hit_children(&self, node: &Node, t_min: Vec4, t_max: Vec4) -> (u32, Vec4) {
+    fn hit_children<const OCTANT: u8>(&self, node: &Node, t_min: Vec4, t_max: Vec4) -> (u32, Vec4) {
         const ROBUST: f32 = 1.0 + 2.0 * 3.0 * f32::EPSILON;
         let p = &node.planes;
         // Choosing the near and far plane by the direction's sign (rather than taking
         // min and max) keeps an empty box (min > max) empty, so unused slots never hit.
+        // The sign pattern is a constant of the monomorphized traversal.
         let slab = |axis: usize| {
-            let near = (Vec4::from_array(p[self.near[axis]]) - self.origin_near[axis])
-                * self.inverse[axis];
-            let far =
-                (Vec4::from_array(p[self.far[axis]]) - self.origin_far[axis]) * self.inverse[axis];
+            let negative = usize::from((OCTANT >> axis) & 1 == 1);
+            let (near, far) = (axis + 3 * negative, axis + 3 * (1 - negative));
+            let near = (Vec4::from_array(p[near]) - self.origin_near[axis]) * self.inverse[axis];
+            let far = (Vec4::from_array(p[far]) - self.origin_far[axis]) * self.inverse[axis];
             (near, far)
         };
         let (nx, fx) = slab(0);
@@ -330,6 +332,26 @@ impl Bvh {
         &self,
         ray: &BoxRay,
         t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u32, u32, f32) -> f32,
+    ) -> f32 {
+        match ray.octant {
+            0 => self.closest_in_octant::<0>(ray, t_min, t_max, leaf),
+            1 => self.closest_in_octant::<1>(ray, t_min, t_max, leaf),
+            2 => self.closest_in_octant::<2>(ray, t_min, t_max, leaf),
+            3 => self.closest_in_octant::<3>(ray, t_min, t_max, leaf),
+            4 => self.closest_in_octant::<4>(ray, t_min, t_max, leaf),
+            5 => self.closest_in_octant::<5>(ray, t_min, t_max, leaf),
+            6 => self.closest_in_octant::<6>(ray, t_min, t_max, leaf),
+            _ => self.closest_in_octant::<7>(ray, t_min, t_max, leaf),
+        }
+    }
+
+    /// [`Bvh::closest`] for rays whose direction signs are `OCTANT`.
+    fn closest_in_octant<const OCTANT: u8>(
+        &self,
+        ray: &BoxRay,
+        t_min: f32,
         mut t_max: f32,
         mut leaf: impl FnMut(u32, u32, f32) -> f32,
     ) -> f32 {
@@ -347,7 +369,7 @@ impl Bvh {
                 t_max = leaf(start, count, t_max);
             } else {
                 let node = &self.nodes[current as usize];
-                let (mask, t_near) = ray.hit_children(node, t_min4, Vec4::splat(t_max));
+                let (mask, t_near) = ray.hit_children::<OCTANT>(node, t_min4, Vec4::splat(t_max));
                 if mask != 0 {
                     if mask.count_ones() == 1 {
                         current = node.children[mask.trailing_zeros() as usize];
@@ -412,6 +434,26 @@ impl Bvh {
         ray: &BoxRay,
         t_min: f32,
         t_max: f32,
+        leaf: impl FnMut(u32, u32) -> bool,
+    ) -> bool {
+        match ray.octant {
+            0 => self.any_in_octant::<0>(ray, t_min, t_max, leaf),
+            1 => self.any_in_octant::<1>(ray, t_min, t_max, leaf),
+            2 => self.any_in_octant::<2>(ray, t_min, t_max, leaf),
+            3 => self.any_in_octant::<3>(ray, t_min, t_max, leaf),
+            4 => self.any_in_octant::<4>(ray, t_min, t_max, leaf),
+            5 => self.any_in_octant::<5>(ray, t_min, t_max, leaf),
+            6 => self.any_in_octant::<6>(ray, t_min, t_max, leaf),
+            _ => self.any_in_octant::<7>(ray, t_min, t_max, leaf),
+        }
+    }
+
+    /// [`Bvh::any`] for rays whose direction signs are `OCTANT`.
+    fn any_in_octant<const OCTANT: u8>(
+        &self,
+        ray: &BoxRay,
+        t_min: f32,
+        t_max: f32,
         mut leaf: impl FnMut(u32, u32) -> bool,
     ) -> bool {
         if self.nodes.is_empty() {
@@ -429,7 +471,7 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (mut mask, _) = ray.hit_children(node, t_min4, t_max4);
+                let (mut mask, _) = ray.hit_children::<OCTANT>(node, t_min4, t_max4);
                 while mask != 0 {
                     stack[sp] = node.children[mask.trailing_zeros() as usize];
                     sp += 1;
@@ -651,7 +693,16 @@ impl Builder {
     }
 
     /// Chooses how to split `items` (the items of `range`) with the binned SAH.
-    fn choose_split(&self, items: &[BuildItem], range: &RangeInfo, depth: u32) -> Split {
+    ///
+    /// `traversal_cost` is the cost of the extra node a split would create: zero while
+    /// the node being opened still has a free slot for the second half.
+    fn choose_split(
+        &self,
+        items: &[BuildItem],
+        range: &RangeInfo,
+        depth: u32,
+        traversal_cost: f32,
+    ) -> Split {
         let n = items.len();
         let small = n <= self.params.max_leaf_items as usize;
         if n <= 1 {
@@ -722,7 +773,7 @@ impl Builder {
         };
         let area = half_area(range.bounds.min.into(), range.bounds.max.into());
         let leaf_cost = area * self.blocks(n as u32);
-        if small && leaf_cost <= area * self.params.traversal_cost + split_cost {
+        if small && leaf_cost <= area * traversal_cost + split_cost {
             return Split::Leaf;
         }
         Split::Plane {
@@ -740,7 +791,7 @@ impl Builder {
         range: RangeInfo,
         depth: u32,
     ) -> Result<(RangeInfo, RangeInfo), RangeInfo> {
-        let mid = match self.choose_split(items, &range, depth) {
+        let mid = match self.choose_split(items, &range, depth, 0.0) {
             Split::Leaf => {
                 return Err(RangeInfo {
                     leaf: true,
@@ -818,6 +869,15 @@ impl Builder {
                     children.push(right);
                 }
                 Err(leaf) => children[i] = leaf,
+            }
+        }
+        // The children left unsplit become nodes unless, small enough, the full SAH
+        // (now counting the cost of a new node) prefers a leaf.
+        for child in &mut children {
+            if !child.leaf && child.len() <= self.params.max_leaf_items as usize {
+                let local = &items[child.start - range.start..child.end - range.start];
+                let split = self.choose_split(local, child, depth + 1, self.params.traversal_cost);
+                child.leaf = matches!(split, Split::Leaf);
             }
         }
         children.sort_by_key(|c| c.start);

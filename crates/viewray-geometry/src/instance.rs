@@ -115,7 +115,7 @@ impl Instance {
     }
 
     pub(crate) fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {
-        let local = self.mesh.surface(&self.object_ray(ray), raw);
+        let local = self.mesh.surface_of(&self.object_ray(ray), raw);
         let to_world = |n: Vec3| (self.normal_matrix * n).normalize_or(n);
         Hit {
             point: ray.at(raw.t),

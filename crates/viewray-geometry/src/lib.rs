@@ -24,7 +24,7 @@ pub use bvh::{Bounded, BuildParams, Bvh};
 pub use error::GeometryError;
 pub use hit::Hit;
 pub use instance::Instance;
-pub use mesh::{Mesh, MeshData};
+pub use mesh::{Mesh, MeshData, TriangleHit};
 pub use ray::{DRay, Ray};
 pub use shapes::{Plane, Sphere, Triangle};
 pub use world::{Object, World};

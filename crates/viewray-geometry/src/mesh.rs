@@ -185,6 +185,22 @@ impl MeshData {
     }
 }
 
+/// The closest triangle of a mesh that a ray meets, before the surface details are
+/// computed (see [`Mesh::closest_triangle`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit {
+    /// The ray parameter, in units of the ray's direction.
+    pub t: f32,
+    /// The face index.
+    pub primitive: u32,
+    /// The barycentric coordinates `(b1, b2)` of the face's second and third vertices:
+    ///
+    /// ```text
+    /// point = (1 - b1 - b2) a + b1 b + b2 c
+    /// ```
+    pub barycentric: Vec2,
+}
+
 /// Four triangles in structure-of-arrays layout, for one SIMD watertight test.
 ///
 /// `vertices[corner][axis][lane]`; a leaf with a number of triangles that is not a
@@ -388,7 +404,33 @@ impl Mesh {
     /// [`Hit::primitive`] is the face index; [`Hit::object`] is 0.
     pub fn closest_hit(&self, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
         let raw = self.intersect(ray, t_range.start, t_range.end)?;
-        Some(self.surface(ray, &raw))
+        Some(self.surface_of(ray, &raw))
+    }
+
+    /// The closest triangle hit with `t` in `t_range`: its distance, face and
+    /// barycentrics, without the surface details (no vertex data is read), for
+    /// visibility queries and deferred shading; [`Mesh::surface`] completes it.
+    pub fn closest_triangle(&self, ray: &Ray, t_range: Range<f32>) -> Option<TriangleHit> {
+        self.intersect(ray, t_range.start, t_range.end)
+            .map(|raw| TriangleHit {
+                t: raw.t,
+                primitive: raw.primitive,
+                barycentric: raw.barycentric,
+            })
+    }
+
+    /// The full [`Hit`] for a triangle hit of `ray` found by [`Mesh::closest_triangle`]:
+    /// the normals, shading normal and uv interpolated at its barycentrics.
+    pub fn surface(&self, ray: &Ray, hit: &TriangleHit) -> Hit {
+        self.surface_of(
+            ray,
+            &RawHit {
+                t: hit.t,
+                object: 0,
+                primitive: hit.primitive,
+                barycentric: hit.barycentric,
+            },
+        )
     }
 
     /// Whether any triangle is hit with `t` in `t_range`; stops at the first one found.
@@ -442,7 +484,7 @@ impl Mesh {
     }
 
     /// The surface details of a raw hit on face `raw.primitive`.
-    pub(crate) fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {
+    pub(crate) fn surface_of(&self, ray: &Ray, raw: &RawHit) -> Hit {
         let data = &self.data;
         let [ia, ib, ic] = data.triangles[raw.primitive as usize].map(|i| i as usize);
         let [a, b, c] = [ia, ib, ic].map(|i| data.positions[i]);
