@@ -30,7 +30,7 @@ impl SceneError {
         Self {
             path: path.to_path_buf(),
             position,
-            message: message.into(),
+            message: one_line(&message.into()),
         }
     }
 
@@ -52,7 +52,7 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.path.display())?;
+        write!(f, "{}", one_line(&self.path.display().to_string()))?;
         if let Some(Position { line, column }) = self.position {
             write!(f, ":{line}:{column}")?;
         }
@@ -61,3 +61,18 @@ impl fmt::Display for SceneError {
 }
 
 impl std::error::Error for SceneError {}
+
+/// `text` with control characters (a newline in a file name or a quoted string) escaped,
+/// so an error stays on one line whatever the input held.
+fn one_line(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect()
+}

@@ -35,6 +35,15 @@ pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
 
+/// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of
+/// the OBJ fuzz target. Returns the number of triangles kept, or the error message.
+#[doc(hidden)]
+pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
+    let mut materials = Vec::new();
+    let no_mtl = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
+    mesh::parse_obj(bytes, no_mtl, &mut materials).map(|m| m.mesh.triangle_count())
+}
+
 /// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
 pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 

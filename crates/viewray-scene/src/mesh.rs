@@ -69,17 +69,38 @@ fn load_obj(
             MAX_OBJ_BYTES >> 20
         ));
     }
+    let bytes = std::fs::read(file).map_err(|e| read_error(shown, &e))?;
+    let folder = file.parent().unwrap_or(Path::new("")).to_path_buf();
+    let mtl_loader = move |mtl: &Path| {
+        let mtl = folder.join(mtl);
+        match std::fs::metadata(&mtl) {
+            Ok(m) if m.is_file() && m.len() <= MAX_OBJ_BYTES => tobj::load_mtl(&mtl),
+            _ => Err(tobj::LoadError::OpenFileFailed),
+        }
+    };
+    parse_obj(&bytes, mtl_loader, materials)
+}
+
+/// Builds the mesh in the OBJ text `bytes`, loading MTL libraries with `mtl_loader`; its
+/// MTL materials are appended to `materials`.
+pub(crate) fn parse_obj(
+    bytes: &[u8],
+    mtl_loader: impl Fn(&Path) -> tobj::MTLLoadResult,
+    materials: &mut Vec<Material>,
+) -> Result<LoadedMesh, String> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, mtl) =
-        tobj::load_obj(file, &options).map_err(|e| match locate_obj_error(file) {
-            Some((line, problem)) => format!("line {line}: {problem}"),
-            None => format!("not a valid OBJ file: {e}"),
-        })?;
+    let (models, mtl) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, mtl_loader)
+        .map_err(
+            |e| match locate_obj_error(&String::from_utf8_lossy(bytes)) {
+                Some((line, problem)) => format!("line {line}: {problem}"),
+                None => format!("not a valid OBJ file: {e}"),
+            },
+        )?;
     // A missing or broken MTL file leaves the faces with the object's material.
     let mtl = mtl.unwrap_or_default();
 
@@ -175,11 +196,10 @@ fn load_obj(
     })
 }
 
-/// Finds the first line of the OBJ file at `path` that tobj would reject, for an error
+/// Finds the first line of the OBJ `text` that tobj would reject, for an error
 /// message that names it: `(line number, what is wrong)`. Only run after tobj failed, so
 /// it only needs to know the usual mistakes.
-fn locate_obj_error(path: &Path) -> Option<(usize, String)> {
-    let text = std::fs::read_to_string(path).ok()?;
+fn locate_obj_error(text: &str) -> Option<(usize, String)> {
     let (mut positions, mut texcoords, mut normals) = (0i64, 0i64, 0i64);
     for (number, line) in text.lines().enumerate() {
         let number = number + 1;
