@@ -2,12 +2,15 @@
 
 use glam::{Vec2, Vec3};
 
+use std::ops::Range;
+
 use crate::Ray;
+use crate::hit::{Hit, face_toward};
 
 /// An axis-aligned box `[min.x, max.x] x [min.y, max.y] x [min.z, max.z]`.
 ///
 /// The same type bounds BVH nodes and is the scene's solid `Box` primitive (see
-/// [`Aabb::intersect`]). [`Aabb::EMPTY`] (min = +inf, max = -inf) contains nothing and is
+/// [`Aabb::closest_hit`]). [`Aabb::EMPTY`] (min = +inf, max = -inf) contains nothing and is
 /// the identity of [`Aabb::union`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -185,6 +188,38 @@ impl Aabb {
         })
     }
 
+    /// The closest hit of `ray` with the solid box with `t` in `t_range`: the entry face
+    /// from outside, the exit face from inside (a back face).
+    ///
+    /// The uv are the hit point's two other coordinates on the face, relative to the
+    /// box, each in [0, 1]:
+    ///
+    /// ```text
+    /// uv = ((p_a - min_a) / (max_a - min_a), (p_b - min_b) / (max_b - min_b)),
+    /// a = (k + 1) mod 3, b = (k + 2) mod 3   for a face perpendicular to axis k
+    /// ```
+    pub fn closest_hit(&self, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
+        let crossing = self.intersect_solid(ray, t_range.start, t_range.end)?;
+        Some(self.surface(ray, crossing.t, crossing.axis, crossing.max_face))
+    }
+
+    /// The surface details where `ray` crosses face `axis` / `max_face` at `t`.
+    pub(crate) fn surface(&self, ray: &Ray, t: f32, axis: u32, max_face: bool) -> Hit {
+        let point = ray.at(t);
+        let outward = Self::face_normal(axis, max_face);
+        let (normal, shading_normal, front_face) = face_toward(ray.direction, outward, outward);
+        Hit {
+            t,
+            point,
+            normal,
+            shading_normal,
+            front_face,
+            uv: self.face_uv(axis, point),
+            primitive: 0,
+            object: 0,
+        }
+    }
+
     /// The outward unit normal of the face `axis` / `max_face`.
     pub(crate) fn face_normal(axis: u32, max_face: bool) -> Vec3 {
         let mut n = Vec3::ZERO;
@@ -192,13 +227,7 @@ impl Aabb {
         n
     }
 
-    /// Texture coordinates of `point` on face `axis`: the two other coordinates,
-    /// relative to the box, each in [0, 1].
-    ///
-    /// ```text
-    /// uv = ((p_a - min_a) / (max_a - min_a), (p_b - min_b) / (max_b - min_b)),
-    /// a = (axis + 1) mod 3, b = (axis + 2) mod 3
-    /// ```
+    /// Texture coordinates of `point` on face `axis` (see [`Aabb::closest_hit`]).
     pub(crate) fn face_uv(&self, axis: u32, point: Vec3) -> Vec2 {
         let relative = |k: usize| {
             let size = self.max[k] - self.min[k];

@@ -5,7 +5,58 @@
 //!
 //! Rays keep the lecture's *unnormalized* directions: a ray is `origin + t * direction`
 //! and every `t` this crate reports is in units of the ray's own direction, whatever
-//! its length.
+//! its length. Queries take a range `t_range` and accept `t_range.start <= t <
+//! t_range.end`; a shadow ray toward a light at `p = origin + direction` is
+//! `any_hit(&ray, 1e-4..1.0)`.
+//!
+//! # Map
+//!
+//! - [`Ray`], [`DRay`]: rays in `f32` (tracing) and `f64` (camera arithmetic).
+//! - [`Sphere`], [`Plane`], [`Triangle`], [`Aabb`] (the `Box` primitive and the BVH's
+//!   bound): analytic shapes, each with `closest_hit`.
+//! - [`MeshData`] (vertex data, from vectors or tobj's flat arrays, plus the
+//!   [`MeshData::icosphere`] and [`MeshData::cuboid`] generators) and [`Mesh`] (validated,
+//!   with its BVH); [`Instance`]: a shared mesh placed by an affine transform.
+//! - [`World`]: a list of [`Object`]s with a top-level BVH; hits name the object's index.
+//! - [`Hit`]: what a closest-hit query reports; [`GeometryError`]: why data was refused.
+//! - [`Bvh`]: the hierarchy itself, generic over anything [`Bounded`].
+//!
+//! # Design
+//!
+//! Robustness first, then speed; every choice below is covered by the tests in
+//! `src/tests.rs` (brute-force agreement, watertightness, edge cases).
+//!
+//! - **Watertight triangles.** Ray/triangle tests follow Woop, Benthin and Wald,
+//!   "Watertight Ray/Triangle Intersection" (JCGT 2013): the ray is sheared onto +z,
+//!   edge functions of a shared edge are bit-identical in both triangles, and exact
+//!   zeros are recomputed in `f64`. A ray through an edge or vertex of a closed mesh
+//!   never slips through; zero-area faces are dropped when a mesh is built.
+//! - **Robust boxes.** Box exits are widened by `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
+//!   Traversal", JCGT 2013), and a direction component of zero is handled without NaN,
+//!   so that axis-parallel rays along box faces (common with orthographic cameras and
+//!   axis-aligned meshes) still enter the boxes they graze.
+//! - **Binned SAH, eight children per node.** 32 bins per axis; a node is opened by
+//!   repeatedly splitting its largest child until it has eight, splits that fill a free
+//!   slot cost no extra node, leaves hold at most 8 triangles. Large ranges are binned
+//!   and built in parallel with rayon. After a depth of 40 the build halves ranges by
+//!   count, which bounds the depth and so the traversal stack.
+//! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
+//!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
+//!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
+//!   in structure-of-arrays layout, stored in leaf order, tested at once.
+//! - **Ordered, allocation-free traversal.** Children hit are visited nearest first, and
+//!   subtrees entered beyond the closest hit so far are skipped. The traversal is
+//!   compiled once per sign pattern of the direction, so the near and far plane of each
+//!   slab are constants. Its stack is a fixed array reused from a thread-local (zeroing
+//!   a fresh one per ray cost a quarter of a primary ray). On large meshes rays are
+//!   bound by memory latency, so the children a ray will visit are prefetched as soon
+//!   as their boxes are hit (the crate's one `unsafe`: the x86_64 prefetch hint).
+//! - **Deferred surfaces.** Traversal keeps only `t`, face and barycentrics; normals and
+//!   texture coordinates are computed once, for the winner ([`Mesh::closest_triangle`]
+//!   skips them altogether).
+//!
+//! `cargo bench -p viewray-geometry` measures build time, memory and throughput on a
+//! 1,310,720-triangle icosphere side by side with the obvhs crate.
 
 mod aabb;
 mod bvh;

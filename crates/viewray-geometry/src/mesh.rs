@@ -6,7 +6,7 @@ use std::ops::Range;
 use glam::{BVec4A, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS};
+use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, prefetch};
 use crate::hit::{Hit, RawHit, face_toward};
 use crate::shapes::{WatertightRay, edge_functions_f64};
 use crate::{Aabb, GeometryError, Ray};
@@ -292,7 +292,7 @@ fn recompute_edges_f64(coords: [Vec4; 6], edges: [Vec4; 3]) -> [Vec4; 3] {
 /// A triangle mesh with its own BVH, built once and shared by any number of
 /// [`Instance`](crate::Instance)s.
 ///
-/// [`Mesh::new`] validates the data, drops zero-area triangles, and builds a four-wide
+/// [`Mesh::new`] validates the data, drops zero-area triangles, and builds an eight-wide
 /// BVH by binned SAH whose leaves point at [packets](crate#design) of four triangles
 /// stored in leaf order.
 #[derive(Clone, Debug)]
@@ -479,6 +479,7 @@ impl Mesh {
                 }
                 t_max
             },
+            |packet| prefetch(&self.packets, packet as usize),
         );
         best
     }

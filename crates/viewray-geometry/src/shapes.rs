@@ -191,7 +191,7 @@ impl Triangle {
         (self.b - self.a).cross(self.c - self.a)
     }
 
-    /// The watertight hit with `t` in `t_range`; see [`WatertightRay`] for the method.
+    /// The watertight hit with `t` in `t_range` (see the [crate's design](crate#design)).
     ///
     /// The uv are the barycentric coordinates `(b1, b2)` of `b` and `c`:
     /// `point = (1 - b1 - b2) a + b1 b + b2 c`.
@@ -476,10 +476,7 @@ mod tests {
             ),
         ];
         for (ray, expected) in cases {
-            check(
-                crate::World::box_closest_hit(&b, &ray, all.clone()),
-                expected,
-            );
+            check(b.closest_hit(&ray, all.clone()), expected);
         }
     }
 

@@ -158,7 +158,7 @@ fn closest_alone(object: &Object, ray: &Ray) -> Option<Hit> {
         Object::Sphere(s) => s.closest_hit(ray, all),
         Object::Plane(p) => p.closest_hit(ray, all),
         Object::Triangle(t) => t.closest_hit(ray, all),
-        Object::Box(b) => World::box_closest_hit(b, ray, all),
+        Object::Box(b) => b.closest_hit(ray, all),
         Object::Instance(i) => i.closest_hit(ray, all),
     }
 }

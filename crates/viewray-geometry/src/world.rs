@@ -5,7 +5,7 @@ use std::ops::Range;
 use glam::Vec2;
 
 use crate::bvh::{BoxRay, BuildParams, Bvh};
-use crate::hit::{Hit, RawHit, face_toward};
+use crate::hit::{Hit, RawHit};
 use crate::shapes::WatertightRay;
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
@@ -188,6 +188,7 @@ impl World {
                 }
                 t_max
             },
+            |_| {},
         );
         best.map(|raw| self.surface(ray, &raw))
     }
@@ -258,41 +259,12 @@ impl World {
             Object::Sphere(s) => s.surface(ray, raw.t),
             Object::Plane(p) => p.surface(ray, raw.t),
             Object::Triangle(tri) => tri.surface(ray, raw),
-            Object::Box(b) => box_surface(b, ray, raw.t, raw.primitive / 2, raw.primitive % 2 == 1),
+            Object::Box(b) => b.surface(ray, raw.t, raw.primitive / 2, raw.primitive % 2 == 1),
             Object::Instance(i) => i.surface(ray, raw),
         };
         Hit {
             object: raw.object,
             ..hit
         }
-    }
-
-    /// The closest hit of `ray` with the solid box `b`: the entry face from outside, the
-    /// exit face from inside. Its uv are the face coordinates of [`Aabb`].
-    pub fn box_closest_hit(b: &Aabb, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
-        let crossing = b.intersect_solid(ray, t_range.start, t_range.end)?;
-        Some(box_surface(
-            b,
-            ray,
-            crossing.t,
-            crossing.axis,
-            crossing.max_face,
-        ))
-    }
-}
-
-fn box_surface(b: &Aabb, ray: &Ray, t: f32, axis: u32, max_face: bool) -> Hit {
-    let point = ray.at(t);
-    let outward = Aabb::face_normal(axis, max_face);
-    let (normal, shading_normal, front_face) = face_toward(ray.direction, outward, outward);
-    Hit {
-        t,
-        point,
-        normal,
-        shading_normal,
-        front_face,
-        uv: b.face_uv(axis, point),
-        primitive: 0,
-        object: 0,
     }
 }
