@@ -739,28 +739,33 @@ impl RangeInfo {
     }
 }
 
-/// Number of bins per axis.
+/// Number of bins per axis for large ranges.
 const BINS: usize = 32;
+/// Number of bins per axis for ranges of at most `FEW_ITEMS` items, where setting up
+/// and sweeping 32 bins would cost more than binning the items.
+const FEW_BINS: usize = 8;
+/// See [`FEW_BINS`].
+const FEW_ITEMS: usize = 32;
 
 /// Per-axis bins: boxes and counts of the items whose centroids fall in each.
 #[derive(Clone, Copy)]
-struct Bins {
-    min: [[Vec3A; BINS]; 3],
-    max: [[Vec3A; BINS]; 3],
-    count: [[u32; BINS]; 3],
+struct Bins<const B: usize> {
+    min: [[Vec3A; B]; 3],
+    max: [[Vec3A; B]; 3],
+    count: [[u32; B]; 3],
 }
 
-impl Bins {
+impl<const B: usize> Bins<B> {
     fn new() -> Self {
         Self {
-            min: [[Vec3A::INFINITY; BINS]; 3],
-            max: [[Vec3A::NEG_INFINITY; BINS]; 3],
-            count: [[0; BINS]; 3],
+            min: [[Vec3A::INFINITY; B]; 3],
+            max: [[Vec3A::NEG_INFINITY; B]; 3],
+            count: [[0; B]; 3],
         }
     }
 
     fn add(&mut self, items: &[BuildItem], origin: Vec3A, scale: Vec3A) {
-        let last = (BINS - 1) as f32;
+        let last = (B - 1) as f32;
         for item in items {
             let (lo, hi) = (Vec3A::from(item.min), Vec3A::from(item.max));
             let bin = ((item.centroid2() - origin) * scale)
@@ -778,7 +783,7 @@ impl Bins {
 
     fn merge(mut self, other: &Self) -> Self {
         for axis in 0..3 {
-            for b in 0..BINS {
+            for b in 0..B {
                 self.min[axis][b] = self.min[axis][b].min(other.min[axis][b]);
                 self.max[axis][b] = self.max[axis][b].max(other.max[axis][b]);
                 self.count[axis][b] += other.count[axis][b];
@@ -797,10 +802,11 @@ fn half_area(lo: Vec3A, hi: Vec3A) -> f32 {
 enum Split {
     /// Make it a leaf.
     Leaf,
-    /// Items whose bin on `axis` is below `bin` go left.
+    /// Items whose bin (of `bins`) on `axis` is below `bin` go left.
     Plane {
         axis: usize,
         bin: usize,
+        bins: usize,
         origin: Vec3A,
         scale: Vec3A,
     },
@@ -836,11 +842,27 @@ impl Builder {
         if depth >= FORCE_MEDIAN_DEPTH {
             return if small { Split::Leaf } else { Split::Median };
         }
+        if n <= FEW_ITEMS {
+            self.binned_sah::<FEW_BINS>(items, range, traversal_cost)
+        } else {
+            self.binned_sah::<BINS>(items, range, traversal_cost)
+        }
+    }
+
+    /// [`Builder::choose_split`] with `B` bins per axis.
+    fn binned_sah<const B: usize>(
+        &self,
+        items: &[BuildItem],
+        range: &RangeInfo,
+        traversal_cost: f32,
+    ) -> Split {
+        let n = items.len();
+        let small = n <= self.params.max_leaf_items as usize;
         let origin = Vec3A::from(range.centroids.min);
         let extent = Vec3A::from(range.centroids.max) - origin;
         let scale = Vec3A::select(
             extent.cmpgt(Vec3A::ZERO),
-            Vec3A::splat(BINS as f32 * (1.0 - 1e-6)) / extent,
+            Vec3A::splat(B as f32 * (1.0 - 1e-6)) / extent,
             Vec3A::ZERO,
         );
         if scale == Vec3A::ZERO {
@@ -850,13 +872,13 @@ impl Builder {
             items
                 .par_chunks(PARALLEL_ITEMS / 4)
                 .map(|chunk| {
-                    let mut bins = Bins::new();
+                    let mut bins = Bins::<B>::new();
                     bins.add(chunk, origin, scale);
                     bins
                 })
                 .reduce(Bins::new, |a, b| a.merge(&b))
         } else {
-            let mut bins = Bins::new();
+            let mut bins = Bins::<B>::new();
             bins.add(items, origin, scale);
             bins
         };
@@ -866,10 +888,10 @@ impl Builder {
             if scale[axis] == 0.0 {
                 continue;
             }
-            // Sweep from the right: cost contribution of bins b..BINS.
-            let mut right_cost = [0.0f32; BINS];
+            // Sweep from the right: cost contribution of bins b..B.
+            let mut right_cost = [0.0f32; B];
             let (mut lo, mut hi, mut count) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY, 0u32);
-            for b in (1..BINS).rev() {
+            for b in (1..B).rev() {
                 lo = lo.min(bins.min[axis][b]);
                 hi = hi.max(bins.max[axis][b]);
                 count += bins.count[axis][b];
@@ -904,6 +926,7 @@ impl Builder {
         Split::Plane {
             axis,
             bin,
+            bins: B,
             origin,
             scale,
         }
@@ -916,25 +939,28 @@ impl Builder {
         range: RangeInfo,
         depth: u32,
     ) -> Result<(RangeInfo, RangeInfo), RangeInfo> {
-        let mid = match self.choose_split(items, &range, depth, 0.0) {
-            Split::Leaf => {
-                return Err(RangeInfo {
-                    leaf: true,
-                    ..range
-                });
-            }
+        match self.choose_split(items, &range, depth, 0.0) {
+            Split::Leaf => Err(RangeInfo {
+                leaf: true,
+                ..range
+            }),
             Split::Plane {
                 axis,
                 bin,
+                bins,
                 origin,
                 scale,
             } => {
                 let goes_left = |item: &BuildItem| {
                     let b = ((item.centroid2()[axis] - origin[axis]) * scale[axis])
-                        .clamp(0.0, (BINS - 1) as f32);
+                        .clamp(0.0, (bins - 1) as f32);
                     (b as usize) < bin
                 };
-                partition(items, goes_left)
+                let (mid, left, right) = partition(items, goes_left);
+                Ok((
+                    left.into_range(range.start, mid),
+                    right.into_range(range.start + mid, items.len() - mid),
+                ))
             }
             Split::Median => {
                 let axis = Vec3A::from(range.centroids.max - range.centroids.min).max_position();
@@ -942,22 +968,13 @@ impl Builder {
                 items.select_nth_unstable_by(mid, |a, b| {
                     a.centroid2()[axis].total_cmp(&b.centroid2()[axis])
                 });
-                mid
+                let (left, right) = items.split_at(mid);
+                Ok((
+                    RangeInfo::of(left, range.start),
+                    RangeInfo::of(right, range.start + mid),
+                ))
             }
-        };
-        let (left, right) = items.split_at(mid);
-        let (left, right) = if items.len() >= PARALLEL_ITEMS {
-            rayon::join(
-                || RangeInfo::of(left, range.start),
-                || RangeInfo::of(right, range.start + mid),
-            )
-        } else {
-            (
-                RangeInfo::of(left, range.start),
-                RangeInfo::of(right, range.start + mid),
-            )
-        };
-        Ok((left, right))
+        }
     }
 
     /// Builds the node for `range` (whose items are `items`) and its subtree, appending
@@ -1064,20 +1081,66 @@ impl Builder {
     }
 }
 
-/// Moves the items for which `goes_left` holds to the front; returns how many there are.
-fn partition(items: &mut [BuildItem], goes_left: impl Fn(&BuildItem) -> bool) -> usize {
+/// The box and centroid box of a set of build items, grown one item at a time.
+#[derive(Clone, Copy)]
+struct Extent {
+    lo: Vec3A,
+    hi: Vec3A,
+    centroid_lo: Vec3A,
+    centroid_hi: Vec3A,
+}
+
+impl Extent {
+    const EMPTY: Self = Self {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+        centroid_lo: Vec3A::INFINITY,
+        centroid_hi: Vec3A::NEG_INFINITY,
+    };
+
+    #[inline(always)]
+    fn add(&mut self, item: &BuildItem) {
+        let c = item.centroid2();
+        self.lo = self.lo.min(item.min.into());
+        self.hi = self.hi.max(item.max.into());
+        self.centroid_lo = self.centroid_lo.min(c);
+        self.centroid_hi = self.centroid_hi.max(c);
+    }
+
+    fn into_range(self, start: usize, len: usize) -> RangeInfo {
+        RangeInfo {
+            start,
+            end: start + len,
+            bounds: Aabb::new(self.lo.into(), self.hi.into()),
+            centroids: Aabb::new(self.centroid_lo.into(), self.centroid_hi.into()),
+            leaf: false,
+        }
+    }
+}
+
+/// Moves the items for which `goes_left` holds to the front; returns how many there
+/// are and the extents of both sides, gathered in the same pass.
+fn partition(
+    items: &mut [BuildItem],
+    goes_left: impl Fn(&BuildItem) -> bool,
+) -> (usize, Extent, Extent) {
+    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     let (mut i, mut j) = (0, items.len());
     loop {
         while i < j && goes_left(&items[i]) {
+            left.add(&items[i]);
             i += 1;
         }
         while i < j && !goes_left(&items[j - 1]) {
+            right.add(&items[j - 1]);
             j -= 1;
         }
         if i >= j {
-            return i;
+            return (i, left, right);
         }
         items.swap(i, j - 1);
+        left.add(&items[i]);
+        right.add(&items[j - 1]);
         i += 1;
         j -= 1;
     }
