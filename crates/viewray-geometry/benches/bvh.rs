@@ -3,7 +3,9 @@
 //!
 //! `cargo bench -p viewray-geometry` prints, before criterion's timings, the memory per
 //! triangle of both structures and a check that both find the same hits. Criterion's
-//! `thrpt` lines are rays per second. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
+//! `thrpt` lines are rays (or triangles, for the build) per second. `viewray` traces
+//! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray full Hit`
+//! with `Mesh::closest_hit`, which also interpolates normals and uv. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
 //! smaller icosphere (default 8: 20 * 4^8 triangles).
 
 use std::hint::black_box;
@@ -98,8 +100,17 @@ fn obvhs_triangles(data: &MeshData) -> Vec<obvhs::triangle::Triangle> {
         .collect()
 }
 
-/// Sum of the hit distances, so that no work can be optimized away.
+/// Sum of the hit distances, so that no work can be optimized away: the closest
+/// triangle's `t` and face, what obvhs reports too.
 fn trace_viewray(mesh: &Mesh, rays: &[Ray]) -> f32 {
+    rays.iter()
+        .filter_map(|ray| mesh.closest_triangle(ray, 0.0..f32::INFINITY))
+        .map(|hit| hit.t)
+        .sum()
+}
+
+/// The same with the full [`viewray_geometry::Hit`] (normals, shading normal, uv).
+fn trace_viewray_full_hit(mesh: &Mesh, rays: &[Ray]) -> f32 {
     rays.iter()
         .filter_map(|ray| mesh.closest_hit(ray, 0.0..f32::INFINITY))
         .map(|hit| hit.t)
@@ -198,6 +209,9 @@ fn main() {
         });
         group.bench_function(format!("viewray/{threads} threads"), |b| {
             b.iter(|| black_box(parallel(rays, |r| trace_viewray(&mesh, r))))
+        });
+        group.bench_function("viewray full Hit/1 thread", |b| {
+            b.iter(|| black_box(trace_viewray_full_hit(&mesh, rays)))
         });
         group.bench_function("obvhs/1 thread", |b| {
             b.iter(|| black_box(trace_obvhs(&peer, rays)))
