@@ -219,9 +219,15 @@ fn write_label_text(out: &mut String, label: &Label) {
         } else {
             format!(" dy=\"{}\"", num(dy))
         };
+        let face = if span.face == label.face {
+            String::new()
+        } else {
+            let (style, weight) = span.face.svg_style_weight();
+            format!(" font-style=\"{style}\" font-weight=\"{weight}\"")
+        };
         let _ = write!(
             out,
-            "<tspan font-size=\"{}\"{dy}>{}</tspan>",
+            "<tspan font-size=\"{}\"{dy}{face}>{}</tspan>",
             num(span.size),
             escape(&span.text)
         );

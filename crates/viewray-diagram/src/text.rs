@@ -9,6 +9,8 @@ use tiny_skia::{Path, PathBuilder};
 
 use crate::{Color, Rect, style};
 
+/// The room left after a slanted run before an upright one, in ems.
+const ITALIC_CORRECTION: f32 = 0.06;
 /// Size of sub- and superscripts relative to the label's size.
 const SCRIPT_SCALE: f32 = 0.7;
 /// How far a subscript's baseline sits below the label's, in ems of the label's size.
@@ -63,6 +65,27 @@ impl FontFace {
             FontFace::Bold => &faces.bold,
             FontFace::BoldItalic => &faces.bold_italic,
         }
+    }
+
+    /// The bold face of the same slant: the face of `*bold*` markup.
+    fn emboldened(self) -> FontFace {
+        match self {
+            FontFace::Regular | FontFace::Bold => FontFace::Bold,
+            FontFace::Italic | FontFace::BoldItalic => FontFace::BoldItalic,
+        }
+    }
+
+    /// The slanted face of the same weight: the face of a letter in `$math$` markup.
+    fn slanted(self) -> FontFace {
+        match self {
+            FontFace::Regular | FontFace::Italic => FontFace::Italic,
+            FontFace::Bold | FontFace::BoldItalic => FontFace::BoldItalic,
+        }
+    }
+
+    /// Whether the face is oblique.
+    fn is_slanted(self) -> bool {
+        matches!(self, FontFace::Italic | FontFace::BoldItalic)
     }
 
     /// The SVG `font-style` and `font-weight` of this face.
@@ -142,6 +165,11 @@ pub fn measure_text(text: &str, size: f32, face: FontFace) -> TextExtent {
 /// superscript; braces take several: `v_h`, `x_{ij}`, `r^2`. A backslash takes the next
 /// character literally: `file\_name`. Scripts are 70 % of the label's size, subscripts
 /// lowered by 0.2 em and superscripts raised by 0.38 em.
+///
+/// Formulas mix faces as the lecture does: between dollar signs (`$u = (j - 1/2)/W$`)
+/// letters are set in italics and `-` becomes the minus sign `−`, while digits and
+/// punctuation stay upright; between asterisks (`*u*`) text is set in bold, so a ray
+/// direction reads `$u *u* + v *v* - d *w*$`. Escape either sign with a backslash.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Label {
     /// The text, one line, with markup.
@@ -281,10 +309,9 @@ impl Label {
     pub(crate) fn outline_path(&self) -> Option<Path> {
         let layout = self.layout();
         let to_figure = self.local_to_figure(&layout.extent);
-        let font = self.face.font();
         let mut builder = PathBuilder::new();
         for glyph in &layout.glyphs {
-            let Some(outline) = font.outline(glyph.id) else {
+            let Some(outline) = glyph.face.font().outline(glyph.id) else {
                 continue;
             };
             // Font units have y up; label-local coordinates have y down.
@@ -310,6 +337,8 @@ pub(crate) enum Script {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Span {
     pub script: Script,
+    /// The face of the run (the label's, or another chosen by markup).
+    pub face: FontFace,
     pub text: String,
     /// Font size of the run, pixels per em.
     pub size: f32,
@@ -321,6 +350,8 @@ pub(crate) struct Span {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PlacedGlyph {
     id: GlyphId,
+    /// The face the glyph comes from.
+    face: FontFace,
     /// The glyph origin (pen position on its baseline), y down.
     origin: Vec2,
     /// Pixels per font unit.
@@ -338,40 +369,103 @@ pub(crate) struct TextLayout {
     pub ink: Option<Rect>,
 }
 
-/// Splits `text` into runs of normal, subscript and superscript characters.
-fn parse_markup(text: &str) -> Vec<(Script, String)> {
-    let mut runs: Vec<(Script, String)> = Vec::new();
-    let mut push = |script: Script, c: char| match runs.last_mut() {
-        Some((s, run)) if *s == script => run.push(c),
-        _ => runs.push((script, c.to_string())),
+/// The markup state a character is set in: inside `$math$`, inside `*bold*`.
+#[derive(Clone, Copy, Debug, Default)]
+struct MarkupStyle {
+    math: bool,
+    bold: bool,
+}
+
+impl MarkupStyle {
+    /// The face and the character to set for `c` in a label whose face is `base`.
+    fn set(self, c: char, base: FontFace) -> (FontFace, char) {
+        let mut face = if self.bold { base.emboldened() } else { base };
+        let mut c = c;
+        if self.math {
+            if c.is_ascii_alphabetic() && !self.bold {
+                face = face.slanted();
+            } else if c == '-' {
+                c = '\u{2212}';
+            }
+        }
+        (face, c)
+    }
+}
+
+/// Splits `text` into runs of one script and one face, for a label whose face is `base`.
+fn parse_markup(text: &str, base: FontFace) -> Vec<(Script, FontFace, String)> {
+    let mut runs: Vec<(Script, FontFace, String)> = Vec::new();
+    let mut push = |script: Script, (face, c): (FontFace, char)| match runs.last_mut() {
+        Some((s, f, run)) if *s == script && *f == face => run.push(c),
+        _ => runs.push((script, face, c.to_string())),
     };
+    let mut style = MarkupStyle::default();
+    let plain = |c: char| (base, c);
     let mut chars = text.chars();
     while let Some(c) = chars.next() {
         let script = match c {
             '_' => Script::Sub,
             '^' => Script::Super,
+            '$' => {
+                style.math = !style.math;
+                continue;
+            }
+            '*' => {
+                style.bold = !style.bold;
+                continue;
+            }
             '\\' => {
-                push(Script::Normal, chars.next().unwrap_or('\\'));
+                let literal = chars.next().unwrap_or('\\');
+                push(
+                    Script::Normal,
+                    MarkupStyle {
+                        math: false,
+                        ..style
+                    }
+                    .set(literal, base),
+                );
                 continue;
             }
             _ => {
-                push(Script::Normal, c);
+                push(Script::Normal, style.set(c, base));
                 continue;
             }
         };
         match chars.next() {
-            None => push(Script::Normal, c),
+            None => push(Script::Normal, plain(c)),
             Some('{') => {
                 while let Some(inner) = chars.next() {
                     match inner {
                         '}' => break,
-                        '\\' => push(script, chars.next().unwrap_or('\\')),
-                        _ => push(script, inner),
+                        '$' => style.math = !style.math,
+                        '*' => style.bold = !style.bold,
+                        '\\' => {
+                            let literal = chars.next().unwrap_or('\\');
+                            push(
+                                script,
+                                MarkupStyle {
+                                    math: false,
+                                    ..style
+                                }
+                                .set(literal, base),
+                            );
+                        }
+                        _ => push(script, style.set(inner, base)),
                     }
                 }
             }
-            Some('\\') => push(script, chars.next().unwrap_or('\\')),
-            Some(next) => push(script, next),
+            Some('\\') => {
+                let literal = chars.next().unwrap_or('\\');
+                push(
+                    script,
+                    MarkupStyle {
+                        math: false,
+                        ..style
+                    }
+                    .set(literal, base),
+                );
+            }
+            Some(next) => push(script, style.set(next, base)),
         }
     }
     runs
@@ -391,12 +485,21 @@ fn layout_text(text: &str, size: f32, face: FontFace) -> TextLayout {
     let mut glyphs = Vec::new();
     let mut ink: Option<Rect> = None;
     let mut pen = 0.0;
-    for (script, run) in parse_markup(text) {
+    let mut previous_face: Option<FontFace> = None;
+    for (script, run_face, run) in parse_markup(text, face) {
+        let font = run_face.font();
+        let units_per_em = font.units_per_em().unwrap_or(2048.0);
         let (span_size, shift) = match script {
             Script::Normal => (size, 0.0),
             Script::Sub => (size * SCRIPT_SCALE, size * SUBSCRIPT_DROP),
             Script::Super => (size * SCRIPT_SCALE, -size * SUPERSCRIPT_RISE),
         };
+        // An italic correction, as TeX makes one: a slanted letter leans over into an
+        // upright character set after it, so leave it a little room.
+        if previous_face.is_some_and(FontFace::is_slanted) && !run_face.is_slanted() {
+            pen += ITALIC_CORRECTION * size;
+        }
+        previous_face = Some(run_face);
         let scale = span_size / units_per_em;
         extent.ascent = extent.ascent.max(font.ascent_unscaled() * scale - shift);
         extent.descent = extent.descent.max(-font.descent_unscaled() * scale + shift);
@@ -415,12 +518,18 @@ fn layout_text(text: &str, size: f32, face: FontFace) -> TextLayout {
                 );
                 ink = Some(ink.map_or(glyph_ink, |r| r.union(&glyph_ink)));
             }
-            glyphs.push(PlacedGlyph { id, origin, scale });
+            glyphs.push(PlacedGlyph {
+                id,
+                face: run_face,
+                origin,
+                scale,
+            });
             pen += font.h_advance_unscaled(id) * scale;
             previous = Some(id);
         }
         spans.push(Span {
             script,
+            face: run_face,
             text: run,
             size: span_size,
             shift,
@@ -483,9 +592,64 @@ mod tests {
 
     #[track_caller]
     fn check_markup(text: &str, expected: &[(Script, &str)]) {
-        let got = parse_markup(text);
-        let got: Vec<(Script, &str)> = got.iter().map(|(s, t)| (*s, t.as_str())).collect();
+        let got = parse_markup(text, FontFace::Regular);
+        let got: Vec<(Script, &str)> = got.iter().map(|(s, _, t)| (*s, t.as_str())).collect();
         assert_eq!(got, expected, "markup of {text:?}");
+    }
+
+    #[track_caller]
+    fn check_faces(text: &str, base: FontFace, expected: &[(Script, FontFace, &str)]) {
+        let got = parse_markup(text, base);
+        let got: Vec<(Script, FontFace, &str)> =
+            got.iter().map(|(s, f, t)| (*s, *f, t.as_str())).collect();
+        assert_eq!(got, expected, "faces of {text:?}");
+    }
+
+    #[test]
+    fn math_and_bold_markup_choose_faces() {
+        use FontFace::*;
+        use Script::*;
+        check_faces(
+            "$u = j - 1$",
+            Regular,
+            &[
+                (Normal, Italic, "u"),
+                (Normal, Regular, " = "),
+                (Normal, Italic, "j"),
+                (Normal, Regular, " \u{2212} 1"),
+            ],
+        );
+        check_faces(
+            "$d *w*$ \\$5-*",
+            Regular,
+            &[
+                (Normal, Italic, "d"),
+                (Normal, Regular, " "),
+                (Normal, Bold, "w"),
+                (Normal, Regular, " $5-"),
+            ],
+        );
+        check_faces(
+            "$v_h$ \\*",
+            Regular,
+            &[
+                (Normal, Italic, "v"),
+                (Sub, Italic, "h"),
+                (Normal, Regular, " *"),
+            ],
+        );
+        check_faces("$e$", Bold, &[(Normal, BoldItalic, "e")]);
+    }
+
+    #[test]
+    fn italic_correction_separates_slanted_from_upright() {
+        let corrected = measure_text("$f$)", 40.0, FontFace::Regular).width;
+        let apart = measure_text("f", 40.0, FontFace::Italic).width
+            + measure_text(")", 40.0, FontFace::Regular).width;
+        assert!(
+            (corrected - (apart + ITALIC_CORRECTION * 40.0)).abs() < 1e-3,
+            "{corrected} vs {apart}"
+        );
     }
 
     #[test]

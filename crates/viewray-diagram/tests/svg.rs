@@ -217,3 +217,30 @@ fn transparent_background_writes_no_rect() {
     fig.background = Color::TRANSPARENT;
     check_counts(&fig.to_svg(), &[("svg", 1)]);
 }
+
+#[test]
+fn formula_runs_become_tspans_in_their_own_faces() {
+    let mut fig = Figure::new(400, 100);
+    fig.push(Label::new("$d *w*$", Vec2::new(200.0, 50.0)));
+    let svg = fig.to_svg_with(SvgText::Elements);
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
+    let spans: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("tspan"))
+        .map(|n| {
+            (
+                n.text().unwrap_or_default().to_owned(),
+                n.attribute("font-style"),
+                n.attribute("font-weight"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        spans,
+        [
+            ("d".to_owned(), Some("italic"), Some("normal")),
+            (" ".to_owned(), None, None),
+            ("w".to_owned(), Some("normal"), Some("bold")),
+        ]
+    );
+}
