@@ -37,6 +37,7 @@
 
 mod color;
 mod figure;
+pub mod figures;
 mod mapping;
 mod output;
 mod raster;

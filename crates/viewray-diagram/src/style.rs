@@ -65,6 +65,8 @@ pub const LABEL_SIZE: f32 = 40.0;
 pub const SMALL_LABEL_SIZE: f32 = 30.0;
 /// Font size of a figure's caption line, if it has one.
 pub const CAPTION_SIZE: f32 = 34.0;
+/// Font size of a slide's title (set bold, top left).
+pub const TITLE_SIZE: f32 = 48.0;
 
 /// Length of an arrowhead, tip to barbs, for a shaft of width `stroke_width`.
 ///

@@ -1,0 +1,158 @@
+//! The camera frame e, u, v, w built from eye, view and up.
+
+use glam::{DVec3, Vec2};
+use viewray_camera::Frame;
+
+use super::Diagram;
+use super::sketch::{Sketch, vector};
+use super::view::{CameraView, FigureView};
+use crate::{Item, Rect, Stroke, style};
+
+/// The camera's eye in the frame figure.
+const EYE: DVec3 = DVec3::new(1.2, 1.3, 1.8);
+/// Its view direction: ahead and 30 degrees down.
+const VIEW: DVec3 = DVec3::new(-1.1, -1.25, -1.8);
+/// Its up vector: the world's vertical, not perpendicular to the view.
+const UP: DVec3 = DVec3::Y;
+
+/// The camera frame (slide, 1600 x 900): **e**, **u**, **v**, **w** computed by
+/// [`Frame::from_eye_view_up`] from **eye**, **view** and **up**, drawn in 3D through an
+/// orthographic figure camera, with **view** and **up**, the plane they span (which holds
+/// **v** and **w**), and the right angles between **u**, **v** and **w**.
+///
+/// ```text
+/// e = eye,  w = -view / |view|,  u = (up x w) / |up x w|,  v = w x u
+/// ```
+pub fn camera_frame() -> Diagram {
+    let frame = Frame::from_eye_view_up(EYE, VIEW, UP).expect("a valid frame");
+    let mut sketch = Sketch::slide();
+    sketch.title("The camera frame from *eye*, *view* and *up*");
+
+    let view_tip = EYE + VIEW.normalize() * 1.6;
+    let up_tip = EYE + UP * 1.25;
+    // The plane of up and view around the eye: it holds v and w.
+    let span = [
+        EYE + UP * 1.5 + VIEW.normalize() * 1.9,
+        EYE + UP * 1.5 - VIEW.normalize() * 1.0,
+        EYE - UP * 0.5 - VIEW.normalize() * 1.0,
+        EYE - UP * 0.5 + VIEW.normalize() * 1.9,
+    ];
+    let mut fit = span.to_vec();
+    fit.extend([EYE + frame.u * 1.2, EYE - frame.u * 0.3, view_tip, up_tip]);
+    let towards = 0.6 * frame.u + 0.4 * frame.v + 1.0 * frame.w;
+    let view = CameraView::fit_orthographic(
+        towards,
+        DVec3::Y,
+        &fit,
+        Rect::from_xywh(40.0, 110.0, 900.0, 770.0),
+        70.0,
+    );
+    let fv = FigureView::Camera(view);
+    let at = |p: DVec3| view.to_figure(p).expect("in view");
+    let e = at(EYE);
+
+    sketch.push(Item::Polygon {
+        points: span.iter().map(|&p| at(p)).collect(),
+        fill: style::GRID.with_alpha(0.25),
+        stroke: Some(Stroke::new(style::GRID, style::LINE_THIN)),
+    });
+    sketch.label_at(
+        "plane of *up* and *view*",
+        at(span[2]) + Vec2::new(16.0, -14.0),
+        (crate::Anchor::Start, crate::Baseline::Bottom),
+        style::ANNOTATION,
+        style::SMALL_LABEL_SIZE,
+    );
+
+    // view and up, the given vectors, in grey.
+    let given = Stroke::new(style::ANNOTATION, style::LINE_REGULAR);
+    sketch.arrow(e, at(view_tip), given.clone());
+    sketch.arrow(e, at(up_tip), given);
+    let offset = |tip: Vec2, by: f32| {
+        let out = (tip - e).normalize_or_zero();
+        tip + out * by
+    };
+    sketch.label(
+        "*view*",
+        offset(at(view_tip), 46.0),
+        style::ANNOTATION,
+        style::LABEL_SIZE,
+    );
+    sketch.label(
+        "*up*",
+        offset(at(up_tip), 30.0),
+        style::ANNOTATION,
+        style::LABEL_SIZE,
+    );
+
+    // Right angles, then the basis.
+    // The three right angles form a small cube corner at the eye: shade its faces.
+    let mark = 0.2;
+    for (a, b, alpha) in [
+        (frame.u, frame.v, 0.35),
+        (frame.v, frame.w, 0.2),
+        (frame.w, frame.u, 0.5),
+    ] {
+        let face = [EYE, EYE + a * mark, EYE + (a + b) * mark, EYE + b * mark];
+        sketch.push(Item::Polygon {
+            points: face.iter().map(|&p| at(p)).collect(),
+            fill: style::ANNOTATION.with_alpha(alpha),
+            stroke: None,
+        });
+        sketch.right_angle(&fv, EYE, (a, b), mark, style::TEXT);
+    }
+    for (axis, color, name, by) in [
+        (frame.u, style::U_AXIS, "*u*", 28.0),
+        (frame.v, style::V_AXIS, "*v*", 28.0),
+        (frame.w, style::W_AXIS, "*w*", 28.0),
+    ] {
+        let tip = at(EYE + axis);
+        sketch.arrow(e, tip, Stroke::new(color, style::LINE_THICK));
+        sketch.label(name, offset(tip, by), color, style::LABEL_SIZE);
+    }
+    sketch.dot(e, style::DOT_RADIUS, style::EYE);
+    sketch.label_at(
+        "*e*",
+        e + Vec2::new(-18.0, 14.0),
+        (crate::Anchor::End, crate::Baseline::Top),
+        style::EYE,
+        style::LABEL_SIZE,
+    );
+
+    // The recipe, and this frame's numbers.
+    let (l, s) = (style::LABEL_SIZE, style::SMALL_LABEL_SIZE);
+    let given_line = format!("*eye* = {}", vector(EYE));
+    let view_line = format!("*view* = {}", vector(VIEW));
+    let up_line = format!("*up* = {}", vector(UP));
+    let u_line = format!("*u* = {}", vector(frame.u));
+    let v_line = format!("*v* = {}", vector(frame.v));
+    let w_line = format!("*w* = {}", vector(frame.w));
+    sketch.text_lines(
+        Vec2::new(960.0, 190.0),
+        &[
+            ("1.  *e* = *eye*", style::EYE, l),
+            ("2.  *w* = −*view* / |*view*|", style::W_AXIS, l),
+            ("3.  *u* = *up* × *w* / |*up* × *w*|", style::U_AXIS, l),
+            ("4.  *v* = *w* × *u*", style::V_AXIS, l),
+            ("", style::TEXT, l),
+            (&given_line, style::ANNOTATION, s),
+            (&view_line, style::ANNOTATION, s),
+            (&up_line, style::ANNOTATION, s),
+            (&u_line, style::U_AXIS, s),
+            (&v_line, style::V_AXIS, s),
+            (&w_line, style::W_AXIS, s),
+            ("", style::TEXT, l),
+            (
+                "*up* need not be perpendicular to *view*:",
+                style::ANNOTATION,
+                s,
+            ),
+            (
+                "*v* is *up* made perpendicular to *w*",
+                style::ANNOTATION,
+                s,
+            ),
+        ],
+    );
+    sketch.finish()
+}
