@@ -4,7 +4,7 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, pixel_to_image_plane};
 
 use super::Diagram;
-use super::sketch::{Sketch, number, vector};
+use super::sketch::{Canvas, Sketch, number, vector};
 use super::view::{CameraView, FigureView};
 use crate::{Anchor, Baseline, Item, Rect, Stroke, style};
 
@@ -27,8 +27,18 @@ const EXAMPLE_END: f64 = 1.45;
 /// u = (j - 1/2)/W - 1/2,   v = -((i - 1/2)/H - 1/2),   direction = (u, v, -1)
 /// ```
 pub fn canonical_camera() -> Diagram {
+    canonical_camera_on(Canvas::Slide)
+}
+
+/// [`canonical_camera`] on the square canvas (1080 x 1080): the 3D view on top, the
+/// formulas and the worked pixel below.
+pub fn canonical_camera_square() -> Diagram {
+    canonical_camera_on(Canvas::Square)
+}
+
+fn canonical_camera_on(canvas: Canvas) -> Diagram {
     let camera = Camera::canonical(SIZE.0, SIZE.1).expect("a 5 x 5 canonical camera");
-    let mut sketch = Sketch::slide();
+    let mut sketch = Sketch::on(canvas);
     sketch.title("The canonical camera");
 
     let plane_corner = |x: f64, y: f64| DVec3::new(x, y, -1.0);
@@ -49,7 +59,10 @@ pub fn canonical_camera() -> Diagram {
         DVec3::new(1.0, 0.7, 1.05),
         DVec3::Y,
         &fit_points,
-        Rect::from_xywh(40.0, 110.0, 790.0, 770.0),
+        match canvas {
+            Canvas::Slide => Rect::from_xywh(40.0, 110.0, 790.0, 770.0),
+            Canvas::Square => Rect::from_xywh(40.0, 100.0, 1000.0, 600.0),
+        },
         60.0,
     );
     let fv = FigureView::Camera(view);
@@ -207,6 +220,28 @@ pub fn canonical_camera() -> Diagram {
     let example_ray = format!("direction {}", vector(ray.direction));
     let size = format!("$W × H$ = {} × {} pixels", SIZE.0, SIZE.1);
     let (l, s) = (style::LABEL_SIZE, style::SMALL_LABEL_SIZE);
+    if canvas == Canvas::Square {
+        sketch.text_lines(
+            Vec2::new(50.0, 780.0),
+            &[
+                ("$u = (j - ½)/W - ½$", style::TEXT, l),
+                ("$v = -((i - ½)/H - ½)$", style::TEXT, l),
+                ("origin (0, 0, 0)", style::TEXT, l),
+                ("direction ($u$, $v$, −1)", style::TEXT, l),
+            ],
+        );
+        sketch.text_lines(
+            Vec2::new(580.0, 780.0),
+            &[
+                (&size, style::ANNOTATION, s),
+                ("", style::TEXT, s),
+                (&example_title, style::HIGHLIGHT, l),
+                (&example_uv, style::HIGHLIGHT, l),
+                (&example_ray, style::HIGHLIGHT, s),
+            ],
+        );
+        return sketch.finish();
+    }
     sketch.text_lines(
         Vec2::new(1000.0, 180.0),
         &[

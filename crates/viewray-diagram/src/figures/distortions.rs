@@ -86,7 +86,6 @@ pub fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
         Rect::from_xywh(40.0, 115.0, 1520.0, 360.0),
     );
     let fv = FigureView::Side(view);
-    draw_side_scene(&mut sketch, &view, PictureScene::Posts);
 
     // Rays to each post's top and foot at its near face, through the image points where
     // the camera sees them.
@@ -122,6 +121,8 @@ pub fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
         let depth = POSTS_EYE.z - max.z;
         heights.push((depth, pixels, color));
     }
+    // The posts over the rays, which end at their near faces.
+    draw_side_scene(&mut sketch, &view, PictureScene::Posts);
     draw_image_plane(&mut sketch, &view, &camera, style::IMAGE_PLANE, 0.0);
     draw_side_frame(&mut sketch, &view, camera.frame(), 0.8, false);
     let e = view.to_figure(POSTS_EYE);
@@ -220,13 +221,13 @@ pub fn distortion_verticals(pictures: &dyn Pictures) -> Diagram {
     let halves = [
         (
             tilted,
-            Rect::from_xywh(40.0, 115.0, 750.0, 775.0),
+            Rect::from_xywh(40.0, 115.0, 750.0, 700.0),
             "Camera tilted up 15°",
             ["the image plane leans back:", "verticals converge"],
         ),
         (
             shifted,
-            Rect::from_xywh(810.0, 115.0, 750.0, 775.0),
+            Rect::from_xywh(810.0, 115.0, 750.0, 700.0),
             "Lens shifted up: $s_y$ = $d$ tan 15°",
             ["the image plane stays vertical:", "verticals stay parallel"],
         ),
@@ -262,7 +263,7 @@ pub fn distortion_verticals(pictures: &dyn Pictures) -> Diagram {
             (verdict[0], style::TEXT, style::SMALL_LABEL_SIZE),
             (verdict[1], style::HIGHLIGHT, style::LABEL_SIZE),
         ];
-        sketch.text_lines(Vec2::new(cell.min.x + 20.0, cell.min.y + 620.0), &lines);
+        sketch.text_lines(Vec2::new(cell.min.x + 20.0, cell.min.y + 600.0), &lines);
     }
     sketch.finish()
 }
@@ -284,7 +285,7 @@ fn draw_tower_side_view(sketch: &mut Sketch, view: &SideView, camera: &Camera) {
     let e = view.to_figure(frame.e);
     sketch.label_at(
         "*e*",
-        e + Vec2::new(-14.0, -14.0),
+        e + Vec2::new(-26.0, -16.0),
         (Anchor::End, Baseline::Bottom),
         style::EYE,
         style::LABEL_SIZE,

@@ -4,7 +4,7 @@ use glam::{DVec3, Vec2};
 use viewray_camera::Frame;
 
 use super::Diagram;
-use super::sketch::{Sketch, vector};
+use super::sketch::{Canvas, Sketch, vector};
 use super::view::{CameraView, FigureView};
 use crate::{Item, Rect, Stroke, style};
 
@@ -24,9 +24,22 @@ const UP: DVec3 = DVec3::Y;
 /// e = eye,  w = -view / |view|,  u = (up x w) / |up x w|,  v = w x u
 /// ```
 pub fn camera_frame() -> Diagram {
+    camera_frame_on(Canvas::Slide)
+}
+
+/// [`camera_frame`] on the square canvas (1080 x 1080): the 3D view on top, the recipe
+/// and the numbers below.
+pub fn camera_frame_square() -> Diagram {
+    camera_frame_on(Canvas::Square)
+}
+
+fn camera_frame_on(canvas: Canvas) -> Diagram {
     let frame = Frame::from_eye_view_up(EYE, VIEW, UP).expect("a valid frame");
-    let mut sketch = Sketch::slide();
-    sketch.title("The camera frame from *eye*, *view* and *up*");
+    let mut sketch = Sketch::on(canvas);
+    sketch.title(match canvas {
+        Canvas::Slide => "The camera frame from *eye*, *view* and *up*",
+        Canvas::Square => "The camera frame",
+    });
 
     let view_tip = EYE + VIEW.normalize() * 1.6;
     let up_tip = EYE + UP * 1.25;
@@ -44,7 +57,10 @@ pub fn camera_frame() -> Diagram {
         towards,
         DVec3::Y,
         &fit,
-        Rect::from_xywh(40.0, 110.0, 900.0, 770.0),
+        match canvas {
+            Canvas::Slide => Rect::from_xywh(40.0, 110.0, 900.0, 770.0),
+            Canvas::Square => Rect::from_xywh(40.0, 100.0, 1000.0, 580.0),
+        },
         70.0,
     );
     let fv = FigureView::Camera(view);
@@ -56,10 +72,19 @@ pub fn camera_frame() -> Diagram {
         fill: style::GRID.with_alpha(0.25),
         stroke: Some(Stroke::new(style::GRID, style::LINE_THIN)),
     });
+    // Inside the plane's lower left corner on the slide; under it on the square, where
+    // the plane is small and u crosses that corner.
+    let (plane_label_at, plane_label_baseline) = match canvas {
+        Canvas::Slide => (
+            at(span[2]) + Vec2::new(12.0, -10.0),
+            crate::Baseline::Bottom,
+        ),
+        Canvas::Square => (at(span[2]) + Vec2::new(-30.0, 12.0), crate::Baseline::Top),
+    };
     sketch.label_at(
         "plane of *up* and *view*",
-        at(span[2]) + Vec2::new(16.0, -14.0),
-        (crate::Anchor::Start, crate::Baseline::Bottom),
+        plane_label_at,
+        (crate::Anchor::Start, plane_label_baseline),
         style::ANNOTATION,
         style::SMALL_LABEL_SIZE,
     );
@@ -86,20 +111,14 @@ pub fn camera_frame() -> Diagram {
     );
 
     // Right angles, then the basis.
-    // The three right angles form a small cube corner at the eye: shade its faces.
-    let mark = 0.2;
-    for (a, b, alpha) in [
-        (frame.u, frame.v, 0.35),
-        (frame.v, frame.w, 0.2),
-        (frame.w, frame.u, 0.5),
+    // The three right angles, each mark a different size so that they read as three
+    // marks rather than one small cube.
+    for (a, b, size) in [
+        (frame.v, frame.w, 0.22),
+        (frame.w, frame.u, 0.16),
+        (frame.u, frame.v, 0.11),
     ] {
-        let face = [EYE, EYE + a * mark, EYE + (a + b) * mark, EYE + b * mark];
-        sketch.push(Item::Polygon {
-            points: face.iter().map(|&p| at(p)).collect(),
-            fill: style::ANNOTATION.with_alpha(alpha),
-            stroke: None,
-        });
-        sketch.right_angle(&fv, EYE, (a, b), mark, style::TEXT);
+        sketch.right_angle(&fv, EYE, (a, b), size, style::TEXT);
     }
     for (axis, color, name, by) in [
         (frame.u, style::U_AXIS, "*u*", 28.0),
@@ -127,6 +146,30 @@ pub fn camera_frame() -> Diagram {
     let u_line = format!("*u* = {}", vector(frame.u));
     let v_line = format!("*v* = {}", vector(frame.v));
     let w_line = format!("*w* = {}", vector(frame.w));
+    if canvas == Canvas::Square {
+        let recipe = style::CAPTION_SIZE;
+        sketch.text_lines(
+            Vec2::new(50.0, 760.0),
+            &[
+                ("1.  *e* = *eye*", style::EYE, recipe),
+                ("2.  *w* = −*view* / |*view*|", style::W_AXIS, recipe),
+                ("3.  *u* = *up* × *w* / |*up* × *w*|", style::U_AXIS, recipe),
+                ("4.  *v* = *w* × *u*", style::V_AXIS, recipe),
+            ],
+        );
+        sketch.text_lines(
+            Vec2::new(620.0, 750.0),
+            &[
+                (&given_line, style::ANNOTATION, s),
+                (&view_line, style::ANNOTATION, s),
+                (&up_line, style::ANNOTATION, s),
+                (&u_line, style::U_AXIS, s),
+                (&v_line, style::V_AXIS, s),
+                (&w_line, style::W_AXIS, s),
+            ],
+        );
+        return sketch.finish();
+    }
     sketch.text_lines(
         Vec2::new(960.0, 190.0),
         &[

@@ -33,9 +33,9 @@ use viewray_camera::{Camera, CameraSample};
 use crate::Figure;
 
 pub use assumptions::{assumption_basis, assumption_distance, assumption_eye, assumption_viewport};
-pub use canonical::canonical_camera;
+pub use canonical::{canonical_camera, canonical_camera_square};
 pub use distortions::{distortion_foreshortening, distortion_verticals};
-pub use frame::camera_frame;
+pub use frame::{camera_frame, camera_frame_square};
 pub use image_plane::pixel_to_image_plane;
 pub use pictures::{
     AXIS_COLOURS, GROUND, Paint, PictureRequest, PictureScene, Pictures, SKY, SceneObject, Shape,
@@ -129,6 +129,11 @@ pub fn all_figures() -> Vec<NamedFigure> {
             draw: |_| canonical_camera(),
         },
         NamedFigure {
+            name: "canonical_camera_square",
+            summary: "The canonical camera on the square canvas",
+            draw: |_| canonical_camera_square(),
+        },
+        NamedFigure {
             name: "pixel_to_image_plane",
             summary: "Pixel indices (row, col) and (i, j) to the image-plane point (u, v)",
             draw: |_| pixel_to_image_plane(),
@@ -149,14 +154,19 @@ pub fn all_figures() -> Vec<NamedFigure> {
             draw: |_| assumption_eye(),
         },
         NamedFigure {
+            name: "assumption_basis",
+            summary: "Breaking the assumptions, 4: a general basis, direction u u + v v - d w",
+            draw: |_| assumption_basis(),
+        },
+        NamedFigure {
             name: "camera_frame",
             summary: "The camera frame e, u, v, w from eye, view and up, in 3D",
             draw: |_| camera_frame(),
         },
         NamedFigure {
-            name: "assumption_basis",
-            summary: "Breaking the assumptions, 4: a general basis, direction u u + v v - d w",
-            draw: |_| assumption_basis(),
+            name: "camera_frame_square",
+            summary: "The camera frame on the square canvas",
+            draw: |_| camera_frame_square(),
         },
         NamedFigure {
             name: "viewing_rays",

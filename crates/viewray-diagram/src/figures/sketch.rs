@@ -11,6 +11,15 @@ use crate::{Anchor, ArrowEnds, Baseline, Color, Figure, Item, Label, Rect, Strok
 /// Where a slide's title sits: its left end and the top of its text.
 const TITLE_AT: Vec2 = Vec2::new(56.0, 34.0);
 
+/// The two canvases of [`style`]: the slide and the square.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Canvas {
+    /// 1600 x 900.
+    Slide,
+    /// 1080 x 1080.
+    Square,
+}
+
 /// A figure under construction, with the camera rays it draws.
 pub(crate) struct Sketch {
     pub(crate) figure: Figure,
@@ -20,8 +29,17 @@ pub(crate) struct Sketch {
 impl Sketch {
     /// An empty slide (1600 x 900).
     pub(crate) fn slide() -> Sketch {
+        Sketch::on(Canvas::Slide)
+    }
+
+    /// An empty figure on `canvas`.
+    pub(crate) fn on(canvas: Canvas) -> Sketch {
+        let figure = match canvas {
+            Canvas::Slide => Figure::slide(),
+            Canvas::Square => Figure::square(),
+        };
         Sketch {
-            figure: Figure::slide(),
+            figure,
             rays: Vec::new(),
         }
     }

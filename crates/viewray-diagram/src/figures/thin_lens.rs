@@ -121,7 +121,7 @@ pub fn thin_lens(pictures: &dyn Pictures) -> Diagram {
     let lens_top = e + Vec2::new(0.0, -lens_half);
     sketch.label_at(
         &format!("lens, radius $r$ = {}", number(APERTURE)),
-        lens_top + Vec2::new(-16.0, -10.0),
+        lens_top + Vec2::new(-16.0, -22.0),
         (Anchor::Start, Baseline::Bottom),
         style::TEXT,
         style::SMALL_LABEL_SIZE,
@@ -135,9 +135,9 @@ pub fn thin_lens(pictures: &dyn Pictures) -> Diagram {
     );
 
     // The pictures at two apertures, and the rule.
-    let slot = Vec2::new(300.0, 225.0);
+    let slot = Vec2::new(340.0, 255.0);
     for (k, aperture) in PICTURE_APERTURES.iter().enumerate() {
-        let min = Vec2::new(60.0 + k as f32 * (slot.x + 40.0), 600.0);
+        let min = Vec2::new(50.0 + k as f32 * (slot.x + 30.0), 590.0);
         let picture = CameraView::new(
             thin_lens_camera(*aperture),
             Rect::from_corners(min, min + slot),
@@ -153,7 +153,7 @@ pub fn thin_lens(pictures: &dyn Pictures) -> Diagram {
     }
     let (l, s) = (style::LABEL_SIZE, style::SMALL_LABEL_SIZE);
     sketch.text_lines(
-        Vec2::new(760.0, 610.0),
+        Vec2::new(810.0, 620.0),
         &[
             ("origin *e* + $r$ ($l_x$ *u* + $l_y$ *v*)", style::TEXT, l),
             (
