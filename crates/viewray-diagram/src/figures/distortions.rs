@@ -81,7 +81,7 @@ pub fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
     let camera = camera(frame, perspective, (240, 180));
     let frame = *camera.frame();
     let view = SideView::fit(
-        (-1.9, 12.2),
+        (-2.3, 12.2),
         (-0.35, 2.45),
         Rect::from_xywh(40.0, 115.0, 1520.0, 360.0),
     );
@@ -124,7 +124,7 @@ pub fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
     // The posts over the rays, which end at their near faces.
     draw_side_scene(&mut sketch, &view, PictureScene::Posts);
     draw_image_plane(&mut sketch, &view, &camera, style::IMAGE_PLANE, 0.0);
-    draw_side_frame(&mut sketch, &view, camera.frame(), 0.8, false);
+    draw_side_frame(&mut sketch, &view, camera.frame(), 0.6, false);
     let e = view.to_figure(POSTS_EYE);
     sketch.label_at(
         "*e*",
@@ -242,7 +242,7 @@ pub fn distortion_verticals(pictures: &dyn Pictures) -> Diagram {
             style::CAPTION_SIZE,
         );
         let view = SideView::fit(
-            (-7.4, 0.9),
+            (-8.1, 0.9),
             (-0.3, 6.6),
             Rect::from_xywh(cell.min.x + 10.0, cell.min.y + 110.0, 440.0, 430.0),
         );
