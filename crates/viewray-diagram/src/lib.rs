@@ -7,6 +7,13 @@
 //! weights, label sizes, the 1600 x 900 slide and 1080 x 1080 square canvases) so every
 //! lecture figure matches.
 //!
+//! [`figures`] draws the lecture's figures on this layer, every 3D point placed with a
+//! `viewray-camera` camera's `project` and every ray one its `generate_ray` makes; its
+//! registry ([`figures::all_figures`], [`figures::figure_by_name`]) is what `viewray
+//! figure(s)` and `cargo xtask figures` list. Pictures inside figures come from a
+//! [`figures::Pictures`] source: a renderer, or projected polygons until one is plugged
+//! in.
+//!
 //! It knows nothing about scene files, and it does no I/O except
 //! [`Figure::write_png`] and [`Figure::write_svg`], which write one file atomically.
 //!
