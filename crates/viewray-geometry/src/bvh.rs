@@ -173,26 +173,30 @@ fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
     }
 }
 
-/// Asks the CPU to start loading `items[index]` into the cache, so that the loads
-/// of the children a ray will visit overlap.
+/// Asks the CPU to start loading the items `items[range]` into the cache (every cache
+/// line they touch), so that the loads of the children a ray will visit overlap.
 #[inline(always)]
-pub(crate) fn prefetch<T>(items: &[T], index: usize) {
+pub(crate) fn prefetch<T>(items: &[T], range: std::ops::Range<usize>) {
     #[cfg(target_arch = "x86_64")]
-    if let Some(item) = items.get(index) {
-        let start = std::ptr::from_ref(item).cast::<i8>();
-        for offset in (0..std::mem::size_of::<T>()).step_by(64) {
+    if let Some(run) = items.get(range) {
+        let first = run.as_ptr().cast::<i8>();
+        let misalignment = first as usize % 64;
+        let line = first.wrapping_sub(misalignment);
+        let mut offset = 0;
+        while offset < misalignment + std::mem::size_of_val(run) {
             #[allow(unsafe_code)]
             // SAFETY: `_mm_prefetch` is only a hint: it reads nothing the program can
             // observe and never faults, whatever the address. It is an SSE instruction,
             // and SSE is part of the x86_64 baseline.
             unsafe {
                 use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset));
+                _mm_prefetch::<_MM_HINT_T0>(line.wrapping_add(offset));
             }
+            offset += 64;
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = (items, index);
+    let _ = (items, range);
 }
 
 fn leaf_ref(start: usize, count: usize) -> u32 {
@@ -413,7 +417,7 @@ impl Bvh {
         t_max: f32,
         leaf: impl FnMut(u32, u32, f32) -> f32,
     ) -> f32 {
-        self.closest_prepared(&BoxRay::new(ray), t_min, t_max, leaf, |_| {})
+        self.closest_prepared(&BoxRay::new(ray), t_min, t_max, leaf, |_, _| {})
     }
 
     pub(crate) fn closest_prepared(
@@ -422,7 +426,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         leaf: impl FnMut(u32, u32, f32) -> f32,
-        prefetch_leaf: impl Fn(u32),
+        prefetch_leaf: impl Fn(u32, u32),
     ) -> f32 {
         match ray.octant {
             0 => self.closest_in_octant::<0>(ray, t_min, t_max, leaf, prefetch_leaf),
@@ -443,7 +447,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         leaf: impl FnMut(u32, u32, f32) -> f32,
-        prefetch_leaf: impl Fn(u32),
+        prefetch_leaf: impl Fn(u32, u32),
     ) -> f32 {
         if self.nodes.is_empty() {
             return t_max;
@@ -459,7 +463,7 @@ impl Bvh {
         t_min: f32,
         mut t_max: f32,
         mut leaf: impl FnMut(u32, u32, f32) -> f32,
-        prefetch_leaf: impl Fn(u32),
+        prefetch_leaf: impl Fn(u32, u32),
         stack: &mut Stack,
     ) -> f32 {
         let Stack {
@@ -482,9 +486,10 @@ impl Bvh {
                         let child = node.children[bits.trailing_zeros() as usize];
                         bits &= bits - 1;
                         if child & LEAF == 0 {
-                            prefetch(&self.nodes, child as usize);
+                            prefetch(&self.nodes, child as usize..child as usize + 1);
                         } else {
-                            prefetch_leaf(decode_leaf(child).0);
+                            let (start, count) = decode_leaf(child);
+                            prefetch_leaf(start, count);
                         }
                     }
                     if mask.count_ones() == 1 {

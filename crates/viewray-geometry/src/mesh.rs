@@ -479,7 +479,7 @@ impl Mesh {
                 }
                 t_max
             },
-            |packet| prefetch(&self.packets, packet as usize),
+            |start, count| prefetch(&self.packets, start as usize..(start + count) as usize),
         );
         best
     }

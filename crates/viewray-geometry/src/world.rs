@@ -188,7 +188,7 @@ impl World {
                 }
                 t_max
             },
-            |_| {},
+            |_, _| {},
         );
         best.map(|raw| self.surface(ray, &raw))
     }
