@@ -1,0 +1,47 @@
+//! Image comparison: the golden-image gates of `cargo xtask golden`, and the instructor's
+//! judgement of `viewray compare`, with diff heatmaps and an HTML report.
+//!
+//! This crate owns deciding whether two images are "the same picture". It compares
+//! decoded pixels (never PNG bytes) and knows nothing about scenes, cameras or the
+//! renderer: it depends on no other viewray crate. Its only I/O is [`load_png`].
+//!
+//! Two modes share one result type, [`Comparison`]:
+//!
+//! - [`compare`] with [`Thresholds::GOLDEN`]: a render must match its committed reference
+//!   up to last-bit floating-point noise. A per-pixel gate (channel tolerance, a tiny
+//!   allowance of bad pixels) and a perceptual gate (NVIDIA's LDR-FLIP, mean and worst
+//!   3 x 3 window).
+//! - [`judge`] with [`InstructorThresholds`]: a student's render against the instructor's.
+//!   Antialiasing and sample count are not errors (both images are blurred before FLIP);
+//!   camera mistakes are, and the systematic transform between the images names them: a
+//!   [`Diagnosis`] such as `shifted +0.5 px in x and y: check the pixel-centre offset`.
+//!
+//! Images follow the camera crate's pixel convention: W columns by H rows, 0-based from
+//! the top-left, pixel (row, col) covering [col, col + 1) x [row, row + 1); x runs right
+//! and y down, so a diagnosis's move (+0.5, +0.5) is right and down.
+//!
+//! ```no_run
+//! use viewray_compare::{Thresholds, compare, load_png};
+//!
+//! let expected = load_png("golden/scenes/perspective.png")?;
+//! let actual = load_png("target/golden/perspective.png")?;
+//! let comparison = compare(&expected, &actual, &Thresholds::GOLDEN);
+//! if !comparison.passed() {
+//!     eprintln!("perspective: {}", comparison.reasons());
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod comparison;
+mod diagnosis;
+mod flip;
+mod golden;
+mod instructor;
+mod load;
+mod raster;
+
+pub use comparison::{Comparison, Failure, Metrics, Mode};
+pub use diagnosis::{Diagnosis, Significant};
+pub use golden::{Thresholds, compare};
+pub use instructor::{InstructorThresholds, judge};
+pub use load::{LoadError, load_png};
