@@ -3,7 +3,8 @@
 //!
 //! This crate owns deciding whether two images are "the same picture". It compares
 //! decoded pixels (never PNG bytes) and knows nothing about scenes, cameras or the
-//! renderer: it depends on no other viewray crate. Its only I/O is [`load_png`].
+//! renderer: it depends on no other viewray crate. Its only I/O is [`load_png`] and
+//! [`write_report`].
 //!
 //! Two modes share one result type, [`Comparison`]:
 //!
@@ -21,7 +22,7 @@
 //! and y down, so a diagnosis's move (+0.5, +0.5) is right and down.
 //!
 //! ```no_run
-//! use viewray_compare::{Thresholds, compare, load_png};
+//! use viewray_compare::{ReportEntry, Thresholds, compare, load_png, write_report};
 //!
 //! let expected = load_png("golden/scenes/perspective.png")?;
 //! let actual = load_png("target/golden/perspective.png")?;
@@ -29,6 +30,9 @@
 //! if !comparison.passed() {
 //!     eprintln!("perspective: {}", comparison.reasons());
 //! }
+//! let entry = ReportEntry::compared("perspective", &expected, &actual, &comparison);
+//! let page = write_report("target/golden", &[entry])?;
+//! println!("report: {}", page.display());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -39,9 +43,11 @@ mod golden;
 mod instructor;
 mod load;
 mod raster;
+mod report;
 
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{Diagnosis, Significant};
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, judge};
 pub use load::{LoadError, load_png};
+pub use report::{Outcome, ReportEntry, write_report};
