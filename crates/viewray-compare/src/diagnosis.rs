@@ -225,6 +225,8 @@ pub(crate) fn estimate(expected: &FloatImage, actual: &FloatImage) -> Option<Est
     let reach_y = (coarse.actual.height / 4) as i64;
     let mut starts: Vec<(f64, Transform)> = Vec::new();
     for (mirror_x, mirror_y) in [(false, false), (true, false), (false, true), (true, true)] {
+        // The best three so far, cheapest first; a candidate is abandoned as soon as its
+        // partial sum exceeds the third's cost.
         let mut best: Vec<(f64, Transform)> = Vec::new();
         for step in -4..=4 {
             let s = 1.25f64.powf(f64::from(step) / 4.0);
@@ -236,22 +238,45 @@ pub(crate) fn estimate(expected: &FloatImage, actual: &FloatImage) -> Option<Est
                         scale: [s, s],
                         shift: [tx as f64 * coarse.factor, ty as f64 * coarse.factor],
                     };
-                    let cost = mean_squared_difference(coarse, &transform, centre);
-                    best.push((cost, transform));
+                    let bound = if best.len() < 3 {
+                        f64::INFINITY
+                    } else {
+                        best[2].0
+                    };
+                    if let Some(cost) =
+                        bounded_mean_squared_difference(coarse, &transform, centre, bound)
+                    {
+                        best.push((cost, transform));
+                        best.sort_by(|a, b| a.0.total_cmp(&b.0));
+                        best.truncate(3);
+                    }
                 }
             }
         }
-        best.sort_by(|a, b| a.0.total_cmp(&b.0));
-        starts.extend(best.into_iter().take(3));
+        starts.extend(best);
     }
-    starts.push((0.0, Transform::IDENTITY));
 
-    // Refine every start level by level; keep the best.
+    // Refine every start on the coarsest level; keep the best per mirror (and the
+    // identity, which must be heard even when the coarse search prefers a move).
+    let mut per_mirror: Vec<(f64, Transform)> = Vec::new();
+    for &(_, start) in &starts {
+        let transform = refine(coarse, start, centre);
+        let cost = mean_squared_difference(coarse, &transform, centre);
+        let same_mirror =
+            |t: &Transform| (t.mirror_x, t.mirror_y) == (transform.mirror_x, transform.mirror_y);
+        match per_mirror.iter_mut().find(|(_, t)| same_mirror(t)) {
+            Some(slot) if cost < slot.0 => *slot = (cost, transform),
+            Some(_) => {}
+            None => per_mirror.push((cost, transform)),
+        }
+    }
+    per_mirror.push((0.0, refine(coarse, Transform::IDENTITY, centre)));
+    // Refine those down to the second-finest level; keep the best plain and mirrored.
     let mut best_plain: Option<(f64, Transform)> = None;
     let mut best_mirrored: Option<(f64, Transform)> = None;
-    for &(_, start) in &starts {
+    for &(_, start) in &per_mirror {
         let mut transform = start;
-        for level in levels[1..].iter().rev() {
+        for level in levels[1.min(top)..top].iter().rev() {
             transform = refine(level, transform, centre);
         }
         let cost = mean_squared_difference(&levels[1.min(top)], &transform, centre);
@@ -340,6 +365,17 @@ fn axis_samples(
 /// The mean over the actual level's pixels and channels of the squared difference from
 /// the expected level sampled through `transform`.
 fn mean_squared_difference(level: &Level, transform: &Transform, centre: [f64; 2]) -> f64 {
+    bounded_mean_squared_difference(level, transform, centre, f64::INFINITY)
+        .expect("an infinite bound is never exceeded")
+}
+
+/// [`mean_squared_difference`], or `None` as soon as it is sure to exceed `bound`.
+fn bounded_mean_squared_difference(
+    level: &Level,
+    transform: &Transform,
+    centre: [f64; 2],
+    bound: f64,
+) -> Option<f64> {
     let (w, h) = (level.actual.width, level.actual.height);
     let [mx, my] = transform.signs();
     let columns = axis_samples(
@@ -360,6 +396,8 @@ fn mean_squared_difference(level: &Level, transform: &Transform, centre: [f64; 2
         transform.shift[1],
         transform.scale[1],
     );
+    let count = (w * h * 3) as f64;
+    let bound_sum = bound * count;
     let mut sum = 0.0f64;
     for (row, &(_, ys)) in rows.iter().enumerate() {
         let mut row_sum = 0.0f32;
@@ -372,8 +410,11 @@ fn mean_squared_difference(level: &Level, transform: &Transform, centre: [f64; 2
             }
         }
         sum += f64::from(row_sum);
+        if sum > bound_sum {
+            return None;
+        }
     }
-    sum / (w * h * 3) as f64
+    Some(sum / count)
 }
 
 /// Levenberg-Marquardt on the move and the per-axis scales at one level, mirrors fixed.

@@ -177,3 +177,23 @@ fn different_sizes_and_blank_references_fail() {
     let comparison = judge(&blank, &blank, &InstructorThresholds::default());
     assert_eq!(comparison.failures, [Failure::UniformExpected]);
 }
+
+#[test]
+fn tiny_and_odd_sized_images_are_judged_without_panicking() {
+    for (w, h) in [(1, 1), (10, 10), (16, 16), (21, 17), (50, 31), (97, 33)] {
+        let reference = Scene::default().render(w, h, Mistake::NONE, Pattern::Grid(4));
+        let same = judge(&reference, &reference, &InstructorThresholds::default());
+        assert_eq!(same.diagnosis, None, "{w}x{h}");
+        let mirrored = Scene::default().render(
+            w,
+            h,
+            Mistake {
+                mirror_x: true,
+                ..Mistake::NONE
+            },
+            Pattern::Grid(4),
+        );
+        let comparison = judge(&reference, &mirrored, &InstructorThresholds::default());
+        assert_eq!(comparison.metrics.unwrap().pixel_count, u64::from(w * h));
+    }
+}
