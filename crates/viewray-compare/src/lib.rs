@@ -45,6 +45,10 @@ mod load;
 mod raster;
 mod report;
 
+/// The pixel types of the API, from the `image` crate: RGBA8 images in, RGB8 heatmaps
+/// out.
+pub use image::{RgbImage, RgbaImage};
+
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{Diagnosis, Significant};
 pub use golden::{Thresholds, compare};

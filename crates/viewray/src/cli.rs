@@ -51,6 +51,23 @@ pub(crate) enum Command {
     /// the image; all four are null where the point is not visible (behind a perspective
     /// eye). Prints one JSON line per point: {"point":[..],"x":X,"y":Y,"row":R,"col":C}.
     Project(ProjectArgs),
+    /// Judge renders against reference images, as an instructor would.
+    ///
+    /// EXPECTED and ACTUAL are two PNG files, or two folders whose *.png files are paired
+    /// by name. Antialiasing and sample count are not errors: both images are blurred by
+    /// 2 px before NVIDIA's FLIP compares them, so a correct one-sample render passes.
+    /// Camera mistakes are errors, and are named from the transform between the images:
+    /// mirrored ("check u = up x w"), upside down, scaled ("check vw, vh or d"), shifted by
+    /// half a pixel ("check the pixel-centre offset") or more ("check the sign of the
+    /// shift"); moves are in pixels, x right and y down.
+    ///
+    /// Prints a table (NAME, VERDICT, PEAK FLIP, DIAGNOSIS) and a summary line, or with
+    /// --json one JSON line per pair ({"name", "verdict": "pass" | "fail" | "error",
+    /// "peak_flip", "mean_flip", "threshold", "diagnosis", "transform", "reasons", "error"})
+    /// and a last line {"summary": {"total", "passed", "failed"}}. A pair that cannot be
+    /// compared (a file on one side only, not a PNG, different sizes) is reported and
+    /// fails. Exit code 0 when every pair passes, 1 when any fails, 2 on bad usage.
+    Compare(crate::compare::CompareArgs),
 }
 
 #[derive(Args, Debug)]

@@ -9,6 +9,7 @@
 
 mod cli;
 mod commands;
+mod compare;
 mod json;
 
 use std::process::ExitCode;
@@ -30,6 +31,7 @@ fn main() -> ExitCode {
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
+        Command::Compare(args) => return compare::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

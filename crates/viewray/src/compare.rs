@@ -1,0 +1,348 @@
+//! `viewray compare`: judge renders against reference images as an instructor would.
+//!
+//! Output: a table on stdout, one row per pair as it is judged, then a summary line; with
+//! `--json`, JSON lines instead: one object per pair, then one `{"summary":{..}}` object.
+
+use std::collections::BTreeSet;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use serde_json::{Value, json};
+use viewray_compare::{
+    Comparison, InstructorThresholds, ReportEntry, RgbaImage, judge, load_png, write_report,
+};
+
+use crate::EXIT_BAD_INPUT;
+
+/// Exit code when a comparison failed (or a pair could not be compared).
+const EXIT_FAILED: u8 = 1;
+
+#[derive(Args, Debug)]
+pub(crate) struct CompareArgs {
+    /// The reference: a PNG file, or a folder of PNG files.
+    pub(crate) expected: PathBuf,
+    /// The render(s) to judge: a PNG file, or a folder whose *.png files are paired with
+    /// EXPECTED's by file name.
+    pub(crate) actual: PathBuf,
+    /// The perceptual threshold, in [0, 1]: the largest FLIP error allowed in the worst 3x3
+    /// window after both images are blurred by 2 px (0: identical; 1: black against
+    /// white). The default passes correct renders made with any sample pattern or count,
+    /// and fails an object moved by a pixel, a missing object or a clearly wrong colour.
+    /// Camera mistakes (mirrored, scaled, shifted) fail whatever the threshold.
+    #[arg(long, value_name = "X", value_parser = parse_threshold,
+          default_value_t = InstructorThresholds::default().max_peak_flip)]
+    pub(crate) threshold: f32,
+    /// Also write the images, FLIP heatmaps and an HTML page (DIR/index.html) into DIR.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) report: Option<PathBuf>,
+    /// Print JSON lines instead of a table: one object per pair, then a summary object.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+fn parse_threshold(text: &str) -> Result<f32, String> {
+    let value: f32 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    if !(value > 0.0 && value <= 1.0) {
+        return Err(format!(
+            "{text} is outside (0, 1]: FLIP errors run from 0 (identical) to 1"
+        ));
+    }
+    Ok(value)
+}
+
+/// One pair to judge: a name and the two files (`None` when one side lacks it).
+struct Pair {
+    name: String,
+    expected: Option<PathBuf>,
+    actual: Option<PathBuf>,
+}
+
+/// What became of one pair.
+struct Judged {
+    name: String,
+    expected: Option<RgbaImage>,
+    actual: Option<RgbaImage>,
+    outcome: Result<Comparison, String>,
+}
+
+impl Judged {
+    fn passed(&self) -> bool {
+        matches!(&self.outcome, Ok(c) if c.passed())
+    }
+}
+
+/// Runs `viewray compare`; prints its own errors and returns the exit code.
+pub(crate) fn run(args: &CompareArgs) -> ExitCode {
+    let pairs = match pairs(&args.expected, &args.actual) {
+        Ok(pairs) => pairs,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            return ExitCode::from(EXIT_BAD_INPUT);
+        }
+    };
+    match judge_all(args, &pairs) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(EXIT_FAILED),
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
+    }
+}
+
+/// The pairs to judge: two files, or the union of two folders' *.png names.
+///
+/// # Errors
+/// Bad usage: a path that does not exist, a file against a folder, an unreadable folder,
+/// two folders without a single PNG.
+fn pairs(expected: &Path, actual: &Path) -> Result<Vec<Pair>> {
+    for (role, path) in [("EXPECTED", expected), ("ACTUAL", actual)] {
+        if !path.exists() {
+            bail!("{role} `{}` does not exist", path.display());
+        }
+    }
+    match (expected.is_dir(), actual.is_dir()) {
+        (false, false) => {
+            let name = actual.file_name().map_or_else(
+                || actual.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            Ok(vec![Pair {
+                name,
+                expected: Some(expected.to_owned()),
+                actual: Some(actual.to_owned()),
+            }])
+        }
+        (true, true) => {
+            let expected_names = png_names(expected)?;
+            let actual_names = png_names(actual)?;
+            if expected_names.is_empty() && actual_names.is_empty() {
+                bail!(
+                    "no *.png files in `{}` or `{}`",
+                    expected.display(),
+                    actual.display()
+                );
+            }
+            Ok(expected_names
+                .union(&actual_names)
+                .map(|name| Pair {
+                    name: name.clone(),
+                    expected: expected_names.contains(name).then(|| expected.join(name)),
+                    actual: actual_names.contains(name).then(|| actual.join(name)),
+                })
+                .collect())
+        }
+        (true, false) => bail!(
+            "EXPECTED `{}` is a folder but ACTUAL `{}` is a file: give two PNG files or two folders",
+            expected.display(),
+            actual.display()
+        ),
+        (false, true) => bail!(
+            "EXPECTED `{}` is a file but ACTUAL `{}` is a folder: give two PNG files or two folders",
+            expected.display(),
+            actual.display()
+        ),
+    }
+}
+
+/// The names of the files in `folder` ending in `.png` (any case), sorted.
+fn png_names(folder: &Path) -> Result<BTreeSet<String>> {
+    let mut names = BTreeSet::new();
+    let entries = std::fs::read_dir(folder)
+        .with_context(|| format!("cannot read the folder `{}`", folder.display()))?;
+    for entry in entries {
+        let entry =
+            entry.with_context(|| format!("cannot read the folder `{}`", folder.display()))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_png = Path::new(&name)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        if is_png && !entry.path().is_dir() {
+            names.insert(name);
+        }
+    }
+    Ok(names)
+}
+
+/// Judges every pair, printing a row (or a JSON line) as each is done, then the summary
+/// and, with `--report`, the report. Returns whether every pair passed.
+fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<bool> {
+    let thresholds = InstructorThresholds {
+        max_peak_flip: args.threshold,
+        ..InstructorThresholds::default()
+    };
+    let name_width = pairs
+        .iter()
+        .map(|p| p.name.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let mut out = BufWriter::new(std::io::stdout().lock());
+    if !args.json {
+        writeln!(out, "{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")?;
+        out.flush()?;
+    }
+    let mut results = Vec::new();
+    for pair in pairs {
+        let judged = judge_pair(pair, &thresholds);
+        if args.json {
+            crate::json::write_line(&mut out, &json_line(&judged, args.threshold))?;
+        } else {
+            writeln!(out, "{}", table_row(&judged, name_width))?;
+        }
+        out.flush()?;
+        // Keep the images only for the report.
+        results.push(if args.report.is_some() {
+            judged
+        } else {
+            Judged {
+                expected: None,
+                actual: None,
+                ..judged
+            }
+        });
+    }
+    let passed = results.iter().filter(|r| r.passed()).count();
+    let failed = results.len() - passed;
+    if args.json {
+        let summary =
+            json!({"summary": {"total": results.len(), "passed": passed, "failed": failed}});
+        crate::json::write_line(&mut out, &summary)?;
+    } else {
+        writeln!(
+            out,
+            "{} {}: {passed} passed, {failed} failed (threshold {})",
+            results.len(),
+            if results.len() == 1 {
+                "image"
+            } else {
+                "images"
+            },
+            args.threshold
+        )?;
+    }
+    out.flush()?;
+    if let Some(directory) = &args.report {
+        let entries: Vec<ReportEntry<'_>> = results
+            .iter()
+            .map(|r| match &r.outcome {
+                Ok(comparison) => ReportEntry {
+                    name: &r.name,
+                    expected: r.expected.as_ref(),
+                    actual: r.actual.as_ref(),
+                    outcome: viewray_compare::Outcome::Compared(comparison),
+                },
+                Err(message) => {
+                    ReportEntry::error(&r.name, message, r.expected.as_ref(), r.actual.as_ref())
+                }
+            })
+            .collect();
+        let page = write_report(directory, &entries)
+            .with_context(|| format!("cannot write the report into `{}`", directory.display()))?;
+        eprintln!("report: {}", page.display());
+    }
+    Ok(failed == 0)
+}
+
+/// Loads and judges one pair; a missing side or an unreadable file is the pair's error.
+fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds) -> Judged {
+    let mut errors = Vec::new();
+    let mut load = |path: &Option<PathBuf>| match path.as_ref().map(load_png).transpose() {
+        Ok(image) => image,
+        Err(error) => {
+            errors.push(error.to_string());
+            None
+        }
+    };
+    let expected = load(&pair.expected);
+    let actual = load(&pair.actual);
+    let outcome = match (&expected, &actual) {
+        _ if !errors.is_empty() => Err(errors.join("; ")),
+        (Some(e), Some(a)) => Ok(judge(e, a, thresholds)),
+        (Some(_), None) => Err(format!("only in EXPECTED: ACTUAL has no {}", pair.name)),
+        (None, _) => Err(format!("only in ACTUAL: EXPECTED has no {}", pair.name)),
+    };
+    Judged {
+        name: pair.name.clone(),
+        expected,
+        actual,
+        outcome,
+    }
+}
+
+/// The verdict word: `pass`, `fail`, or `error` for a pair that could not be compared.
+fn verdict(judged: &Judged) -> &'static str {
+    match &judged.outcome {
+        Ok(c) if c.passed() => "pass",
+        Ok(_) => "fail",
+        Err(_) => "error",
+    }
+}
+
+/// The last column: the diagnosis, else why it failed, else nothing.
+fn note(judged: &Judged) -> String {
+    match &judged.outcome {
+        Ok(c) => match c.diagnosis {
+            Some(d) => d.to_string(),
+            None => c.reasons(),
+        },
+        Err(message) => message.clone(),
+    }
+}
+
+fn table_row(judged: &Judged, name_width: usize) -> String {
+    let peak = match &judged.outcome {
+        Ok(Comparison {
+            metrics: Some(m), ..
+        }) => format!("{:.3}", m.peak_flip),
+        _ => "-".to_owned(),
+    };
+    let row = format!(
+        "{:name_width$}  {:7}  {peak:9}  {}",
+        judged.name,
+        verdict(judged).to_uppercase(),
+        note(judged)
+    );
+    row.trim_end().to_owned()
+}
+
+/// A FLIP figure for JSON, rounded to 4 decimals.
+fn figure(value: f32) -> Value {
+    json!((f64::from(value) * 1e4).round() / 1e4)
+}
+
+fn json_line(judged: &Judged, threshold: f32) -> Value {
+    let (metrics, diagnosis, reasons) = match &judged.outcome {
+        Ok(c) => (
+            c.metrics,
+            c.diagnosis,
+            c.failures.iter().map(ToString::to_string).collect(),
+        ),
+        Err(_) => (None, None, Vec::new()),
+    };
+    json!({
+        "name": judged.name,
+        "verdict": verdict(judged),
+        "peak_flip": metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
+        "mean_flip": metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
+        "threshold": figure(threshold),
+        "diagnosis": diagnosis.map_or(Value::Null, |d| json!(d.messages())),
+        "transform": diagnosis.map_or(Value::Null, |d| json!({
+            "mirrored_left_right": d.mirrored_left_right,
+            "upside_down": d.upside_down,
+            "scale": [figure(d.scale.0 as f32), figure(d.scale.1 as f32)],
+            "shift": [figure(d.shift.0 as f32), figure(d.shift.1 as f32)],
+        })),
+        "reasons": reasons,
+        "error": match &judged.outcome {
+            Err(message) => json!(message),
+            Ok(_) => Value::Null,
+        },
+    })
+}

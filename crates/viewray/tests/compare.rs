@@ -1,0 +1,265 @@
+//! `viewray compare` as an instructor uses it: PNGs made here in a temporary folder, exit
+//! codes 0 / 1 / 2, the summary table, JSON lines and the HTML report.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use image::{Rgba, RgbaImage};
+use serde_json::Value;
+
+fn viewray(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_viewray"))
+        .args(args)
+        .output()
+        .expect("the viewray binary runs")
+}
+
+/// A small picture: a red disc, a green triangle and a yellow bar on a dark background,
+/// seen through a camera whose image may be mirrored left-right, moved by `shift_x`
+/// pixels, and sampled `n` x `n` times per pixel.
+fn picture(width: u32, height: u32, n: u32, mirrored: bool, shift_x: f64) -> RgbaImage {
+    let color_at = |x: f64, y: f64| -> [f64; 3] {
+        let (u, v) = (x / f64::from(width), y / f64::from(height));
+        let u = if mirrored { 1.0 - u } else { u };
+        let (du, dv) = ((u - 0.3) * 4.0 / 3.0, v - 0.4);
+        if du * du + dv * dv < 0.18 * 0.18 {
+            return [0.8, 0.1, 0.1];
+        }
+        // A triangle with vertices (0.6, 0.2), (0.9, 0.7), (0.55, 0.75).
+        let edge = |(ax, ay): (f64, f64), (bx, by): (f64, f64)| {
+            (bx - ax) * (v - ay) - (by - ay) * (u - ax)
+        };
+        let (a, b, c) = ((0.6, 0.2), (0.9, 0.7), (0.55, 0.75));
+        if edge(a, b) > 0.0 && edge(b, c) > 0.0 && edge(c, a) > 0.0 {
+            return [0.1, 0.7, 0.2];
+        }
+        if (0.1..0.45).contains(&u) && (0.78..0.86).contains(&v) {
+            return [0.9, 0.8, 0.1];
+        }
+        [0.02, 0.03, 0.05]
+    };
+    RgbaImage::from_fn(width, height, |col, row| {
+        let mut sum = [0.0; 3];
+        for k in 0..n * n {
+            let sx = (f64::from(k % n) + 0.5) / f64::from(n);
+            let sy = (f64::from(k / n) + 0.5) / f64::from(n);
+            let c = color_at(f64::from(col) + sx - shift_x, f64::from(row) + sy);
+            for i in 0..3 {
+                sum[i] += c[i] / f64::from(n * n);
+            }
+        }
+        let encode = |l: f64| {
+            let s = if l <= 0.003_130_8 {
+                l * 12.92
+            } else {
+                1.055 * l.powf(1.0 / 2.4) - 0.055
+            };
+            (s * 255.0).round() as u8
+        };
+        Rgba([encode(sum[0]), encode(sum[1]), encode(sum[2]), 255])
+    })
+}
+
+const W: u32 = 96;
+const H: u32 = 72;
+
+fn reference() -> RgbaImage {
+    picture(W, H, 4, false, 0.0)
+}
+
+fn save(image: &RgbaImage, path: &Path) {
+    image.save(path).unwrap();
+}
+
+fn s(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+/// Two folders: `correct.png` (a one-sample render: passes), `mirrored.png` (fails,
+/// diagnosed), `moved.png` (the picture 12 px right: fails, diagnosed), `small.png`
+/// (another size), `notes.png` (not a PNG), `extra.png` (only in EXPECTED).
+fn folders(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let (expected, actual) = (dir.join("expected"), dir.join("actual"));
+    std::fs::create_dir_all(&expected).unwrap();
+    std::fs::create_dir_all(&actual).unwrap();
+    for name in [
+        "correct.png",
+        "mirrored.png",
+        "moved.png",
+        "small.png",
+        "notes.png",
+        "extra.png",
+    ] {
+        save(&reference(), &expected.join(name));
+    }
+    save(&picture(W, H, 1, false, 0.0), &actual.join("correct.png"));
+    save(&picture(W, H, 1, true, 0.0), &actual.join("mirrored.png"));
+    save(&picture(W, H, 2, false, 12.0), &actual.join("moved.png"));
+    save(
+        &picture(W / 2, H / 2, 2, false, 0.0),
+        &actual.join("small.png"),
+    );
+    std::fs::write(actual.join("notes.png"), "these are notes, not a picture").unwrap();
+    std::fs::write(actual.join("readme.txt"), "not compared").unwrap();
+    (expected, actual)
+}
+
+#[test]
+fn two_matching_files_pass_with_exit_code_0() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = (dir.path().join("ref.png"), dir.path().join("student.png"));
+    save(&reference(), &expected);
+    save(&picture(W, H, 1, false, 0.0), &actual);
+    let out = viewray(&["compare", s(&expected), s(&actual)]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{stdout}");
+    assert!(lines[0].starts_with("NAME") && lines[0].contains("VERDICT"));
+    assert!(lines[1].starts_with("student.png  PASS"), "{stdout}");
+    assert_eq!(lines[2], "1 image: 1 passed, 0 failed (threshold 0.3)");
+    assert!(out.stderr.is_empty());
+}
+
+#[test]
+fn folders_are_paired_by_name_and_every_problem_is_a_row() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    let out = viewray(&["compare", s(&expected), s(&actual)]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let row = |name: &str| {
+        stdout
+            .lines()
+            .find(|l| l.starts_with(name))
+            .unwrap_or_else(|| panic!("no row for {name}: {stdout}"))
+            .to_owned()
+    };
+    assert!(row("correct.png").contains("PASS"));
+    assert!(row("mirrored.png").contains("FAIL"));
+    assert!(row("mirrored.png").ends_with("mirrored left-right: check u = up x w"));
+    assert!(row("moved.png").ends_with("shifted 12 px right: check the sign of the shift"));
+    assert!(row("small.png").ends_with("sizes differ: expected 96x72, actual 48x36"));
+    assert!(row("notes.png").contains("ERROR"));
+    assert!(row("notes.png").contains("notes.png: not a PNG file"));
+    assert!(row("extra.png").ends_with("only in EXPECTED: ACTUAL has no extra.png"));
+    assert!(!stdout.contains("readme"));
+    assert!(stdout.ends_with("6 images: 1 passed, 5 failed (threshold 0.3)\n"));
+}
+
+#[test]
+fn json_lines_parse_and_end_with_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    let out = viewray(&["compare", s(&expected), s(&actual), "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    let lines: Vec<Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("every line is JSON"))
+        .collect();
+    assert_eq!(lines.len(), 7);
+    let by_name = |name: &str| lines.iter().find(|l| l["name"] == name).unwrap();
+    assert_eq!(by_name("correct.png")["verdict"], "pass");
+    assert!(by_name("correct.png")["peak_flip"].as_f64().unwrap() < 0.3);
+    let mirrored = by_name("mirrored.png");
+    assert_eq!(mirrored["verdict"], "fail");
+    assert_eq!(
+        mirrored["diagnosis"][0],
+        "mirrored left-right: check u = up x w"
+    );
+    assert_eq!(mirrored["transform"]["mirrored_left_right"], true);
+    let moved = by_name("moved.png");
+    let shift_x = moved["transform"]["shift"][0].as_f64().unwrap();
+    assert!((shift_x - 12.0).abs() < 0.3, "{moved}");
+    assert_eq!(by_name("notes.png")["verdict"], "error");
+    assert!(
+        by_name("extra.png")["error"]
+            .as_str()
+            .unwrap()
+            .contains("only in EXPECTED")
+    );
+    assert_eq!(
+        lines[6]["summary"],
+        serde_json::json!({"total": 6, "passed": 1, "failed": 5})
+    );
+}
+
+#[test]
+fn report_writes_a_page_and_heatmaps() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    let report = dir.path().join("report");
+    let out = viewray(&["compare", s(&expected), s(&actual), "--report", s(&report)]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains("report: ") && stderr.contains("index.html"),
+        "{stderr}"
+    );
+    let page = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(page.contains("1 passed, 5 failed, of 6."));
+    assert!(page.contains("mirrored left-right: check u = up x w"));
+    for name in ["correct", "mirrored", "moved"] {
+        let heatmap = image::open(report.join(format!("{name}.diff.png"))).unwrap();
+        assert_eq!((heatmap.width(), heatmap.height()), (W, H));
+        assert!(page.contains(&format!("src=\"{name}.diff.png\"")));
+    }
+}
+
+#[test]
+fn the_threshold_decides_a_small_difference() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = (dir.path().join("a.png"), dir.path().join("b.png"));
+    save(&reference(), &expected);
+    // The yellow bar recoloured: not a camera mistake, a visible difference.
+    let mut recoloured = reference();
+    for pixel in recoloured.pixels_mut() {
+        if pixel[0] > 200 && pixel[1] > 180 && pixel[2] < 120 {
+            *pixel = Rgba([120, 200, 255, 255]);
+        }
+    }
+    save(&recoloured, &actual);
+    assert_eq!(
+        viewray(&["compare", s(&expected), s(&actual)])
+            .status
+            .code(),
+        Some(1)
+    );
+    let out = viewray(&["compare", s(&expected), s(&actual), "--threshold", "1"]);
+    assert_eq!(out.status.code(), Some(0));
+}
+
+/// Bad usage: exit code 2, one `error:` line, nothing on stdout.
+#[track_caller]
+fn error_line(args: &[&str]) -> String {
+    let out = viewray(args);
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(out.stdout.is_empty(), "{args:?}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with("error: ") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    stderr.trim_end().to_owned()
+}
+
+#[test]
+fn bad_usage_is_one_line_and_exit_code_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a.png");
+    save(&reference(), &file);
+    let missing = dir.path().join("missing");
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    assert!(error_line(&["compare", s(&missing), s(&file)]).contains("EXPECTED"));
+    assert!(error_line(&["compare", s(&file), s(&missing)]).contains("does not exist"));
+    assert!(
+        error_line(&["compare", s(&file), s(dir.path())])
+            .contains("give two PNG files or two folders")
+    );
+    assert!(error_line(&["compare", s(&empty), s(&empty)]).contains("no *.png files"));
+    assert!(error_line(&["compare", s(&file), s(&file), "--threshold", "0"]).contains("(0, 1]"));
+    assert!(error_line(&["compare", s(&file)]).contains("ACTUAL"));
+}
