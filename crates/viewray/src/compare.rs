@@ -48,9 +48,9 @@ fn parse_threshold(text: &str) -> Result<f32, String> {
         .trim()
         .parse()
         .map_err(|_| format!("`{text}` is not a number"))?;
-    if !(value > 0.0 && value <= 1.0) {
+    if !(0.0..=1.0).contains(&value) {
         return Err(format!(
-            "{text} is outside (0, 1]: FLIP errors run from 0 (identical) to 1"
+            "{text} is outside [0, 1]: FLIP errors run from 0 (identical) to 1"
         ));
     }
     Ok(value)

@@ -260,6 +260,6 @@ fn bad_usage_is_one_line_and_exit_code_2() {
             .contains("give two PNG files or two folders")
     );
     assert!(error_line(&["compare", s(&empty), s(&empty)]).contains("no *.png files"));
-    assert!(error_line(&["compare", s(&file), s(&file), "--threshold", "0"]).contains("(0, 1]"));
+    assert!(error_line(&["compare", s(&file), s(&file), "--threshold", "1.5"]).contains("[0, 1]"));
     assert!(error_line(&["compare", s(&file)]).contains("ACTUAL"));
 }
