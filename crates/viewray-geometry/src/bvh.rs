@@ -230,6 +230,9 @@ pub(crate) struct BoxRay {
     inverse: [Vec4; 3],
     /// Bit `axis` is set when the direction is negative on that axis.
     octant: u8,
+    /// Whether origin and direction are finite and the direction is not zero; other
+    /// rays hit nothing (and would make NaN of the box tests).
+    valid: bool,
 }
 
 impl BoxRay {
@@ -270,6 +273,7 @@ impl BoxRay {
             origin_far,
             inverse,
             octant,
+            valid: o.is_finite() && d.is_finite() && d != Vec3::ZERO,
         }
     }
 
@@ -409,7 +413,8 @@ impl Bvh {
     /// `t_max` unchanged). Boxes entered beyond the current `t_max` are skipped.
     /// Returns the final `t_max`.
     ///
-    /// No allocation: the stack is a fixed array.
+    /// A ray with a non-finite origin or direction, or a zero direction, visits no
+    /// leaf. No allocation: the stack is a fixed array.
     pub fn closest(
         &self,
         ray: &Ray,
@@ -428,6 +433,9 @@ impl Bvh {
         leaf: impl FnMut(u32, u32, f32) -> f32,
         prefetch_leaf: impl Fn(u32, u32),
     ) -> f32 {
+        if !ray.valid {
+            return t_max;
+        }
         match ray.octant {
             0 => self.closest_in_octant::<0>(ray, t_min, t_max, leaf, prefetch_leaf),
             1 => self.closest_in_octant::<1>(ray, t_min, t_max, leaf, prefetch_leaf),
@@ -556,6 +564,9 @@ impl Bvh {
         t_max: f32,
         leaf: impl FnMut(u32, u32) -> bool,
     ) -> bool {
+        if !ray.valid {
+            return false;
+        }
         match ray.octant {
             0 => self.any_in_octant::<0>(ray, t_min, t_max, leaf),
             1 => self.any_in_octant::<1>(ray, t_min, t_max, leaf),

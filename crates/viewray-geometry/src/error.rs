@@ -46,6 +46,14 @@ pub enum GeometryError {
         /// The number of vertices.
         vertex_count: usize,
     },
+    /// A mesh has more faces than the BVH can index.
+    #[error("the mesh has {count} triangles; at most {limit} are supported")]
+    TooManyTriangles {
+        /// The number of faces.
+        count: usize,
+        /// The most a mesh may have.
+        limit: usize,
+    },
     /// An instance transform cannot be inverted or is not finite.
     #[error("the transform is not invertible (determinant {determinant})")]
     SingularTransform {

@@ -26,8 +26,8 @@ pub struct Hit {
     /// barycentric `(b1, b2)` of vertices `b` and `c` for triangles; see each shape for
     /// its own rule.
     pub uv: Vec2,
-    /// The triangle's face index within its mesh (the index in the mesh's input, not
-    /// counting skipped degenerate faces as removed); 0 for other shapes.
+    /// The triangle's face index in its mesh's input (zero-area faces are skipped but
+    /// keep their place in the numbering); 0 for other shapes.
     pub primitive: u32,
     /// The index of the object in the list the [`World`](crate::World) was built from
     /// (0 for queries on a single shape or mesh).

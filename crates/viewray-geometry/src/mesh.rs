@@ -312,7 +312,8 @@ impl Mesh {
     /// - [`GeometryError::NonFinitePosition`] for an infinite or NaN position;
     /// - [`GeometryError::VertexOutOfRange`] for a face naming a missing vertex;
     /// - [`GeometryError::AttributeCount`] when normals or texture coordinates are not
-    ///   one per vertex.
+    ///   one per vertex;
+    /// - [`GeometryError::TooManyTriangles`] beyond 2^27 (134 million) faces.
     pub fn new(data: MeshData) -> Result<Self, GeometryError> {
         validate(&data)?;
         Ok(Self::new_unchecked(data))
@@ -537,6 +538,12 @@ impl Mesh {
 }
 
 fn validate(data: &MeshData) -> Result<(), GeometryError> {
+    if data.triangles.len() > MAX_ITEMS {
+        return Err(GeometryError::TooManyTriangles {
+            count: data.triangles.len(),
+            limit: MAX_ITEMS,
+        });
+    }
     let vertex_count = data.positions.len();
     if let Some((vertex, &position)) = data
         .positions

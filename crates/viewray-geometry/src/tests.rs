@@ -495,3 +495,96 @@ fn rays_starting_on_the_surface_report_the_next_surface() {
     }
     assert_eq!(seen, 2);
 }
+
+#[test]
+fn identical_triangles_build_a_shallow_tree_and_still_hit() {
+    // Every centroid is the same, so no SAH split exists and the build halves by count.
+    let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    let positions: Vec<Vec3> = std::iter::repeat_n(tri, 5000).flatten().collect();
+    let triangles = (0..5000u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    let mesh = Mesh::new(MeshData::new(positions, triangles)).unwrap();
+    assert_eq!(mesh.triangle_count(), 5000);
+    let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::new(0.0, 0.0, -0.5));
+    let hit = mesh.closest_triangle(&ray, 0.0..f32::INFINITY).unwrap();
+    assert_eq!(hit.t, 2.0);
+    assert!(hit.primitive < 5000);
+    assert!(mesh.any_hit(&ray, 0.0..f32::INFINITY));
+    assert!(!mesh.any_hit(&ray, 0.0..1.9));
+}
+
+#[test]
+fn zero_and_non_finite_directions_hit_nothing_without_panicking() {
+    let world = World::new(vec![
+        Object::Sphere(Sphere::new(Vec3::ZERO, 1.0)),
+        Object::Plane(Plane::new(Vec3::NEG_Y, Vec3::Y)),
+        Object::Triangle(Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)),
+        Object::Box(Aabb::new(Vec3::splat(2.0), Vec3::splat(3.0))),
+        Object::Instance(Instance::from_mesh(shared_mesh())),
+    ])
+    .unwrap();
+    for direction in [Vec3::ZERO, Vec3::NAN, Vec3::new(f32::INFINITY, 0.0, 0.0)] {
+        let ray = Ray::new(Vec3::new(0.1, 0.2, 5.0), direction);
+        assert_eq!(
+            world.closest_hit(&ray, 0.0..f32::INFINITY),
+            None,
+            "{direction}"
+        );
+        assert!(!world.any_hit(&ray, 0.0..f32::INFINITY), "{direction}");
+    }
+}
+
+#[test]
+fn texture_coordinates_of_the_analytic_shapes() {
+    let all = 0.0..f32::INFINITY;
+    let cases = [
+        // The sphere's front pole (+z): longitude 0, latitude 0.
+        (
+            Object::Sphere(Sphere::new(Vec3::ZERO, 2.0)),
+            Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z),
+            Vec2::new(0.5, 0.5),
+        ),
+        // Its north pole: v = 1.
+        (
+            Object::Sphere(Sphere::new(Vec3::ZERO, 2.0)),
+            Ray::new(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y),
+            Vec2::new(0.5, 1.0),
+        ),
+        // The box's +z face at (x, y) = (1.5, 0.5) of [1, 3] x [0, 1]: uv = ((x - 1) / 2, y).
+        (
+            Object::Box(Aabb::new(
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(3.0, 1.0, 1.0),
+            )),
+            Ray::new(Vec3::new(1.5, 0.5, 4.0), Vec3::NEG_Z),
+            Vec2::new(0.25, 0.5),
+        ),
+        // A triangle's barycentrics (b1, b2).
+        (
+            Object::Triangle(Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y)),
+            Ray::new(Vec3::new(0.5, 0.25, 1.0), Vec3::NEG_Z),
+            Vec2::new(0.5, 0.25),
+        ),
+    ];
+    for (object, ray, uv) in cases {
+        let hit = closest_alone(&object, &ray).unwrap();
+        assert!(
+            hit.uv.abs_diff_eq(uv, 1e-6),
+            "{object:?}: uv {} != {uv}",
+            hit.uv
+        );
+    }
+    // The plane's uv move with the hit point, one unit per world unit.
+    let plane = Plane::new(Vec3::ZERO, Vec3::Y);
+    let a = plane
+        .closest_hit(
+            &Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::NEG_Y),
+            all.clone(),
+        )
+        .unwrap();
+    let b = plane
+        .closest_hit(&Ray::new(Vec3::new(3.0, 1.0, 4.0), Vec3::NEG_Y), all)
+        .unwrap();
+    assert!((a.uv.distance(b.uv) - 5.0).abs() < 1e-5);
+}
