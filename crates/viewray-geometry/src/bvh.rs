@@ -222,7 +222,7 @@ pub struct Bvh {
 }
 
 /// A ray prepared for box tests: origin and reciprocal direction splatted across lanes,
-/// and for each axis the plane rows (`planes[axis + 3 * is_max]`) crossed first and last.
+/// and the direction's sign pattern, which selects the monomorphized traversal.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BoxRay {
     origin_near: [Vec4; 3],

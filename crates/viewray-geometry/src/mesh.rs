@@ -105,7 +105,10 @@ impl MeshData {
     /// `subdivisions` times, with every vertex pushed onto the sphere of radius `radius`
     /// around the origin; `20 * 4^subdivisions` triangles sharing their vertices
     /// exactly (a closed, watertight mesh), with the sphere's normals.
+    ///
+    /// `subdivisions` is clamped to 11 (84 million triangles), the most a mesh can index.
     pub fn icosphere(subdivisions: u32, radius: f32) -> Self {
+        let subdivisions = subdivisions.min(11);
         let phi = (1.0 + 5f32.sqrt()) / 2.0;
         let mut unit: Vec<Vec3> = [
             (-1.0, phi, 0.0),
