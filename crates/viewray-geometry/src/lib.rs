@@ -56,7 +56,13 @@
 //!   skips them altogether).
 //!
 //! `cargo bench -p viewray-geometry` measures build time, memory and throughput on a
-//! 1,310,720-triangle icosphere side by side with the obvhs crate.
+//! 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH). On the
+//! 2-core development machine, shared with other builds (so absolute numbers are low
+//! and noisy; the ratios come from one run): build 0.79 s on 1 thread, 0.52 s on 2
+//! (obvhs 1.29 s, 1.00 s); 54 bytes per triangle for nodes and packets (obvhs 60);
+//! 1024 x 1024 primary rays 6.0 Mrays/s on 1 thread (obvhs 2.3, 2.6x); 10^6 incoherent
+//! rays 1.24 Mrays/s (obvhs 0.68, 1.8x). Computing the full [`Hit`] costs about a
+//! third more on incoherent rays, for the vertex data it reads.
 
 mod aabb;
 mod bvh;

@@ -455,7 +455,9 @@ impl Mesh {
 
     /// The closest hit as a raw hit: `t`, face and barycentrics.
     pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
-        let packet_ray = PacketRay::new(&WatertightRay::new(ray));
+        // The triangle test's setup waits for the first leaf: most rays of a typical
+        // image miss a given mesh's boxes altogether.
+        let mut packet_ray = None;
         let t_min4 = Vec4::splat(t_min);
         let mut best = None;
         self.bvh.closest_prepared(
@@ -463,6 +465,8 @@ impl Mesh {
             t_min,
             t_max,
             |start, count, mut t_max| {
+                let packet_ray =
+                    packet_ray.get_or_insert_with(|| PacketRay::new(&WatertightRay::new(ray)));
                 for packet in &self.packets[start as usize..(start + count) as usize] {
                     let (valid, t, [_, v, w], det) =
                         packet_ray.test(packet, t_min4, Vec4::splat(t_max));
