@@ -1,0 +1,292 @@
+//! Rendered images: linear RGB in `f32`, encoded to 8-bit sRGB PNG or to linear EXR.
+
+use std::io::{Seek, Write};
+use std::path::Path;
+
+use glam::Vec3;
+use image::codecs::openexr::OpenExrEncoder;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
+
+/// What an image's values mean, which decides how 8-bit output stores them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PixelKind {
+    /// Linear-light colour (Flat and Lit renders): 8-bit output applies the sRGB transfer
+    /// function, so linear 0.5 is stored as 188.
+    #[default]
+    Color,
+    /// Data in `[0, 1]` (Normals and Depth renders): 8-bit output stores `value * 255`
+    /// as is, so a normal `(0, 0, 1)` is the usual normal-map `(128, 128, 255)`.
+    Data,
+}
+
+/// The file formats an [`Image`] can be written as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// 8-bit RGB PNG, sRGB-encoded colour (see [`PixelKind`]), written with fixed
+    /// encoder settings and no metadata, so the same image always gives the same bytes.
+    Png,
+    /// OpenEXR with 32-bit float RGB channels: the linear values as rendered, for
+    /// post-processing.
+    Exr,
+}
+
+impl ImageFormat {
+    /// The format named by a path's extension (`.png` or `.exr`, any case).
+    pub fn from_path(path: &Path) -> Option<ImageFormat> {
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        match extension.as_str() {
+            "png" => Some(ImageFormat::Png),
+            "exr" => Some(ImageFormat::Exr),
+            _ => None,
+        }
+    }
+}
+
+/// Why an image could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot encode the image: {0}")]
+pub struct ImageError(#[from] image::ImageError);
+
+/// A rendered image: `width x height` pixels of linear RGB, row by row from the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    width: u32,
+    height: u32,
+    pixels: Vec<Vec3>,
+    kind: PixelKind,
+}
+
+impl Image {
+    /// An image of `width x height` pixels, all `fill`.
+    pub fn new(width: u32, height: u32, fill: Vec3, kind: PixelKind) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![fill; width as usize * height as usize],
+            kind,
+        }
+    }
+
+    /// An image from its pixels, row by row from the top.
+    ///
+    /// # Panics
+    /// If `pixels.len()` is not `width * height`.
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>, kind: PixelKind) -> Self {
+        assert_eq!(
+            pixels.len(),
+            width as usize * height as usize,
+            "an image of {width} x {height} needs that many pixels"
+        );
+        Self {
+            width,
+            height,
+            pixels,
+            kind,
+        }
+    }
+
+    /// The number of columns.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The number of rows.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// What the values mean.
+    pub fn kind(&self) -> PixelKind {
+        self.kind
+    }
+
+    /// Every pixel, row by row from the top.
+    pub fn pixels(&self) -> &[Vec3] {
+        &self.pixels
+    }
+
+    /// The pixel at `(row, col)`, 0-based from the top-left.
+    ///
+    /// # Panics
+    /// If the pixel is outside the image.
+    pub fn pixel(&self, row: u32, col: u32) -> Vec3 {
+        assert!(
+            row < self.height && col < self.width,
+            "pixel outside the image"
+        );
+        self.pixels[row as usize * self.width as usize + col as usize]
+    }
+
+    /// Every pixel as 8-bit sRGB, `[r, g, b]` row by row, whatever the [`PixelKind`]:
+    /// each channel clamped to `[0, 1]` and encoded by [`linear_to_srgb8`].
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.to_bytes(linear_to_srgb8)
+    }
+
+    /// Every pixel as 8 bits per channel, as PNG output stores it: sRGB-encoded for
+    /// [`PixelKind::Color`], `round(255 x)` for [`PixelKind::Data`].
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        match self.kind {
+            PixelKind::Color => self.to_srgb8(),
+            PixelKind::Data => self.to_bytes(unit_to_u8),
+        }
+    }
+
+    fn to_bytes(&self, encode: fn(f32) -> u8) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.to_array().map(encode))
+            .collect()
+    }
+
+    /// Writes the image as a PNG (see [`ImageFormat::Png`]).
+    ///
+    /// # Errors
+    /// An [`ImageError`] if encoding or writing fails.
+    pub fn write_png(&self, out: impl Write) -> Result<(), ImageError> {
+        PngEncoder::new_with_quality(out, CompressionType::Default, FilterType::Adaptive)
+            .write_image(
+                &self.to_rgb8(),
+                self.width,
+                self.height,
+                ExtendedColorType::Rgb8,
+            )?;
+        Ok(())
+    }
+
+    /// Writes the image as an OpenEXR file of linear float RGB (see [`ImageFormat::Exr`]).
+    ///
+    /// # Errors
+    /// An [`ImageError`] if encoding or writing fails.
+    pub fn write_exr(&self, out: impl Write + Seek) -> Result<(), ImageError> {
+        let bytes: Vec<u8> = self
+            .pixels
+            .iter()
+            .flat_map(|p| p.to_array())
+            .flat_map(f32::to_ne_bytes)
+            .collect();
+        OpenExrEncoder::new(out).write_image(
+            &bytes,
+            self.width,
+            self.height,
+            ExtendedColorType::Rgb32F,
+        )?;
+        Ok(())
+    }
+
+    /// Writes the image in `format`.
+    ///
+    /// # Errors
+    /// An [`ImageError`] if encoding or writing fails.
+    pub fn write(&self, out: impl Write + Seek, format: ImageFormat) -> Result<(), ImageError> {
+        match format {
+            ImageFormat::Png => self.write_png(out),
+            ImageFormat::Exr => self.write_exr(out),
+        }
+    }
+}
+
+/// The sRGB transfer function (IEC 61966-2-1), linear light to encoded value, both in
+/// `[0, 1]`:
+///
+/// ```text
+/// x <= 0.0031308:  12.92 x
+/// otherwise:       1.055 x^(1/2.4) - 0.055
+/// ```
+pub fn linear_to_srgb(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// A linear channel value as an 8-bit sRGB code: clamped to `[0, 1]` (NaN to 0),
+/// encoded by [`linear_to_srgb`] and rounded to the nearest of 0..=255. Linear 0.5 is
+/// 188, linear 0.2140 is 128.
+pub fn linear_to_srgb8(x: f32) -> u8 {
+    unit_to_u8(linear_to_srgb(clamp_unit(x)))
+}
+
+/// `x` clamped to `[0, 1]`, NaN to 0.
+fn clamp_unit(x: f32) -> f32 {
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
+}
+
+/// A value in `[0, 1]` (clamped; NaN to 0) as `round(255 x)`.
+fn unit_to_u8(x: f32) -> u8 {
+    // In 0.5..=255.5 after clamping: the cast only drops the fraction.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let code = (clamp_unit(x) * 255.0 + 0.5) as u8;
+    code
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_codes_of_known_values() {
+        for (linear, code) in [
+            (0.0, 0),
+            (1.0, 255),
+            (0.5, 188),
+            (0.214_041_14, 128),
+            (0.001, 3),
+            (0.18, 118),
+            (-1.0, 0),
+            (7.0, 255),
+            (f32::NAN, 0),
+        ] {
+            assert_eq!(linear_to_srgb8(linear), code, "linear {linear}");
+        }
+    }
+
+    #[test]
+    fn data_images_store_values_as_is() {
+        let image = Image::from_pixels(
+            2,
+            1,
+            vec![Vec3::new(0.5, 0.5, 1.0), Vec3::new(0.0, 0.25, 2.0)],
+            PixelKind::Data,
+        );
+        assert_eq!(image.to_rgb8(), [128, 128, 255, 0, 64, 255]);
+        assert_eq!(image.to_srgb8()[..3], [188, 188, 255]);
+    }
+
+    #[test]
+    fn formats_follow_the_extension() {
+        assert_eq!(
+            ImageFormat::from_path(Path::new("a/b.PNG")),
+            Some(ImageFormat::Png)
+        );
+        assert_eq!(
+            ImageFormat::from_path(Path::new("b.exr")),
+            Some(ImageFormat::Exr)
+        );
+        assert_eq!(ImageFormat::from_path(Path::new("b.jpg")), None);
+        assert_eq!(ImageFormat::from_path(Path::new("png")), None);
+    }
+
+    #[test]
+    fn png_and_exr_round_trip() {
+        let image = Image::from_pixels(
+            3,
+            2,
+            (0..6).map(|i| Vec3::splat(i as f32 / 5.0)).collect(),
+            PixelKind::Color,
+        );
+        let mut png = Vec::new();
+        image.write_png(&mut png).unwrap();
+        let decoded = image::load_from_memory(&png).unwrap().to_rgb8();
+        assert_eq!(decoded.dimensions(), (3, 2));
+        assert_eq!(decoded.into_raw(), image.to_srgb8());
+
+        let mut exr = std::io::Cursor::new(Vec::new());
+        image.write_exr(&mut exr).unwrap();
+        let decoded = image::load_from_memory(exr.get_ref()).unwrap().to_rgb32f();
+        let values: Vec<f32> = decoded.into_raw();
+        assert_eq!(values[9..12], [0.6, 0.6, 0.6]);
+    }
+}

@@ -1,0 +1,96 @@
+//! viewray's renderer: for each pixel, generate viewing rays, find the closest object
+//! each meets, and determine its colour.
+//!
+//! This crate owns shading (the four [`Shading`](viewray_scene::Shading) modes, lights,
+//! shadows, mirrors, grid lines), sampling (where each sample falls in a pixel and on the
+//! lens), the parallel tile loop, and the [`Image`] with its PNG and EXR encoders. It
+//! takes a loaded [`Scene`](viewray_scene::Scene) and knows no file format but image
+//! output: no RON, no OBJ, no command line.
+//!
+//! # Shading
+//!
+//! Colours are linear RGB throughout; see the camera crate's
+//! [conventions](viewray_camera#conventions) for pixels and rays.
+//!
+//! - **Flat**: the material's colour as is, so a render of pure colours is a coverage
+//!   mask. Grid lines are part of a material's colour pattern, so they are drawn too.
+//! - **Normals**: the shading normal (facing the ray) mapped from `[-1, 1]` to `[0, 1]`,
+//!   `n / 2 + 1/2`.
+//! - **Depth**: near white, far dark: distance along the view direction `-w` (from the
+//!   eye for panoramic cameras) mapped linearly from the nearest hit to the farthest hit
+//!   on a bounded object, both found by a pre-pass of one centre ray per pixel, so the
+//!   rule does not depend on threads or tiles. Infinite planes fade on to black beyond
+//!   the farthest object.
+//! - **Lit**: Blinn-Phong, summed over the lights, for unit vectors `n` (shading normal),
+//!   `l` (to the light), `v` (to the eye), `h = (l + v) / |l + v|`:
+//!
+//!   ```text
+//!   ambient:      color * I
+//!   point:        (I / r^2) (color max(0, n.l) + specular max(0, n.h)^shininess)
+//!   directional:  I (color max(0, n.l) + specular max(0, n.h)^shininess)
+//!   mirror:       (1 - mirror) local + mirror * (colour along the reflected ray)
+//!   ```
+//!
+//!   Point and directional lights cast hard shadows: a shadow ray from the hit point,
+//!   moved off the surface along the geometric normal (by 1e-4 of the size of its
+//!   coordinates plus 1e-5 of the distance the ray travelled), asks
+//!   [`World::any_hit`](viewray_geometry::World::any_hit) whether anything lies before
+//!   the light. Reflections follow
+//!   [`RenderSettings::max_reflection_depth`] bounces (default
+//!   [`MAX_REFLECTION_DEPTH`]). A scene with no lights at all gets a headlight (a light
+//!   at the eye plus a little ambient), so a camera-only scene is visible.
+//!
+//! Grid materials draw lines of constant world coordinate every `spacing` along the two
+//! world axes closest to the surface's plane (x and z on a ground plane), `line_width`
+//! wide. Each sample averages the lines over its footprint on the surface (from the
+//! neighbouring samples' rays, as ray differentials do), so grids stay smooth to the
+//! horizon instead of turning into moire.
+//!
+//! # Sampling and determinism
+//!
+//! One sample per pixel is the pixel centre through the lens centre: exactly the
+//! lecture's viewing ray. `n > 1` samples are stratified: the pixel is split into `n`
+//! cells of equal area (`round(sqrt n)` rows of `n / rows` or one more cells; 16 gives
+//! a 4 x 4 grid) and each sample is jittered in its cell. Lens samples, for cameras with
+//! a lens, are stratified the same way with their cells shuffled per pixel. The random
+//! numbers come from a SplitMix64 generator seeded by (row, col, sample index) alone, so
+//! an image is byte-identical on any number of threads. Pixels average their samples (a
+//! box filter).
+//!
+//! # Output
+//!
+//! [`Image`] holds linear `f32` RGB. PNG output is 8-bit with the sRGB transfer function
+//! ([`linear_to_srgb`], not a 2.2 gamma) for colour renders; Normals and Depth renders
+//! are data and are stored as `round(255 x)` ([`PixelKind`]). EXR output holds the
+//! linear floats as rendered.
+//!
+//! ```
+//! use std::path::Path;
+//! use viewray_render::{render, RenderSettings};
+//! use viewray_scene::Scene;
+//!
+//! let scene = Scene::parse(
+//!     "(image: (width: 8, height: 6), shading: Flat,
+//!       camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, -1.0),
+//!                projection: Perspective(distance: 1.0, viewport: (1.0, 0.75))),
+//!       materials: { \"red\": (color: (1.0, 0.0, 0.0)) },
+//!       objects: [Sphere(center: (0.0, 0.0, -5.0), radius: 1.0, material: \"red\")])",
+//!     Path::new("example.ron"),
+//! )?;
+//! let rendered = render(&scene, &RenderSettings::default(), |_, _| {})?;
+//! assert_eq!(rendered.image.pixel(3, 4), glam::Vec3::new(1.0, 0.0, 0.0));
+//! assert_eq!(rendered.stats.rays, 8 * 6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod image;
+mod render;
+mod sampling;
+mod shade;
+
+pub use crate::image::{
+    Image, ImageError, ImageFormat, PixelKind, linear_to_srgb, linear_to_srgb8,
+};
+pub use crate::render::{
+    MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, render,
+};

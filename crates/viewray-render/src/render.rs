@@ -1,0 +1,250 @@
+//! The render loop: tiles in parallel, samples per pixel, statistics.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use glam::{DVec2, Vec3};
+use rayon::prelude::*;
+use viewray_scene::{Scene, Shading};
+
+use crate::image::{Image, PixelKind};
+use crate::sampling::camera_sample;
+use crate::shade::{DepthMap, DepthRange, FilmPoint, Shader};
+
+/// The default number of mirror bounces a ray follows.
+pub const MAX_REFLECTION_DEPTH: u32 = 4;
+
+/// The default side of a square tile, in pixels.
+pub const TILE_SIZE: u32 = 16;
+
+/// How to render: threads, tiles and bounces. The image size and samples per pixel are
+/// the scene's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenderSettings {
+    /// How many threads to render on; `None` uses rayon's global pool (one thread per
+    /// core). The image is the same, byte for byte, for any number.
+    pub threads: Option<usize>,
+    /// The side of a square tile, in pixels: the unit of parallel work and of progress.
+    pub tile_size: u32,
+    /// How many mirror bounces a ray follows; beyond that, a mirror reflects black.
+    pub max_reflection_depth: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            threads: None,
+            tile_size: TILE_SIZE,
+            max_reflection_depth: MAX_REFLECTION_DEPTH,
+        }
+    }
+}
+
+/// What a render counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Rays traced: primary rays, shadow rays, reflected rays, and for
+    /// [`Shading::Depth`] the pre-pass's one ray per pixel.
+    pub rays: u64,
+}
+
+/// A finished render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rendered {
+    /// The image: colour for Flat and Lit, data for Normals and Depth (see
+    /// [`PixelKind`]).
+    pub image: Image,
+    /// What the render counted.
+    pub stats: RenderStats,
+}
+
+/// Why a render could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The thread pool for [`RenderSettings::threads`] could not be started.
+    #[error("cannot start {threads} render threads: {message}")]
+    ThreadPool {
+        /// The number of threads asked for.
+        threads: usize,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// Renders `scene`: for each pixel, generate viewing rays, find the closest object each
+/// meets, and determine its colour.
+///
+/// The image is split into square tiles rendered in parallel; `progress(done, total)` is
+/// called (from any thread) after each tile with the number of pixels finished and the
+/// image's total. Every sample's position comes from its pixel and index alone (see
+/// the crate docs), so the result does not depend on `settings.threads` or on
+/// scheduling.
+///
+/// # Errors
+/// [`RenderError::ThreadPool`] if `settings.threads` asks for a pool that cannot be
+/// started.
+pub fn render(
+    scene: &Scene,
+    settings: &RenderSettings,
+    progress: impl Fn(u64, u64) + Sync,
+) -> Result<Rendered, RenderError> {
+    match settings.threads {
+        None => Ok(render_on_current_pool(scene, settings, &progress)),
+        Some(threads) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("viewray-render-{i}"))
+                .build()
+                .map_err(|error| RenderError::ThreadPool {
+                    threads,
+                    message: error.to_string(),
+                })?;
+            Ok(pool.install(|| render_on_current_pool(scene, settings, &progress)))
+        }
+    }
+}
+
+/// A rectangle of pixels: rows `row..row + height`, columns `col..col + width`.
+#[derive(Clone, Copy, Debug)]
+struct Tile {
+    row: u32,
+    col: u32,
+    width: u32,
+    height: u32,
+}
+
+/// The tiles covering a `width x height` image, row by row.
+fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    let size = size.max(1);
+    (0..height.div_ceil(size))
+        .flat_map(|tile_row| {
+            (0..width.div_ceil(size)).map(move |tile_col| {
+                let (row, col) = (tile_row * size, tile_col * size);
+                Tile {
+                    row,
+                    col,
+                    width: size.min(width - col),
+                    height: size.min(height - row),
+                }
+            })
+        })
+        .collect()
+}
+
+fn render_on_current_pool(
+    scene: &Scene,
+    settings: &RenderSettings,
+    progress: &(impl Fn(u64, u64) + Sync),
+) -> Rendered {
+    let camera = &scene.camera;
+    let (width, height) = (camera.width(), camera.height());
+    let samples = scene.samples.max(1);
+
+    // For depth images, find the range of depths first.
+    let mut depth_map = DepthMap::new(camera);
+    let mut rays = 0;
+    if scene.shading == Shading::Depth {
+        let probe = Shader::new(scene, 0, depth_map);
+        let (range, probe_rays) = (0..height)
+            .into_par_iter()
+            .map(|row| {
+                let mut range = DepthRange::EMPTY;
+                let mut rays = 0;
+                for col in 0..width {
+                    let sample = viewray_camera::CameraSample::CENTER;
+                    if let Some(ray) = camera.generate_ray(row, col, sample) {
+                        rays += 1;
+                        probe.depth_probe(&ray.as_ray(), &mut range);
+                    }
+                }
+                (range, rays)
+            })
+            .reduce(
+                || (DepthRange::EMPTY, 0),
+                |(a, ra), (b, rb)| (a.union(b), ra + rb),
+            );
+        depth_map = depth_map.with_range(range);
+        rays += probe_rays;
+    }
+
+    let shader = Shader::new(scene, settings.max_reflection_depth, depth_map);
+    let spacing = 1.0 / f64::from(samples).sqrt();
+    let total = u64::from(width) * u64::from(height);
+    let done = AtomicU64::new(0);
+    let tiles = tiles(width, height, settings.tile_size);
+
+    // Render the tiles in parallel, each into its own buffer.
+    let rendered: Vec<(Vec<Vec3>, u64)> = tiles
+        .par_iter()
+        .map(|tile| {
+            let mut pixels = Vec::with_capacity(tile.width as usize * tile.height as usize);
+            let mut rays = 0;
+            for row in tile.row..tile.row + tile.height {
+                for col in tile.col..tile.col + tile.width {
+                    let mut sum = Vec3::ZERO;
+                    for index in 0..samples {
+                        let sample = camera_sample(row, col, index, samples);
+                        sum += match camera.generate_ray(row, col, sample) {
+                            Some(ray) => {
+                                let film = FilmPoint {
+                                    image: DVec2::new(f64::from(col), f64::from(row))
+                                        + sample.p_film,
+                                    p_lens: sample.p_lens,
+                                    spacing,
+                                };
+                                shader.primary(&ray.as_ray(), &film, &mut rays)
+                            }
+                            None => shader.background(),
+                        };
+                    }
+                    pixels.push(sum / samples as f32);
+                }
+            }
+            let pixel_count = u64::from(tile.width) * u64::from(tile.height);
+            let finished = done.fetch_add(pixel_count, Ordering::Relaxed) + pixel_count;
+            progress(finished, total);
+            (pixels, rays)
+        })
+        .collect();
+
+    // Assemble the image from the tiles.
+    let kind = match scene.shading {
+        Shading::Flat | Shading::Lit => PixelKind::Color,
+        Shading::Normals | Shading::Depth => PixelKind::Data,
+    };
+    let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
+    for (tile, (tile_pixels, tile_rays)) in tiles.iter().zip(rendered) {
+        rays += tile_rays;
+        for (r, source) in tile_pixels.chunks_exact(tile.width as usize).enumerate() {
+            let start = (tile.row as usize + r) * width as usize + tile.col as usize;
+            pixels[start..start + tile.width as usize].copy_from_slice(source);
+        }
+    }
+    Rendered {
+        image: Image::from_pixels(width, height, pixels, kind),
+        stats: RenderStats { rays },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiles_cover_the_image_once() {
+        for (width, height, size) in [(1, 1, 16), (33, 17, 16), (64, 32, 16), (5, 9, 1)] {
+            let mut covered = vec![0; width as usize * height as usize];
+            for tile in tiles(width, height, size) {
+                assert!(tile.width >= 1 && tile.width <= size);
+                for row in tile.row..tile.row + tile.height {
+                    for col in tile.col..tile.col + tile.width {
+                        covered[(row * width + col) as usize] += 1;
+                    }
+                }
+            }
+            assert!(
+                covered.iter().all(|&c| c == 1),
+                "{width} x {height} / {size}"
+            );
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! Where in a pixel (and on the lens) each sample goes: stratified jitter from a hash of
+//! (row, col, sample index), so an image never depends on thread scheduling.
+
+use glam::DVec2;
+use viewray_camera::CameraSample;
+
+/// SplitMix64's output function: a fast, well-mixing bijection on `u64`.
+#[inline]
+fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The golden-ratio increment of SplitMix64.
+const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// A small random number generator (SplitMix64) whose whole state comes from the pixel
+/// and the sample index, never from a thread or a shared stream.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SampleRng {
+    state: u64,
+}
+
+impl SampleRng {
+    /// The generator of sample `sample` of pixel `(row, col)`.
+    #[inline]
+    pub(crate) fn new(row: u32, col: u32, sample: u32) -> Self {
+        let pixel = mix64((u64::from(row) << 32 | u64::from(col)).wrapping_add(GOLDEN));
+        Self {
+            state: mix64(pixel ^ u64::from(sample).wrapping_mul(GOLDEN)),
+        }
+    }
+
+    /// The next 64 random bits.
+    #[inline]
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(GOLDEN);
+        mix64(self.state)
+    }
+
+    /// A uniform number in `[0, 1)` with 53 random bits.
+    #[inline]
+    pub(crate) fn next_f64(&mut self) -> f64 {
+        // 2^-53: the top 53 bits as a fraction.
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// A per-pixel seed for [`permute`], from the pixel alone.
+#[inline]
+fn pixel_seed(row: u32, col: u32) -> u32 {
+    (mix64(u64::from(row) << 32 | u64::from(col)) >> 32) as u32
+}
+
+/// A pseudo-random permutation of `0..len` chosen by `seed`, evaluated at `index`
+/// without memory (Kensler, "Correlated Multi-Jittered Sampling", 2013, listing 3: a
+/// hash restricted to the next power of two, cycle-walked back into `0..len`).
+///
+/// # Panics
+/// Never for `index < len`; `len` must be at least 1.
+#[inline]
+pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
+    debug_assert!(index < len);
+    let mut mask = len - 1;
+    mask |= mask >> 1;
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+    loop {
+        index ^= seed;
+        index = index.wrapping_mul(0xe170_893d);
+        index ^= seed >> 16;
+        index ^= (index & mask) >> 4;
+        index ^= seed >> 8;
+        index = index.wrapping_mul(0x0929_eb3f);
+        index ^= seed >> 23;
+        index ^= (index & mask) >> 1;
+        index = index.wrapping_mul(1 | seed >> 27);
+        index = index.wrapping_mul(0x6935_fa69);
+        index ^= (index & mask) >> 11;
+        index = index.wrapping_mul(0x74dc_b303);
+        index ^= (index & mask) >> 2;
+        index = index.wrapping_mul(0x9e50_1cc3);
+        index ^= (index & mask) >> 2;
+        index = index.wrapping_mul(0xc860_a3df);
+        index &= mask;
+        index ^= index >> 5;
+        if index < len {
+            return (index + seed) % len;
+        }
+    }
+}
+
+/// The cell of stratum `cell` when the unit square is split into `count` cells of equal
+/// area: `rows = round(sqrt(count))` rows, each holding `count / rows` or one more
+/// cells side by side, each row as tall as its share of the cells.
+///
+/// Returns the cell's corner and size. Every `count` is stratified exactly, squares
+/// (4 -> 2 x 2, 16 -> 4 x 4) and others alike (3 -> two cells 2/3 tall side by side
+/// over one cell 1/3 tall; 5 -> a row of 3 over a row of 2).
+#[inline]
+pub(crate) fn stratum(cell: u32, count: u32) -> (DVec2, DVec2) {
+    debug_assert!(cell < count);
+    let rows = f64::from(count).sqrt().round().max(1.0) as u32;
+    let short = count / rows;
+    let long_rows = count % rows;
+    let long = short + 1;
+    // Rows 0..long_rows hold `long` cells, the rest `short`.
+    let (row_cells, first_in_row, col) = if cell < long_rows * long {
+        let row = cell / long;
+        (long, row * long, cell % long)
+    } else {
+        let rest = cell - long_rows * long;
+        (short, cell - rest % short, rest % short)
+    };
+    let n = f64::from(count);
+    let corner = DVec2::new(
+        f64::from(col) / f64::from(row_cells),
+        f64::from(first_in_row) / n,
+    );
+    let size = DVec2::new(1.0 / f64::from(row_cells), f64::from(row_cells) / n);
+    (corner, size)
+}
+
+/// The camera sample of sample `index` of `count` in pixel `(row, col)`.
+///
+/// One sample is the pixel centre through the lens centre: the lecture's viewing ray, so
+/// a one-sample render is exactly the homework's image. More samples are jittered in the
+/// strata of [`stratum`]; lens samples (used only by cameras with a lens) are stratified
+/// the same way, their strata shuffled per pixel against the film's so film and lens
+/// positions are not correlated.
+#[inline]
+pub(crate) fn camera_sample(row: u32, col: u32, index: u32, count: u32) -> CameraSample {
+    if count <= 1 {
+        return CameraSample::CENTER;
+    }
+    let mut rng = SampleRng::new(row, col, index);
+    let (corner, size) = stratum(index, count);
+    let p_film = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
+    let lens_cell = permute(index, count, pixel_seed(row, col));
+    let (corner, size) = stratum(lens_cell, count);
+    let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
+    CameraSample { p_film, p_lens }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The strata of `count` cover the unit square exactly once, with equal areas.
+    #[track_caller]
+    fn check_strata(count: u32, expected_rows: usize) {
+        let cells: Vec<_> = (0..count).map(|i| stratum(i, count)).collect();
+        let area: f64 = cells.iter().map(|(_, s)| s.x * s.y).sum();
+        assert!((area - 1.0).abs() < 1e-12, "{count}: area {area}");
+        for (corner, size) in &cells {
+            assert!((size.x * size.y - 1.0 / f64::from(count)).abs() < 1e-12);
+            assert!(corner.min_element() >= 0.0);
+            assert!((*corner + *size).max_element() <= 1.0 + 1e-12);
+        }
+        // A grid of test points each falls in exactly one cell.
+        for i in 0..37 {
+            for j in 0..37 {
+                let p = DVec2::new((f64::from(i) + 0.5) / 37.0, (f64::from(j) + 0.5) / 37.0);
+                let inside = cells
+                    .iter()
+                    .filter(|(c, s)| p.cmpge(*c).all() && p.cmplt(*c + *s).all())
+                    .count();
+                assert_eq!(inside, 1, "{count}: point {p} in {inside} cells");
+            }
+        }
+        let mut rows: Vec<u64> = cells.iter().map(|(c, _)| c.y.to_bits()).collect();
+        rows.dedup();
+        assert_eq!(rows.len(), expected_rows, "{count}");
+    }
+
+    #[test]
+    fn strata_tile_the_pixel_with_equal_areas() {
+        for (count, rows) in [
+            (1, 1),
+            (2, 1),
+            (3, 2),
+            (4, 2),
+            (5, 2),
+            (7, 3),
+            (16, 4),
+            (17, 4),
+        ] {
+            check_strata(count, rows);
+        }
+        // Squares are square grids.
+        assert_eq!(stratum(5, 16), (DVec2::new(0.25, 0.25), DVec2::splat(0.25)));
+    }
+
+    #[test]
+    fn permute_is_a_permutation() {
+        for len in [1, 2, 3, 7, 16, 100] {
+            for seed in [0, 1, 0xdead_beef] {
+                let mut seen: Vec<u32> = (0..len).map(|i| permute(i, len, seed)).collect();
+                seen.sort_unstable();
+                assert_eq!(seen, (0..len).collect::<Vec<_>>(), "len {len} seed {seed}");
+            }
+        }
+    }
+
+    #[test]
+    fn samples_stay_in_their_strata_and_depend_only_on_the_pixel_and_index() {
+        for index in 0..9 {
+            let s = camera_sample(3, 4, index, 9);
+            let (corner, size) = stratum(index, 9);
+            assert!(s.p_film.cmpge(corner).all() && s.p_film.cmplt(corner + size).all());
+            assert!(s.p_lens.cmpge(DVec2::ZERO).all() && s.p_lens.cmplt(DVec2::ONE).all());
+            assert_eq!(s, camera_sample(3, 4, index, 9));
+        }
+        assert_ne!(camera_sample(3, 4, 0, 9), camera_sample(4, 3, 0, 9));
+        assert_eq!(camera_sample(7, 7, 0, 1), CameraSample::CENTER);
+    }
+
+    #[test]
+    fn uniform_numbers_have_the_right_mean() {
+        let mut rng = SampleRng::new(1, 2, 3);
+        let n = 100_000;
+        let mean = (0..n).map(|_| rng.next_f64()).sum::<f64>() / f64::from(n);
+        assert!((mean - 0.5).abs() < 0.01, "{mean}");
+    }
+}

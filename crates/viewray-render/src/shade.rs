@@ -1,0 +1,489 @@
+//! What a ray sees: the four shading modes, grid lines, lights, shadows and mirrors.
+
+use glam::{DVec2, Vec3};
+use viewray_camera::{Camera, Projection};
+use viewray_geometry::{Hit, Object, Ray};
+use viewray_scene::{Grid, Light, Material, Scene, Shading};
+
+use crate::image::linear_to_srgb;
+
+/// Where primary rays start their search: `t > 0`, as the camera contract says.
+const T_MIN: f32 = f32::MIN_POSITIVE;
+
+/// How far a secondary ray's origin is moved off the surface: this much times
+/// `1 + max |coordinate|` of the hit point ...
+const OFFSET_SCALE: f32 = 1e-4;
+
+/// ... plus this much times the distance the ray travelled to the hit.
+///
+/// A single-precision hit point is off by a few ulps (about 1e-7 relative) of its
+/// coordinates and of the distance travelled; these margins clear that by a factor of a
+/// hundred or more (no shadow acne) while staying far below anything visible at a
+/// scene's scale (no shadows detached from their objects).
+const OFFSET_PER_DISTANCE: f32 = 1e-5;
+
+/// The headlight used when a [`Shading::Lit`] scene has no lights at all: the share of
+/// the surface colour every lit point gets regardless of its orientation.
+pub(crate) const HEADLIGHT_AMBIENT: f32 = 0.15;
+
+/// A point on the film: the continuous image point and the lens sample of a primary
+/// ray, kept so grid lines can be filtered over the sample's footprint.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FilmPoint {
+    /// The continuous image point `(x, y)` in pixels.
+    pub(crate) image: DVec2,
+    /// The lens sample in `[0, 1)^2`.
+    pub(crate) p_lens: DVec2,
+    /// The side of the square of film this sample stands for, in pixels
+    /// (`1 / sqrt(samples)`).
+    pub(crate) spacing: f64,
+}
+
+/// The rule that turns hit points into [`Shading::Depth`] values.
+///
+/// ```text
+/// z = (p - e) . (-W)      planar projections: distance from the eye's plane along -w
+/// z = |p - e|             panoramic projections (no single view direction)
+/// s = (z - near) / (far - near)
+/// value = 1 - 0.9 s       for s <= 1 (near white, far 0.1 so it stays apart from a
+///                         black background)
+/// value = 0.1 / s         beyond far (only infinite planes get there): fading to 0 at
+///                         the horizon, still decreasing
+/// ```
+///
+/// `near` and `far` come from a pre-pass of one centre ray per pixel (see
+/// [`DepthMap::range_of`]), so the rule is the same whatever the threads and tiles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DepthMap {
+    eye: Vec3,
+    forward: Vec3,
+    panoramic: bool,
+    near: f32,
+    far: f32,
+}
+
+impl DepthMap {
+    /// The map of `camera` with the range still unknown.
+    pub(crate) fn new(camera: &Camera) -> Self {
+        let frame = camera.frame();
+        Self {
+            eye: frame.e.as_vec3(),
+            forward: (-frame.w).as_vec3(),
+            panoramic: matches!(
+                camera.projection(),
+                Projection::Equirectangular | Projection::Fisheye(_)
+            ),
+            near: 0.0,
+            far: 0.0,
+        }
+    }
+
+    /// `z` of the point `p`.
+    #[inline]
+    pub(crate) fn z(&self, p: Vec3) -> f32 {
+        if self.panoramic {
+            (p - self.eye).length()
+        } else {
+            (p - self.eye).dot(self.forward)
+        }
+    }
+
+    /// The map with `near` and `far` from the depths of the pre-pass: `near` the
+    /// smallest `z` of any hit, `far` the largest `z` of a hit on a bounded object (not
+    /// an infinite plane), or of any hit if only planes were hit.
+    pub(crate) fn with_range(self, range: DepthRange) -> Self {
+        let far = if range.far_bounded >= range.near {
+            range.far_bounded
+        } else {
+            range.far_any
+        };
+        Self {
+            near: range.near,
+            far,
+            ..self
+        }
+    }
+
+    /// The depth value of `p`, in `(0, 1]`.
+    #[inline]
+    pub(crate) fn value(&self, p: Vec3) -> f32 {
+        let extent = self.far - self.near;
+        if !extent.is_finite() || extent <= 0.0 {
+            return 1.0;
+        }
+        let s = ((self.z(p) - self.near) / extent).max(0.0);
+        if s <= 1.0 { 1.0 - 0.9 * s } else { 0.1 / s }
+    }
+}
+
+/// The depths seen by the pre-pass. Combining ranges takes minima and maxima, which
+/// give the same result in any order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DepthRange {
+    pub(crate) near: f32,
+    pub(crate) far_bounded: f32,
+    pub(crate) far_any: f32,
+}
+
+impl DepthRange {
+    /// No depths yet.
+    pub(crate) const EMPTY: DepthRange = DepthRange {
+        near: f32::INFINITY,
+        far_bounded: f32::NEG_INFINITY,
+        far_any: f32::NEG_INFINITY,
+    };
+
+    /// Both ranges together.
+    pub(crate) fn union(self, other: DepthRange) -> DepthRange {
+        DepthRange {
+            near: self.near.min(other.near),
+            far_bounded: self.far_bounded.max(other.far_bounded),
+            far_any: self.far_any.max(other.far_any),
+        }
+    }
+}
+
+/// Everything shading needs, shared read-only by every tile.
+pub(crate) struct Shader<'a> {
+    scene: &'a Scene,
+    max_depth: u32,
+    depth_map: DepthMap,
+    /// The background as stored in the image: the colour itself for colour images,
+    /// its sRGB encoding for data images (so it looks the same in a PNG).
+    background: Vec3,
+}
+
+impl<'a> Shader<'a> {
+    pub(crate) fn new(scene: &'a Scene, max_depth: u32, depth_map: DepthMap) -> Self {
+        let background = match scene.shading {
+            Shading::Flat | Shading::Lit => scene.background,
+            Shading::Normals | Shading::Depth => scene.background.map(linear_to_srgb),
+        };
+        Self {
+            scene,
+            max_depth,
+            depth_map,
+            background,
+        }
+    }
+
+    /// The value stored where a ray hits nothing (or where a camera has no ray).
+    #[inline]
+    pub(crate) fn background(&self) -> Vec3 {
+        self.background
+    }
+
+    /// The value of what the viewing ray `ray` through `film` sees.
+    #[inline]
+    pub(crate) fn primary(&self, ray: &Ray, film: &FilmPoint, rays: &mut u64) -> Vec3 {
+        *rays += 1;
+        let Some(hit) = self.scene.world.closest_hit(ray, T_MIN..f32::INFINITY) else {
+            return self.background;
+        };
+        match self.scene.shading {
+            Shading::Flat => {
+                let material = self.scene.material(&hit);
+                surface_color(material, &hit, || self.footprint(film, &hit))
+            }
+            Shading::Normals => hit.shading_normal * 0.5 + 0.5,
+            Shading::Depth => Vec3::splat(self.depth_map.value(hit.point)),
+            Shading::Lit => self.lit(ray, &hit, Some(film), 0, rays),
+        }
+    }
+
+    /// The colour seen along a reflected ray at mirror bounce `depth`.
+    fn secondary(&self, ray: &Ray, depth: u32, rays: &mut u64) -> Vec3 {
+        *rays += 1;
+        match self.scene.world.closest_hit(ray, 0.0..f32::INFINITY) {
+            Some(hit) => self.lit(ray, &hit, None, depth, rays),
+            None => self.background,
+        }
+    }
+
+    /// Blinn-Phong with every light, hard shadows and mirror reflection; see the
+    /// crate's documentation for the formulas.
+    fn lit(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        film: Option<&FilmPoint>,
+        depth: u32,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let material = self.scene.material(hit);
+        let base = surface_color(material, hit, || {
+            film.map_or(Footprint::Point, |f| self.footprint(f, hit))
+        });
+        let world = &self.scene.world;
+        let view = -ray.direction.normalize_or_zero();
+        let n = hit.shading_normal;
+        let origin = offset_origin(hit, ray);
+
+        let mut color = Vec3::ZERO;
+        if self.scene.lights.is_empty() {
+            // Headlight: a light at the eye, so a scene without lights is still visible.
+            color += base * HEADLIGHT_AMBIENT
+                + (1.0 - HEADLIGHT_AMBIENT) * blinn_phong(base, material, n, view, view);
+        }
+        for light in &self.scene.lights {
+            match *light {
+                Light::Ambient { intensity } => color += base * intensity,
+                Light::Point {
+                    position,
+                    intensity,
+                } => {
+                    // Find the direction to the light and the inverse-square falloff.
+                    let to_light = position - origin;
+                    let distance_squared = to_light.length_squared();
+                    let l = to_light / distance_squared.sqrt();
+                    if distance_squared <= 0.0 || hit.normal.dot(l) <= 0.0 {
+                        continue;
+                    }
+                    // Cast the shadow ray: the light sits at t = 1.
+                    *rays += 1;
+                    if world.any_hit(&Ray::new(origin, to_light), 0.0..1.0) {
+                        continue;
+                    }
+                    color += intensity / distance_squared * blinn_phong(base, material, n, l, view);
+                }
+                Light::Directional {
+                    direction,
+                    intensity,
+                } => {
+                    let l = -direction;
+                    if hit.normal.dot(l) <= 0.0 {
+                        continue;
+                    }
+                    *rays += 1;
+                    if world.any_hit(&Ray::new(origin, l), 0.0..f32::INFINITY) {
+                        continue;
+                    }
+                    color += intensity * blinn_phong(base, material, n, l, view);
+                }
+            }
+        }
+
+        if material.mirror > 0.0 {
+            let reflected = if depth < self.max_depth {
+                let direction = reflect(-view, n, hit.normal);
+                self.secondary(&Ray::new(origin, direction), depth + 1, rays)
+            } else {
+                Vec3::ZERO
+            };
+            color = color.lerp(reflected, material.mirror);
+        }
+        color
+    }
+
+    /// Where the film sample's neighbours (one sample spacing along the image's x and y)
+    /// land on the hit's tangent plane, as in ray differentials; unbounded where a
+    /// neighbouring ray misses the plane (toward the horizon) or does not exist.
+    fn footprint(&self, film: &FilmPoint, hit: &Hit) -> Footprint {
+        let camera = &self.scene.camera;
+        let on_plane = |offset: DVec2| -> Option<Vec3> {
+            let ray = camera
+                .generate_ray_through(film.image + offset * film.spacing, film.p_lens)?
+                .as_ray();
+            let denominator = hit.normal.dot(ray.direction);
+            let t = hit.normal.dot(hit.point - ray.origin) / denominator;
+            (t > 0.0 && t.is_finite()).then(|| ray.at(t) - hit.point)
+        };
+        match (on_plane(DVec2::X), on_plane(DVec2::Y)) {
+            (Some(dx), Some(dy)) => Footprint::Area(dx, dy),
+            _ => Footprint::Unbounded,
+        }
+    }
+
+    /// The depth of the centre ray of one pixel for the [`Shading::Depth`] pre-pass.
+    pub(crate) fn depth_probe(&self, ray: &Ray, range: &mut DepthRange) {
+        if let Some(hit) = self.scene.world.closest_hit(ray, T_MIN..f32::INFINITY) {
+            let z = self.depth_map.z(hit.point);
+            range.near = range.near.min(z);
+            range.far_any = range.far_any.max(z);
+            let plane = matches!(
+                self.scene.world.objects()[hit.object as usize],
+                Object::Plane(_)
+            );
+            if !plane {
+                range.far_bounded = range.far_bounded.max(z);
+            }
+        }
+    }
+}
+
+/// Blinn-Phong for one light direction `l` and view direction `v` (unit vectors), per
+/// unit of the light's irradiance:
+///
+/// ```text
+/// color max(0, n.l) + specular max(0, n.h)^shininess,   h = (l + v) / |l + v|
+/// ```
+///
+/// (no specular where `n.l <= 0`).
+#[inline]
+fn blinn_phong(base: Vec3, material: &Material, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
+    let n_dot_l = n.dot(l);
+    if n_dot_l <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let mut color = base * n_dot_l;
+    if material.specular != Vec3::ZERO {
+        let h = (l + v).normalize_or_zero();
+        color += material.specular * n.dot(h).max(0.0).powf(material.shininess);
+    }
+    color
+}
+
+/// The mirror direction of the unit direction `d` about the shading normal `n`,
+/// `d - 2 (d.n) n`; about the geometric normal `ng` instead if the shading normal would
+/// send it into the surface.
+#[inline]
+fn reflect(d: Vec3, n: Vec3, ng: Vec3) -> Vec3 {
+    let r = d - 2.0 * d.dot(n) * n;
+    if r.dot(ng) > 0.0 {
+        r
+    } else {
+        d - 2.0 * d.dot(ng) * ng
+    }
+}
+
+/// Where secondary rays from `hit` start: the hit point moved off the surface along the
+/// geometric normal, on the side the ray came from, by [`OFFSET_SCALE`] of the size of
+/// its coordinates plus [`OFFSET_PER_DISTANCE`] of the distance the ray travelled.
+#[inline]
+fn offset_origin(hit: &Hit, ray: &Ray) -> Vec3 {
+    let magnitude = hit.point.abs().max_element();
+    let travelled = hit.t * ray.direction.length();
+    hit.point + hit.normal * (OFFSET_SCALE * (1.0 + magnitude) + OFFSET_PER_DISTANCE * travelled)
+}
+
+/// The part of a surface one sample stands for, over which grid lines are averaged.
+#[derive(Clone, Copy, Debug)]
+enum Footprint {
+    /// A point: no averaging (reflected rays, whose footprint is not tracked).
+    Point,
+    /// The parallelogram spanned by two world-space vectors.
+    Area(Vec3, Vec3),
+    /// Larger than anything: the lines' average.
+    Unbounded,
+}
+
+/// The surface colour of `material` at `hit`: its colour, with grid lines over it.
+///
+/// Grid lines are lines of constant world coordinate every `spacing` along the two
+/// world axes closest to the surface's plane (the axis nearest the normal is left out),
+/// `line_width` wide, centred on the multiples of `spacing`. Each sample averages the
+/// lines over its own footprint on the surface (`footprint`, computed only for grid
+/// materials), so they stay smooth toward the horizon; without a footprint (reflected
+/// rays) they are point-sampled.
+#[inline]
+fn surface_color(material: &Material, hit: &Hit, footprint: impl FnOnce() -> Footprint) -> Vec3 {
+    let Some(grid) = material.grid else {
+        return material.color;
+    };
+    let n = hit.normal.abs();
+    let (a, b) = if n.x >= n.y && n.x >= n.z {
+        (1, 2)
+    } else if n.y >= n.z {
+        (0, 2)
+    } else {
+        (0, 1)
+    };
+    let widths = match footprint() {
+        Footprint::Point => Vec3::ZERO,
+        Footprint::Area(dx, dy) => dx.abs() + dy.abs(),
+        Footprint::Unbounded => Vec3::INFINITY,
+    };
+    let coverage_a = line_coverage(hit.point[a], widths[a], &grid);
+    let coverage_b = line_coverage(hit.point[b], widths[b], &grid);
+    let coverage = 1.0 - (1.0 - coverage_a) * (1.0 - coverage_b);
+    material.color.lerp(grid.color, coverage)
+}
+
+/// The fraction of the interval `[x - width/2, x + width/2]` covered by grid lines
+/// (centred on multiples of `spacing`, `line_width` wide): the box-filtered line
+/// pattern. Width 0 point-samples it; a width of many spacings gives the average,
+/// `line_width / spacing`.
+#[inline]
+fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
+    let spacing = grid.spacing;
+    let half = 0.5 * grid.line_width.min(spacing);
+    // The offset from the nearest line's centre, in [-spacing/2, spacing/2].
+    let d = x - (x / spacing).round() * spacing;
+    if width <= 1e-6 * spacing {
+        return f32::from(u8::from(d.abs() < half));
+    }
+    if width >= 64.0 * spacing {
+        return 2.0 * half / spacing;
+    }
+    let (a, b) = (d - 0.5 * width, d + 0.5 * width);
+    if width < spacing {
+        // The window meets at most the nearest line and its two neighbours.
+        if a >= -half && b <= half {
+            return 1.0;
+        }
+        let overlap = |centre: f32| (b.min(centre + half) - a.max(centre - half)).max(0.0);
+        return ((overlap(-spacing) + overlap(0.0) + overlap(spacing)) / width).clamp(0.0, 1.0);
+    }
+    // Wider windows: the pattern's integral from 0 to y, with lines shifted to occupy
+    // [k spacing, k spacing + 2 half), is k 2 half + min(y - k spacing, 2 half) for
+    // k = floor(y / spacing); the coverage is its difference over the window / width.
+    let integral = |y: f32| {
+        let k = (y / spacing).floor();
+        (k, (y - k * spacing).clamp(0.0, spacing).min(2.0 * half))
+    };
+    let (k0, m0) = integral(a + half);
+    let (k1, m1) = integral(b + half);
+    (((k1 - k0) * 2.0 * half + m1 - m0) / width).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GRID: Grid = Grid {
+        spacing: 1.0,
+        line_width: 0.1,
+        color: Vec3::ZERO,
+    };
+
+    #[track_caller]
+    fn check(x: f32, width: f32, expected: f32) {
+        let got = line_coverage(x, width, &GRID);
+        assert!(
+            (got - expected).abs() < 1e-5,
+            "x {x} width {width}: {got}, expected {expected}"
+        );
+    }
+
+    #[test]
+    fn line_coverage_is_the_box_filtered_pattern() {
+        // Point samples: on a line within 0.05 of an integer.
+        check(0.0, 0.0, 1.0);
+        check(2.04, 0.0, 1.0);
+        check(-3.04, 0.0, 1.0);
+        check(0.5, 0.0, 0.0);
+        check(0.06, 0.0, 0.0);
+        // A footprint of one spacing always covers one line.
+        for x in [0.0, 0.3, 0.77, -5.2] {
+            check(x, 1.0, 0.1);
+        }
+        // Half a line in a window of 0.1 centred on a line's edge.
+        check(0.05, 0.1, 0.5);
+        // Entirely inside a line, or entirely between lines.
+        check(1.0, 0.05, 1.0);
+        check(1.5, 0.5, 0.0);
+        // Huge footprints: the average.
+        check(0.3, 1e9, 0.1);
+        check(0.3, f32::INFINITY, 0.1);
+    }
+
+    #[test]
+    fn reflection_mirrors_about_the_normal_and_never_enters_the_surface() {
+        let d = Vec3::new(1.0, -1.0, 0.0).normalize();
+        let r = reflect(d, Vec3::Y, Vec3::Y);
+        assert!((r - Vec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-6);
+        // A shading normal tilted so far that the mirror direction would go below.
+        let tilted = Vec3::new(1.0, 0.2, 0.0).normalize();
+        assert!(reflect(d, tilted, Vec3::Y).dot(Vec3::Y) > 0.0);
+    }
+}
