@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use glam::{DVec2, DVec3};
+use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 const CONVENTIONS: &str = "\
 Conventions (the lecture's, made exact): an image is W columns by H rows; pixel (row, col)
@@ -29,6 +30,13 @@ pub(crate) struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub(crate) enum Command {
+    /// Render a scene file to a PNG (or, with an .exr output, linear floats).
+    ///
+    /// For each pixel: generate viewing rays, find the closest object each meets, and
+    /// determine its colour. Without SCENE, renders the built-in default scene. The image
+    /// is the same, byte for byte, on any number of threads. A progress bar is shown on
+    /// stderr when it is a terminal.
+    Render(RenderArgs),
     /// Print the camera frame (e, u, v, w) built from eye, view (or look-at) and up.
     ///
     /// w = -view / |view|, u = (up x w) / |up x w|, v = w x u; with --look-at, view =
@@ -68,6 +76,33 @@ pub(crate) enum Command {
     /// compared (a file on one side only, not a PNG, different sizes) is reported and
     /// fails. Exit code 0 when every pair passes, 1 when any fails, 2 on bad usage.
     Compare(crate::compare::CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct RenderArgs {
+    /// The scene file to render; without it, the built-in default scene.
+    pub(crate) scene: Option<PathBuf>,
+    /// Where to write the image: .png (8-bit sRGB) or .exr (linear 32-bit floats).
+    #[arg(short, long, value_name = "OUT.png", default_value = "viewray.png")]
+    pub(crate) output: PathBuf,
+    /// Samples per pixel, instead of the scene's (1 is the pixel centre, the lecture's
+    /// ray).
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub(crate) samples: Option<u32>,
+    /// The image size as WIDTHxHEIGHT, instead of the scene's; fields of view given in
+    /// degrees and presets follow the new aspect ratio.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// How many threads to render on (default: one per core).
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub(crate) threads: Option<usize>,
+    /// Print one JSON line of statistics on stdout:
+    /// {"triangles":N,"load_s":..,"build_s":..,"render_s":..,"rays":N}. load_s is reading
+    /// and parsing the scene and its meshes; build_s is building the BVHs (timed by
+    /// building them once more, since loading builds them); render_s is tracing and
+    /// shading; rays counts primary, shadow and reflected rays.
+    #[arg(long)]
+    pub(crate) stats: bool,
 }
 
 #[derive(Args, Debug)]
@@ -151,6 +186,56 @@ fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
     let row = row.trim().parse().map_err(|_| wrong())?;
     let col = col.trim().parse().map_err(|_| wrong())?;
     Ok((row, col))
+}
+
+/// Parses an image size `WIDTHxHEIGHT` within the renderer's limits.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let wrong = || "expected the size as WIDTHxHEIGHT in pixels, like 640x480".to_owned();
+    let (width, height) = text.split_once(['x', 'X']).ok_or_else(wrong)?;
+    let width: u64 = width.trim().parse().map_err(|_| wrong())?;
+    let height: u64 = height.trim().parse().map_err(|_| wrong())?;
+    if width == 0 || height == 0 {
+        return Err(format!(
+            "the image must be at least 1 x 1 pixels, found {width} x {height}"
+        ));
+    }
+    let side = u64::from(MAX_IMAGE_SIDE);
+    if width > side || height > side {
+        return Err(format!(
+            "{width} x {height} is too large: each side can be at most {side} pixels"
+        ));
+    }
+    if width * height > MAX_IMAGE_PIXELS {
+        return Err(format!(
+            "{width} x {height} is too large: at most {MAX_IMAGE_PIXELS} pixels (2^28)"
+        ));
+    }
+    // Both sides are at most MAX_IMAGE_SIDE, so they fit.
+    Ok((width as u32, height as u32))
+}
+
+/// Parses a number of samples per pixel, 1 to [`MAX_SAMPLES`].
+fn parse_samples(text: &str) -> Result<u32, String> {
+    let wrong = || format!("expected a whole number of samples from 1 to {MAX_SAMPLES}");
+    let samples: u64 = text.trim().parse().map_err(|_| wrong())?;
+    match u32::try_from(samples) {
+        Ok(samples) if (1..=MAX_SAMPLES).contains(&samples) => Ok(samples),
+        _ => Err(wrong()),
+    }
+}
+
+/// The most render threads `--threads` accepts.
+const MAX_THREADS: usize = 1024;
+
+/// Parses a number of threads, 1 to [`MAX_THREADS`].
+fn parse_threads(text: &str) -> Result<usize, String> {
+    let wrong = || format!("expected a whole number of threads from 1 to {MAX_THREADS}");
+    let threads: usize = text.trim().parse().map_err(|_| wrong())?;
+    if (1..=MAX_THREADS).contains(&threads) {
+        Ok(threads)
+    } else {
+        Err(wrong())
+    }
 }
 
 /// Options that take one value each time and may be followed by several:
@@ -261,6 +346,30 @@ mod tests {
             expand(&["viewray", "rays", "--pixel", "0,0", "s.ron"]),
             ["viewray", "rays", "--pixel", "0,0", "s.ron"]
         );
+    }
+
+    #[test]
+    fn sizes_samples_and_threads_are_checked() {
+        assert_eq!(parse_size("640x480"), Ok((640, 480)));
+        assert_eq!(parse_size("16384X16384"), Ok((16384, 16384)));
+        for bad in [
+            "0x10",
+            "10x0",
+            "100000x10",
+            "16384x16385",
+            "640",
+            "640x",
+            "axb",
+            "-1x5",
+        ] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_samples("16"), Ok(16));
+        for bad in ["0", "-1", "65537", "99999999999", "x"] {
+            assert!(parse_samples(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_threads("2"), Ok(2));
+        assert!(parse_threads("0").is_err());
     }
 
     #[test]

@@ -11,6 +11,7 @@ mod cli;
 mod commands;
 mod compare;
 mod json;
+mod render;
 
 use std::process::ExitCode;
 
@@ -28,6 +29,7 @@ fn main() -> ExitCode {
         Err(error) => return cli::report_usage_error(&error),
     };
     let result = match cli.command {
+        Command::Render(args) => render::render(&args),
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
