@@ -1,6 +1,7 @@
 //! The render loop: tiles in parallel, samples per pixel, statistics.
 
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, PoisonError};
 
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
@@ -20,10 +21,12 @@ pub const TILE_SIZE: u32 = 16;
 /// the scene's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RenderSettings {
-    /// How many threads to render on; `None` uses rayon's global pool (one thread per
-    /// core). The image is the same, byte for byte, for any number.
+    /// How many threads to render on, in a pool of their own; `None` uses rayon's
+    /// global pool (one thread per core, as does `Some(0)`). The image is the same, byte
+    /// for byte, for any number.
     pub threads: Option<usize>,
-    /// The side of a square tile, in pixels: the unit of parallel work and of progress.
+    /// The side of a square tile, in pixels (0 counts as 1): the unit of parallel work
+    /// and of progress.
     pub tile_size: u32,
     /// How many mirror bounces a ray follows; beyond that, a mirror reflects black.
     pub max_reflection_depth: u32,
@@ -112,9 +115,8 @@ struct Tile {
     height: u32,
 }
 
-/// The tiles covering a `width x height` image, row by row.
+/// The tiles covering a `width x height` image, row by row; `size` is at least 1.
 fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
-    let size = size.max(1);
     (0..height.div_ceil(size))
         .flat_map(|tile_row| {
             (0..width.div_ceil(size)).map(move |tile_col| {
@@ -170,13 +172,22 @@ fn render_on_current_pool(
     let spacing = 1.0 / f64::from(samples).sqrt();
     let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
-    let tiles = tiles(width, height, settings.tile_size);
+    let traced = AtomicU64::new(0);
+    let tile_size = settings.tile_size.max(1);
+    let tiles = tiles(width, height, tile_size);
 
-    // Render the tiles in parallel, each into its own buffer.
-    let rendered: Vec<(Vec<Vec3>, u64)> = tiles
-        .par_iter()
-        .map(|tile| {
-            let mut pixels = Vec::with_capacity(tile.width as usize * tile.height as usize);
+    // The image, as bands one tile high that tiles lock while they copy their pixels in.
+    let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
+    let bands: Vec<Mutex<&mut [Vec3]>> = pixels
+        .chunks_mut(tile_size as usize * width as usize)
+        .map(Mutex::new)
+        .collect();
+
+    // Render the tiles in parallel, each thread reusing one tile buffer.
+    tiles.par_iter().for_each_init(
+        || Vec::with_capacity(tile_size as usize * tile_size as usize),
+        |buffer: &mut Vec<Vec3>, tile| {
+            buffer.clear();
             let mut rays = 0;
             for row in tile.row..tile.row + tile.height {
                 for col in tile.col..tile.col + tile.width {
@@ -196,32 +207,38 @@ fn render_on_current_pool(
                             None => shader.background(),
                         };
                     }
-                    pixels.push(sum / samples as f32);
+                    buffer.push(sum / samples as f32);
                 }
             }
+
+            // Copy the tile into its band of the image.
+            {
+                let mut band = bands[(tile.row / tile_size) as usize]
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner);
+                for (r, source) in buffer.chunks_exact(tile.width as usize).enumerate() {
+                    let start = (tile.row % tile_size + r as u32) as usize * width as usize
+                        + tile.col as usize;
+                    band[start..start + tile.width as usize].copy_from_slice(source);
+                }
+            }
+            traced.fetch_add(rays, Ordering::Relaxed);
             let pixel_count = u64::from(tile.width) * u64::from(tile.height);
             let finished = done.fetch_add(pixel_count, Ordering::Relaxed) + pixel_count;
             progress(finished, total);
-            (pixels, rays)
-        })
-        .collect();
+        },
+    );
+    drop(bands);
 
-    // Assemble the image from the tiles.
     let kind = match scene.shading {
         Shading::Flat | Shading::Lit => PixelKind::Color,
         Shading::Normals | Shading::Depth => PixelKind::Data,
     };
-    let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
-    for (tile, (tile_pixels, tile_rays)) in tiles.iter().zip(rendered) {
-        rays += tile_rays;
-        for (r, source) in tile_pixels.chunks_exact(tile.width as usize).enumerate() {
-            let start = (tile.row as usize + r) * width as usize + tile.col as usize;
-            pixels[start..start + tile.width as usize].copy_from_slice(source);
-        }
-    }
     Rendered {
         image: Image::from_pixels(width, height, pixels, kind),
-        stats: RenderStats { rays },
+        stats: RenderStats {
+            rays: rays + traced.into_inner(),
+        },
     }
 }
 
