@@ -1,5 +1,6 @@
 //! The render loop: tiles in parallel, samples per pixel, statistics.
 
+use std::cell::OnceCell;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
@@ -8,7 +9,7 @@ use rayon::prelude::*;
 use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
-use crate::sampling::camera_sample;
+use crate::sampling::Strata;
 use crate::shade::{DepthMap, DepthRange, FilmPoint, Shader};
 
 /// The default number of mirror bounces a ray follows.
@@ -170,6 +171,7 @@ fn render_on_current_pool(
 
     let shader = Shader::new(scene, settings.max_reflection_depth, depth_map);
     let spacing = 1.0 / f64::from(samples).sqrt();
+    let strata = Strata::new(samples);
     let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
     let traced = AtomicU64::new(0);
@@ -191,19 +193,17 @@ fn render_on_current_pool(
             let mut rays = 0;
             for row in tile.row..tile.row + tile.height {
                 for col in tile.col..tile.col + tile.width {
+                    let differentials = OnceCell::new();
+                    let film = FilmPoint {
+                        pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
+                        spacing,
+                        differentials: &differentials,
+                    };
                     let mut sum = Vec3::ZERO;
                     for index in 0..samples {
-                        let sample = camera_sample(row, col, index, samples);
+                        let sample = strata.camera_sample(row, col, index);
                         sum += match camera.generate_ray(row, col, sample) {
-                            Some(ray) => {
-                                let film = FilmPoint {
-                                    image: DVec2::new(f64::from(col), f64::from(row))
-                                        + sample.p_film,
-                                    p_lens: sample.p_lens,
-                                    spacing,
-                                };
-                                shader.primary(&ray.as_ray(), &film, &mut rays)
-                            }
+                            Some(ray) => shader.primary(&ray.as_ray(), &film, &mut rays),
                             None => shader.background(),
                         };
                     }

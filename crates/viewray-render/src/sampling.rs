@@ -93,56 +93,77 @@ pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
     }
 }
 
-/// The cell of stratum `cell` when the unit square is split into `count` cells of equal
-/// area: `rows = round(sqrt(count))` rows, each holding `count / rows` or one more
-/// cells side by side, each row as tall as its share of the cells.
+/// The strata of one pixel: the unit square split into `count` cells of equal area,
+/// `rows = round(sqrt(count))` rows, each holding `count / rows` or one more cells side
+/// by side, each row as tall as its share of the cells.
 ///
-/// Returns the cell's corner and size. Every `count` is stratified exactly, squares
-/// (4 -> 2 x 2, 16 -> 4 x 4) and others alike (3 -> two cells 2/3 tall side by side
-/// over one cell 1/3 tall; 5 -> a row of 3 over a row of 2).
-#[inline]
-pub(crate) fn stratum(cell: u32, count: u32) -> (DVec2, DVec2) {
-    debug_assert!(cell < count);
-    let rows = f64::from(count).sqrt().round().max(1.0) as u32;
-    let short = count / rows;
-    let long_rows = count % rows;
-    let long = short + 1;
-    // Rows 0..long_rows hold `long` cells, the rest `short`.
-    let (row_cells, first_in_row, col) = if cell < long_rows * long {
-        let row = cell / long;
-        (long, row * long, cell % long)
-    } else {
-        let rest = cell - long_rows * long;
-        (short, cell - rest % short, rest % short)
-    };
-    let n = f64::from(count);
-    let corner = DVec2::new(
-        f64::from(col) / f64::from(row_cells),
-        f64::from(first_in_row) / n,
-    );
-    let size = DVec2::new(1.0 / f64::from(row_cells), f64::from(row_cells) / n);
-    (corner, size)
+/// Every `count` is stratified exactly, squares (4 -> 2 x 2, 16 -> 4 x 4) and others
+/// alike (3 -> two cells 2/3 tall side by side over one cell 1/3 tall; 5 -> a row of 3
+/// over a row of 2).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Strata {
+    count: u32,
+    /// Cells in the short rows; the first `long_rows` rows hold one more.
+    short: u32,
+    long_rows: u32,
 }
 
-/// The camera sample of sample `index` of `count` in pixel `(row, col)`.
-///
-/// One sample is the pixel centre through the lens centre: the lecture's viewing ray, so
-/// a one-sample render is exactly the homework's image. More samples are jittered in the
-/// strata of [`stratum`]; lens samples (used only by cameras with a lens) are stratified
-/// the same way, their strata shuffled per pixel against the film's so film and lens
-/// positions are not correlated.
-#[inline]
-pub(crate) fn camera_sample(row: u32, col: u32, index: u32, count: u32) -> CameraSample {
-    if count <= 1 {
-        return CameraSample::CENTER;
+impl Strata {
+    /// The strata of `count` samples (at least 1).
+    pub(crate) fn new(count: u32) -> Self {
+        let count = count.max(1);
+        // round(sqrt(count)) is between 1 and count.
+        let rows = f64::from(count).sqrt().round().max(1.0) as u32;
+        Self {
+            count,
+            short: count / rows,
+            long_rows: count % rows,
+        }
     }
-    let mut rng = SampleRng::new(row, col, index);
-    let (corner, size) = stratum(index, count);
-    let p_film = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
-    let lens_cell = permute(index, count, pixel_seed(row, col));
-    let (corner, size) = stratum(lens_cell, count);
-    let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
-    CameraSample { p_film, p_lens }
+
+    /// The corner and size of cell `cell` (`cell < count`).
+    #[inline]
+    pub(crate) fn cell(&self, cell: u32) -> (DVec2, DVec2) {
+        debug_assert!(cell < self.count);
+        let long = self.short + 1;
+        // Rows 0..long_rows hold `long` cells, the rest `short`.
+        let (row_cells, first_in_row, col) = if cell < self.long_rows * long {
+            let row = cell / long;
+            (long, row * long, cell % long)
+        } else {
+            let rest = cell - self.long_rows * long;
+            let col = rest % self.short;
+            (self.short, cell - col, col)
+        };
+        let n = f64::from(self.count);
+        let corner = DVec2::new(
+            f64::from(col) / f64::from(row_cells),
+            f64::from(first_in_row) / n,
+        );
+        let size = DVec2::new(1.0 / f64::from(row_cells), f64::from(row_cells) / n);
+        (corner, size)
+    }
+
+    /// The camera sample of sample `index` in pixel `(row, col)`.
+    ///
+    /// One sample is the pixel centre through the lens centre: the lecture's viewing
+    /// ray, so a one-sample render is exactly the homework's image. More samples are
+    /// jittered in their strata; lens samples (used only by cameras with a lens) are
+    /// stratified the same way, their strata shuffled per pixel against the film's so
+    /// film and lens positions are not correlated.
+    #[inline]
+    pub(crate) fn camera_sample(&self, row: u32, col: u32, index: u32) -> CameraSample {
+        if self.count == 1 {
+            return CameraSample::CENTER;
+        }
+        let mut rng = SampleRng::new(row, col, index);
+        let (corner, size) = self.cell(index);
+        let p_film = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
+        let lens_cell = permute(index, self.count, pixel_seed(row, col));
+        let (corner, size) = self.cell(lens_cell);
+        let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
+        CameraSample { p_film, p_lens }
+    }
 }
 
 #[cfg(test)]
@@ -152,7 +173,8 @@ mod tests {
     /// The strata of `count` cover the unit square exactly once, with equal areas.
     #[track_caller]
     fn check_strata(count: u32, expected_rows: usize) {
-        let cells: Vec<_> = (0..count).map(|i| stratum(i, count)).collect();
+        let strata = Strata::new(count);
+        let cells: Vec<_> = (0..count).map(|i| strata.cell(i)).collect();
         let area: f64 = cells.iter().map(|(_, s)| s.x * s.y).sum();
         assert!((area - 1.0).abs() < 1e-12, "{count}: area {area}");
         for (corner, size) in &cells {
@@ -191,7 +213,10 @@ mod tests {
             check_strata(count, rows);
         }
         // Squares are square grids.
-        assert_eq!(stratum(5, 16), (DVec2::new(0.25, 0.25), DVec2::splat(0.25)));
+        assert_eq!(
+            Strata::new(16).cell(5),
+            (DVec2::new(0.25, 0.25), DVec2::splat(0.25))
+        );
     }
 
     #[test]
@@ -207,15 +232,16 @@ mod tests {
 
     #[test]
     fn samples_stay_in_their_strata_and_depend_only_on_the_pixel_and_index() {
+        let strata = Strata::new(9);
         for index in 0..9 {
-            let s = camera_sample(3, 4, index, 9);
-            let (corner, size) = stratum(index, 9);
+            let s = strata.camera_sample(3, 4, index);
+            let (corner, size) = strata.cell(index);
             assert!(s.p_film.cmpge(corner).all() && s.p_film.cmplt(corner + size).all());
             assert!(s.p_lens.cmpge(DVec2::ZERO).all() && s.p_lens.cmplt(DVec2::ONE).all());
-            assert_eq!(s, camera_sample(3, 4, index, 9));
+            assert_eq!(s, strata.camera_sample(3, 4, index));
         }
-        assert_ne!(camera_sample(3, 4, 0, 9), camera_sample(4, 3, 0, 9));
-        assert_eq!(camera_sample(7, 7, 0, 1), CameraSample::CENTER);
+        assert_ne!(strata.camera_sample(3, 4, 0), strata.camera_sample(4, 3, 0));
+        assert_eq!(Strata::new(1).camera_sample(7, 7, 0), CameraSample::CENTER);
     }
 
     #[test]

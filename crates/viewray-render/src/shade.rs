@@ -1,5 +1,7 @@
 //! What a ray sees: the four shading modes, grid lines, lights, shadows and mirrors.
 
+use std::cell::OnceCell;
+
 use glam::{DVec2, Vec3};
 use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Hit, Object, Ray};
@@ -26,17 +28,30 @@ const OFFSET_PER_DISTANCE: f32 = 1e-5;
 /// the surface colour every lit point gets regardless of its orientation.
 pub(crate) const HEADLIGHT_AMBIENT: f32 = 0.15;
 
-/// A point on the film: the continuous image point and the lens sample of a primary
-/// ray, kept so grid lines can be filtered over the sample's footprint.
+/// A point on the film: the continuous image point of a primary ray, kept so grid lines
+/// can be filtered over the sample's footprint.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct FilmPoint {
-    /// The continuous image point `(x, y)` in pixels.
-    pub(crate) image: DVec2,
-    /// The lens sample in `[0, 1)^2`.
-    pub(crate) p_lens: DVec2,
+pub(crate) struct FilmPoint<'a> {
+    /// The pixel's centre `(col + 1/2, row + 1/2)`.
+    pub(crate) pixel_center: DVec2,
     /// The side of the square of film this sample stands for, in pixels
     /// (`1 / sqrt(samples)`).
     pub(crate) spacing: f64,
+    /// The pixel's ray differentials, worked out by the first sample that needs them.
+    pub(crate) differentials: &'a OnceCell<Option<RayDifferentials>>,
+}
+
+/// How a viewing ray changes when its film point moves by one sample spacing along the
+/// image's x and y: the origin and direction differences of neighbouring rays (pbrt's
+/// ray differentials), taken through the lens centre. For every planar projection,
+/// thin lenses included, they do not depend on the lens point; for panoramic ones they
+/// vary slowly across a pixel, so one set per pixel serves all its samples.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RayDifferentials {
+    origin_dx: Vec3,
+    direction_dx: Vec3,
+    origin_dy: Vec3,
+    direction_dy: Vec3,
 }
 
 /// The rule that turns hit points into [`Shading::Depth`] values.
@@ -175,7 +190,7 @@ impl<'a> Shader<'a> {
 
     /// The value of what the viewing ray `ray` through `film` sees.
     #[inline]
-    pub(crate) fn primary(&self, ray: &Ray, film: &FilmPoint, rays: &mut u64) -> Vec3 {
+    pub(crate) fn primary(&self, ray: &Ray, film: &FilmPoint<'_>, rays: &mut u64) -> Vec3 {
         *rays += 1;
         let Some(hit) = self.scene.world.closest_hit(ray, T_MIN..f32::INFINITY) else {
             return self.background;
@@ -183,7 +198,7 @@ impl<'a> Shader<'a> {
         match self.scene.shading {
             Shading::Flat => {
                 let material = self.scene.material(&hit);
-                surface_color(material, &hit, || self.footprint(film, &hit))
+                surface_color(material, &hit, || self.footprint(film, ray, &hit))
             }
             Shading::Normals => hit.shading_normal * 0.5 + 0.5,
             Shading::Depth => Vec3::splat(self.depth_map.value(hit.point)),
@@ -206,13 +221,13 @@ impl<'a> Shader<'a> {
         &self,
         ray: &Ray,
         hit: &Hit,
-        film: Option<&FilmPoint>,
+        film: Option<&FilmPoint<'_>>,
         depth: u32,
         rays: &mut u64,
     ) -> Vec3 {
         let material = self.scene.material(hit);
         let base = surface_color(material, hit, || {
-            film.map_or(Footprint::Point, |f| self.footprint(f, hit))
+            film.map_or(Footprint::Point, |f| self.footprint(f, ray, hit))
         });
         let world = &self.scene.world;
         let view = -ray.direction.normalize_or_zero();
@@ -278,20 +293,48 @@ impl<'a> Shader<'a> {
     /// Where the film sample's neighbours (one sample spacing along the image's x and y)
     /// land on the hit's tangent plane, as in ray differentials; unbounded where a
     /// neighbouring ray misses the plane (toward the horizon) or does not exist.
-    fn footprint(&self, film: &FilmPoint, hit: &Hit) -> Footprint {
-        let camera = &self.scene.camera;
-        let on_plane = |offset: DVec2| -> Option<Vec3> {
-            let ray = camera
-                .generate_ray_through(film.image + offset * film.spacing, film.p_lens)?
-                .as_ray();
-            let denominator = hit.normal.dot(ray.direction);
-            let t = hit.normal.dot(hit.point - ray.origin) / denominator;
-            (t > 0.0 && t.is_finite()).then(|| ray.at(t) - hit.point)
+    fn footprint(&self, film: &FilmPoint<'_>, ray: &Ray, hit: &Hit) -> Footprint {
+        let differentials = film
+            .differentials
+            .get_or_init(|| self.differentials(film.pixel_center, film.spacing));
+        let Some(differentials) = differentials else {
+            return Footprint::Unbounded;
         };
-        match (on_plane(DVec2::X), on_plane(DVec2::Y)) {
+        let on_plane = |origin: Vec3, direction: Vec3| -> Option<Vec3> {
+            let t = hit.normal.dot(hit.point - origin) / hit.normal.dot(direction);
+            (t > 0.0 && t.is_finite()).then(|| origin + t * direction - hit.point)
+        };
+        let dx = on_plane(
+            ray.origin + differentials.origin_dx,
+            ray.direction + differentials.direction_dx,
+        );
+        let dy = on_plane(
+            ray.origin + differentials.origin_dy,
+            ray.direction + differentials.direction_dy,
+        );
+        match (dx, dy) {
             (Some(dx), Some(dy)) => Footprint::Area(dx, dy),
             _ => Footprint::Unbounded,
         }
+    }
+
+    /// The ray differentials at the image point `center` for a step of `spacing` pixels,
+    /// or `None` where a neighbouring ray does not exist (outside a fisheye's circle).
+    fn differentials(&self, center: DVec2, spacing: f64) -> Option<RayDifferentials> {
+        let camera = &self.scene.camera;
+        let lens = DVec2::splat(0.5);
+        let ray = |offset: DVec2| {
+            camera
+                .generate_ray_through(center + offset * spacing, lens)
+                .map(|r| r.as_ray())
+        };
+        let (c, x, y) = (ray(DVec2::ZERO)?, ray(DVec2::X)?, ray(DVec2::Y)?);
+        Some(RayDifferentials {
+            origin_dx: x.origin - c.origin,
+            direction_dx: x.direction - c.direction,
+            origin_dy: y.origin - c.origin,
+            direction_dy: y.direction - c.direction,
+        })
     }
 
     /// The depth of the centre ray of one pixel for the [`Shading::Depth`] pre-pass.
