@@ -5,7 +5,10 @@
 //! triangle of both structures and a check that both find the same hits. Criterion's
 //! `thrpt` lines are rays (or triangles, for the build) per second. `viewray` traces
 //! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray full Hit`
-//! with `Mesh::closest_hit`, which also interpolates normals and uv. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
+//! with `Mesh::closest_hit`, which also interpolates normals and uv.
+//!
+//! With `--features embree` (needs the system's Embree 3, e.g. Debian's
+//! `libembree-dev`), Embree joins the comparison: build and single-ray queries. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
 //! smaller icosphere (default 8: 20 * 4^8 triangles).
 
 use std::hint::black_box;
@@ -90,6 +93,70 @@ impl Obvhs {
     }
 }
 
+/// Embree 3 (the system library) on the same mesh, with its default build quality and
+/// single-ray queries: only with `--features embree`.
+#[cfg(feature = "embree")]
+struct Embree {
+    // Declared before the device so that it is released first.
+    scene: embree3::Scene<'static>,
+    _device: embree3::Device,
+}
+
+#[cfg(feature = "embree")]
+impl Embree {
+    /// Builds the scene with `threads` build threads (0: all).
+    fn build(data: &MeshData, threads: u32) -> Self {
+        use embree3::{BufferUsage, Config, Device, Format, GeometryKind};
+        let device = Device::with_config(Config {
+            threads,
+            ..Config::default()
+        })
+        .expect("an Embree device");
+        let mut scene = device.create_scene().expect("an Embree scene");
+        let mut mesh = device
+            .create_geometry(GeometryKind::TRIANGLE)
+            .expect("an Embree triangle mesh");
+        let positions: Vec<[f32; 3]> = data.positions.iter().map(|p| p.to_array()).collect();
+        mesh.set_new_buffer::<[f32; 3]>(
+            BufferUsage::VERTEX,
+            0,
+            Format::FLOAT3,
+            12,
+            positions.len(),
+        )
+        .expect("a vertex buffer")
+        .copy_from_slice(&positions);
+        mesh.set_new_buffer::<[u32; 3]>(
+            BufferUsage::INDEX,
+            0,
+            Format::UINT3,
+            12,
+            data.triangles.len(),
+        )
+        .expect("an index buffer")
+        .copy_from_slice(&data.triangles);
+        let mesh = mesh.commit();
+        scene.attach_geometry(&mesh);
+        scene.commit();
+        Self {
+            scene,
+            _device: device,
+        }
+    }
+
+    fn closest_t(&self, ray: &Ray) -> Option<f32> {
+        let mut context = embree3::IntersectContext::incoherent();
+        let mut ray_hit = embree3::RayHit::from(embree3::Ray::segment(
+            ray.origin.to_array(),
+            ray.direction.to_array(),
+            0.0,
+            f32::INFINITY,
+        ));
+        self.scene.intersect(&mut context, &mut ray_hit);
+        ray_hit.hit.is_valid().then_some(ray_hit.ray.tfar)
+    }
+}
+
 fn obvhs_triangles(data: &MeshData) -> Vec<obvhs::triangle::Triangle> {
     data.triangles
         .iter()
@@ -141,6 +208,8 @@ fn main() {
     let mesh = Mesh::new(data.clone()).expect("the icosphere is valid");
     let obvhs_input = obvhs_triangles(&data);
     let peer = Obvhs::build(&obvhs_input);
+    #[cfg(feature = "embree")]
+    let embree = Embree::build(&data, 0);
     let primary = primary_rays(1024, 1024);
     let incoherent = incoherent_rays(1_000_000);
 
@@ -157,6 +226,22 @@ fn main() {
             .collect();
         let theirs: Vec<Option<f32>> = rays.par_iter().map(|r| peer.closest_t(r)).collect();
         let hits = ours.iter().flatten().count();
+        #[cfg(feature = "embree")]
+        {
+            let embree_agrees = rays
+                .par_iter()
+                .zip(&ours)
+                .filter(|(ray, ours)| match (embree.closest_t(ray), ours) {
+                    (Some(a), Some(b)) => (a - b).abs() <= 1e-4 * a.max(1.0),
+                    (None, None) => true,
+                    _ => false,
+                })
+                .count();
+            println!(
+                "{name} rays: Embree agrees on {embree_agrees} ({:.4}%)",
+                100.0 * embree_agrees as f64 / rays.len() as f64
+            );
+        }
         let agree = ours
             .iter()
             .zip(&theirs)
@@ -198,6 +283,13 @@ fn main() {
         group.bench_function(format!("obvhs/{threads} threads"), |b| {
             b.iter(|| Obvhs::build(&obvhs_input))
         });
+        #[cfg(feature = "embree")]
+        {
+            group.bench_function("embree/1 thread", |b| b.iter(|| Embree::build(&data, 1)));
+            group.bench_function(format!("embree/{threads} threads"), |b| {
+                b.iter(|| Embree::build(&data, 0))
+            });
+        }
         group.finish();
     }
 
@@ -219,6 +311,17 @@ fn main() {
         group.bench_function(format!("obvhs/{threads} threads"), |b| {
             b.iter(|| black_box(parallel(rays, |r| trace_obvhs(&peer, r))))
         });
+        #[cfg(feature = "embree")]
+        {
+            let trace_embree =
+                |rays: &[Ray]| -> f32 { rays.iter().filter_map(|ray| embree.closest_t(ray)).sum() };
+            group.bench_function("embree/1 thread", |b| {
+                b.iter(|| black_box(trace_embree(rays)))
+            });
+            group.bench_function(format!("embree/{threads} threads"), |b| {
+                b.iter(|| black_box(parallel(rays, trace_embree)))
+            });
+        }
         group.finish();
     }
     criterion.final_summary();

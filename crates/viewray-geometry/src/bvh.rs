@@ -173,30 +173,28 @@ fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
     }
 }
 
-/// Asks the CPU to start loading the items `items[range]` into the cache (every cache
-/// line they touch), so that the loads of the children a ray will visit overlap.
+/// Asks the CPU to start loading the bytes at `offsets` from the start of
+/// `items[index]` into the cache, so that the loads of the children a ray will visit
+/// overlap. The offsets are constants, so this is straight-line code: a loop here cost
+/// coherent rays, whose data is already cached, a tenth of their time.
 #[inline(always)]
-pub(crate) fn prefetch<T>(items: &[T], range: std::ops::Range<usize>) {
+pub(crate) fn prefetch<T, const N: usize>(items: &[T], index: usize, offsets: [usize; N]) {
     #[cfg(target_arch = "x86_64")]
-    if let Some(run) = items.get(range) {
-        let first = run.as_ptr().cast::<i8>();
-        let misalignment = first as usize % 64;
-        let line = first.wrapping_sub(misalignment);
-        let mut offset = 0;
-        while offset < misalignment + std::mem::size_of_val(run) {
+    if let Some(item) = items.get(index) {
+        let start = std::ptr::from_ref(item).cast::<i8>();
+        for offset in offsets {
             #[allow(unsafe_code)]
             // SAFETY: `_mm_prefetch` is only a hint: it reads nothing the program can
             // observe and never faults, whatever the address. It is an SSE instruction,
             // and SSE is part of the x86_64 baseline.
             unsafe {
                 use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-                _mm_prefetch::<_MM_HINT_T0>(line.wrapping_add(offset));
+                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset));
             }
-            offset += 64;
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = (items, range);
+    let _ = (items, index, offsets);
 }
 
 fn leaf_ref(start: usize, count: usize) -> u32 {
@@ -494,7 +492,7 @@ impl Bvh {
                         let child = node.children[bits.trailing_zeros() as usize];
                         bits &= bits - 1;
                         if child & LEAF == 0 {
-                            prefetch(&self.nodes, child as usize..child as usize + 1);
+                            prefetch(&self.nodes, child as usize, [0, 64, 128, 192]);
                         } else {
                             let (start, count) = decode_leaf(child);
                             prefetch_leaf(start, count);
