@@ -628,6 +628,11 @@ impl Bvh {
     /// Checks the structure: every child box holds its subtree, leaves tile the items.
     #[cfg(test)]
     pub(crate) fn validate(&self, item_bounds: &dyn Fn(u32) -> Aabb) {
+        if self.nodes.is_empty() {
+            // An empty BVH has no root to check.
+            assert!(self.item_order.is_empty());
+            return;
+        }
         let mut seen = vec![false; self.item_order.len()];
         let mut stack = vec![(0u32, self.bounds)];
         while let Some((node_index, bounds)) = stack.pop() {
