@@ -2,6 +2,9 @@
 //!
 //! `cargo xtask` (an alias in `.cargo/config.toml`) with no argument lists the commands.
 
+mod golden;
+
+use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
@@ -10,14 +13,22 @@ const HELP: &str = "\
 usage: cargo xtask <command>
 
 commands:
-  ci    run every check CI runs: cargo fmt --check, cargo clippy (warnings are errors)
-        and cargo test, on the whole workspace
+  ci                      every check CI runs: cargo fmt --check, cargo clippy (warnings
+                          are errors), cargo test, then the golden check
+  golden [FILTER]         render every scene in fixtures/scenes and compare it with
+                          golden/scenes/<name>.png; a report of the failures goes to
+                          target/golden/index.html. FILTER keeps the images whose
+                          `scenes/<name>` contains it
+  golden [FILTER] --bless rewrite the goldens whose pixels changed, add missing ones and
+                          remove those with no scene (refused when CI is set)
 ";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("ci") => ci(),
+        Some("golden") => golden::GoldenArgs::parse(&args[1..])
+            .and_then(|a| golden::golden(&workspace_root(), &a)),
         Some("help" | "--help" | "-h") | None => {
             print!("{HELP}");
             Ok(())
@@ -45,7 +56,8 @@ fn ci() -> Result<()> {
         "warnings",
     ])?;
     cargo(&["test", "--workspace"])?;
-    Ok(())
+    eprintln!("$ cargo xtask golden");
+    golden::golden(&workspace_root(), &golden::GoldenArgs::default())
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
@@ -64,8 +76,8 @@ fn cargo(args: &[&str]) -> Result<()> {
 }
 
 /// The workspace root: the parent of this crate's manifest directory.
-fn workspace_root() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .expect("xtask lives one level below the workspace root")
         .to_path_buf()

@@ -1,0 +1,363 @@
+//! `cargo xtask golden`: every projection family rendered and compared with its committed
+//! golden image.
+//!
+//! Each scene `fixtures/scenes/<name>.ron` is rendered in-process and compared with
+//! `golden/scenes/<name>.png` by decoded pixels, never by PNG bytes, through
+//! viewray-compare's golden gates ([`Thresholds::GOLDEN`]): a per-pixel gate that absorbs
+//! last-bit floating-point differences between machines, and a perceptual (FLIP) gate that
+//! catches a one-pixel edge shift or a colour change a person would notice. A missing
+//! golden, a golden without a scene, and a blank golden each fail.
+//!
+//! On failure `target/golden/index.html` shows expected, actual and a FLIP heatmap for each
+//! failing image, and the console prints the command that accepts the new images.
+//! `--bless` rewrites exactly the goldens whose pixels changed, adds missing ones and
+//! removes orphans; it refuses to run under CI.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use viewray_compare::{Comparison, ReportEntry, RgbaImage, Thresholds};
+use viewray_render::RenderSettings;
+use viewray_scene::Scene;
+
+/// The command line of `cargo xtask golden`.
+#[derive(Debug, Default)]
+pub(crate) struct GoldenArgs {
+    /// Only the images whose `kind/name` contains this.
+    pub(crate) filter: Option<String>,
+    /// Rewrite the goldens that changed instead of failing.
+    pub(crate) bless: bool,
+}
+
+impl GoldenArgs {
+    pub(crate) fn parse(args: &[String]) -> Result<Self> {
+        let mut parsed = Self::default();
+        for arg in args {
+            match arg.as_str() {
+                "--bless" => parsed.bless = true,
+                flag if flag.starts_with('-') => bail!("unknown option `{flag}` for golden"),
+                filter if parsed.filter.is_none() => parsed.filter = Some(filter.to_owned()),
+                extra => bail!("golden takes one FILTER, found a second: `{extra}`"),
+            }
+        }
+        Ok(parsed)
+    }
+
+    fn selects(&self, id: &str) -> bool {
+        self.filter.as_deref().is_none_or(|f| id.contains(f))
+    }
+}
+
+/// One image the check covers: where its golden lives and how to make the actual one.
+struct Case {
+    /// `scenes/<name>`: the report's and the filter's name for it.
+    id: String,
+    golden: PathBuf,
+    source: Source,
+}
+
+enum Source {
+    Scene(PathBuf),
+}
+
+/// An image a case made, in the form its golden PNG stores and the form it is encoded
+/// from.
+struct Made {
+    pixels: RgbaImage,
+    output: Output,
+}
+
+enum Output {
+    Render(viewray_render::Image),
+}
+
+impl Output {
+    /// The PNG file, with the producer's fixed encoder settings and no metadata.
+    fn png(&self) -> Result<Vec<u8>> {
+        let mut png = Vec::new();
+        match self {
+            Output::Render(image) => image.write_png(&mut png)?,
+        }
+        Ok(png)
+    }
+}
+
+/// What became of one case.
+enum Verdict {
+    /// Pixel for pixel the golden.
+    Same,
+    /// Within the tolerances, but not identical.
+    Passed(Made, Comparison),
+    Failed {
+        made: Option<Made>,
+        expected: Option<RgbaImage>,
+        comparison: Option<Comparison>,
+        reason: String,
+    },
+}
+
+/// Runs the golden check (or, with `--bless`, updates the goldens).
+pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
+    if args.bless && std::env::var_os("CI").is_some_and(|v| !v.is_empty() && v != "false") {
+        bail!("--bless refuses to run under CI: goldens are blessed on purpose, by a person");
+    }
+    let (cases, orphans) = cases(root, args)?;
+    if cases.is_empty() && orphans.is_empty() {
+        bail!(
+            "no golden case matches `{}`",
+            args.filter.as_deref().unwrap_or_default()
+        );
+    }
+    let started = Instant::now();
+    let mut failures: Vec<(String, Verdict)> = Vec::new();
+    let mut blessed = 0;
+    for case in &cases {
+        let case_started = Instant::now();
+        let verdict = check(case);
+        let ms = case_started.elapsed().as_millis();
+        match &verdict {
+            Verdict::Same => eprintln!("  ok    {:<40} identical {ms:>6} ms", case.id),
+            Verdict::Passed(_, c) => {
+                eprintln!("  ok    {:<40} {} {ms:>6} ms", case.id, figures(c));
+            }
+            Verdict::Failed { reason, .. } => eprintln!("  FAIL  {:<40} {reason}", case.id),
+        }
+        match verdict {
+            Verdict::Same => {}
+            Verdict::Passed(made, _)
+            | Verdict::Failed {
+                made: Some(made), ..
+            } if args.bless => {
+                write_golden(root, &case.golden, &made.output)?;
+                blessed += 1;
+            }
+            Verdict::Failed {
+                made: None, reason, ..
+            } if args.bless => {
+                bail!(
+                    "{}: cannot bless, the image could not be made: {reason}",
+                    case.id
+                );
+            }
+            Verdict::Passed(..) => {}
+            failed @ Verdict::Failed { .. } => failures.push((case.id.clone(), failed)),
+        }
+    }
+    for orphan in &orphans {
+        if args.bless {
+            std::fs::remove_file(orphan)
+                .with_context(|| format!("cannot remove {}", orphan.display()))?;
+            eprintln!("  removed {} (no scene renders it)", relative(root, orphan));
+            blessed += 1;
+        } else {
+            eprintln!("  FAIL  {}: a golden with no scene", relative(root, orphan));
+        }
+    }
+    let total = cases.len();
+    let elapsed = started.elapsed().as_secs_f64();
+    if args.bless {
+        eprintln!(
+            "golden: {total} images checked in {elapsed:.1} s, {blessed} goldens written or removed"
+        );
+        return Ok(());
+    }
+    if failures.is_empty() && orphans.is_empty() {
+        eprintln!("golden: all {total} images match their goldens ({elapsed:.1} s)");
+        return Ok(());
+    }
+    let report = write_failure_report(root, &failures)?;
+    let filter = args
+        .filter
+        .as_deref()
+        .map(|f| format!(" {f}"))
+        .unwrap_or_default();
+    bail!(
+        "{} of {total} golden images differ and {} goldens have no scene ({elapsed:.1} s)\n  \
+         report: {}\n  if the change is intended, look at each image, then run: \
+         cargo xtask golden{filter} --bless",
+        failures.len(),
+        orphans.len(),
+        relative(root, &report),
+    )
+}
+
+/// The cases the filter selects, and the goldens that no case produces.
+fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
+    let mut cases = Vec::new();
+    for scene in files_with_extension(&root.join("fixtures/scenes"), "ron")? {
+        let name = stem(&scene);
+        cases.push(Case {
+            id: format!("scenes/{name}"),
+            golden: root.join("golden/scenes").join(format!("{name}.png")),
+            source: Source::Scene(scene),
+        });
+    }
+    let produced: Vec<&Path> = cases.iter().map(|c| c.golden.as_path()).collect();
+    let mut orphans = Vec::new();
+    for kind in ["scenes", "figures"] {
+        let dir = root.join("golden").join(kind);
+        if !dir.exists() {
+            continue;
+        }
+        for golden in files_with_extension(&dir, "png")? {
+            if !produced.contains(&golden.as_path()) {
+                orphans.push(golden);
+            }
+        }
+    }
+    cases.retain(|c| args.selects(&c.id));
+    orphans.retain(|o| args.selects(&relative(root, o).replace("golden/", "")));
+    Ok((cases, orphans))
+}
+
+/// Makes the case's image and compares it with its golden.
+fn check(case: &Case) -> Verdict {
+    let made = match make(case) {
+        Ok(made) => made,
+        Err(error) => {
+            return Verdict::Failed {
+                made: None,
+                expected: None,
+                comparison: None,
+                reason: format!("{error:#}"),
+            };
+        }
+    };
+    let expected = if case.golden.exists() {
+        viewray_compare::load_png(&case.golden).map_err(|e| e.to_string())
+    } else {
+        Err("no golden image yet".to_owned())
+    };
+    let expected = match expected {
+        Ok(expected) => expected,
+        Err(reason) => {
+            return Verdict::Failed {
+                made: Some(made),
+                expected: None,
+                comparison: None,
+                reason,
+            };
+        }
+    };
+    if expected == made.pixels {
+        return Verdict::Same;
+    }
+    let comparison = viewray_compare::compare(&expected, &made.pixels, &Thresholds::GOLDEN);
+    if comparison.passed() {
+        Verdict::Passed(made, comparison)
+    } else {
+        Verdict::Failed {
+            reason: comparison.reasons(),
+            made: Some(made),
+            expected: Some(expected),
+            comparison: Some(comparison),
+        }
+    }
+}
+
+/// The image a case produces.
+fn make(case: &Case) -> Result<Made> {
+    match &case.source {
+        Source::Scene(path) => {
+            let scene = Scene::load(path)?;
+            let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
+            let image = rendered.image;
+            let rgb = image::RgbImage::from_raw(image.width(), image.height(), image.to_rgb8())
+                .context("the render's pixel buffer does not match its size")?;
+            Ok(Made {
+                pixels: image::DynamicImage::ImageRgb8(rgb).to_rgba8(),
+                output: Output::Render(image),
+            })
+        }
+    }
+}
+
+/// Writes `golden` from `output`, through a temporary file renamed into place.
+fn write_golden(root: &Path, golden: &Path, output: &Output) -> Result<()> {
+    let png = output.png()?;
+    let dir = golden.parent().context("a golden lives in a folder")?;
+    std::fs::create_dir_all(dir)?;
+    let mut file = tempfile::NamedTempFile::new_in(dir)?;
+    std::io::Write::write_all(&mut file, &png)?;
+    file.persist(golden)
+        .with_context(|| format!("cannot write {}", golden.display()))?;
+    eprintln!(
+        "        wrote {} ({} KiB)",
+        relative(root, golden),
+        png.len() / 1024
+    );
+    Ok(())
+}
+
+fn write_failure_report(root: &Path, failures: &[(String, Verdict)]) -> Result<PathBuf> {
+    let entries: Vec<ReportEntry<'_>> = failures
+        .iter()
+        .filter_map(|(id, verdict)| match verdict {
+            Verdict::Failed {
+                made,
+                expected,
+                comparison: Some(comparison),
+                ..
+            } => Some(ReportEntry::compared(
+                id,
+                expected.as_ref()?,
+                &made.as_ref()?.pixels,
+                comparison,
+            )),
+            Verdict::Failed {
+                made,
+                expected,
+                reason,
+                ..
+            } => Some(ReportEntry::error(
+                id,
+                reason,
+                expected.as_ref(),
+                made.as_ref().map(|m| &m.pixels),
+            )),
+            _ => None,
+        })
+        .collect();
+    let dir = root.join("target/golden");
+    // A report shows this run only: clear the images a previous run left.
+    if dir.exists() {
+        std::fs::remove_dir_all(&dir)
+            .with_context(|| format!("cannot clear the old report in {}", dir.display()))?;
+    }
+    viewray_compare::write_report(&dir, &entries)
+        .with_context(|| format!("cannot write the report in {}", dir.display()))
+}
+
+fn figures(c: &Comparison) -> String {
+    match &c.metrics {
+        Some(m) => format!(
+            "mean FLIP {:.4}, peak {:.4}, {} px over tolerance",
+            m.mean_flip, m.peak_flip, m.bad_pixels
+        ),
+        None => String::new(),
+    }
+}
+
+fn files_with_extension(dir: &Path, extension: &str) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot list {}", dir.display()))?
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|path| path.extension().is_some_and(|e| e == extension))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+fn relative(root: &Path, path: &Path) -> String {
+    path.strip_prefix(root)
+        .unwrap_or(path)
+        .display()
+        .to_string()
+}
