@@ -30,6 +30,7 @@ mod scene;
 mod schema;
 
 use std::path::Path;
+use std::time::{Duration, Instant};
 
 pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
@@ -41,7 +42,17 @@ pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
 pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
     let mut materials = Vec::new();
     let no_mtl = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
-    mesh::parse_obj(bytes, no_mtl, &mut materials).map(|m| m.mesh.triangle_count())
+    let mut build_time = std::time::Duration::ZERO;
+    mesh::parse_obj(bytes, no_mtl, &mut materials, &mut build_time).map(|m| m.mesh.triangle_count())
+}
+
+/// How long loading a scene took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadTimes {
+    /// Everything: reading, parsing, loading meshes, building BVHs.
+    pub total: Duration,
+    /// The part spent building BVHs (each distinct mesh's and the world's).
+    pub build: Duration,
 }
 
 /// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
@@ -92,8 +103,25 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] if the file cannot be read or is not a valid scene.
     pub fn load_with(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
+        Self::load_timed(path, options).map(|(scene, _)| scene)
+    }
+
+    /// Loads the scene file at `path` like [`Scene::load_with`], and says how long the
+    /// loading took and how much of that was building BVHs.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
+    pub fn load_timed(path: &Path, options: LoadOptions) -> Result<(Scene, LoadTimes), SceneError> {
+        let started = Instant::now();
         let text = read_scene_file(path)?;
-        Self::parse_with(&text, path, options)
+        let (scene, build) = load::parse(&text, path, options)?;
+        Ok((
+            scene,
+            LoadTimes {
+                total: started.elapsed(),
+                build,
+            },
+        ))
     }
 
     /// Parses the scene `text`; `path` names it in error messages, and meshes are found
@@ -110,6 +138,27 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] if `text` is not a valid scene.
     pub fn parse_with(text: &str, path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
-        load::parse(text, path, options)
+        Self::parse_timed(text, path, options).map(|(scene, _)| scene)
+    }
+
+    /// Parses the scene `text` like [`Scene::parse_with`], and says how long it took and
+    /// how much of that was building BVHs.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if `text` is not a valid scene.
+    pub fn parse_timed(
+        text: &str,
+        path: &Path,
+        options: LoadOptions,
+    ) -> Result<(Scene, LoadTimes), SceneError> {
+        let started = Instant::now();
+        let (scene, build) = load::parse(text, path, options)?;
+        Ok((
+            scene,
+            LoadTimes {
+                total: started.elapsed(),
+                build,
+            },
+        ))
     }
 }

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
@@ -98,7 +99,11 @@ pub struct LoadOptions {
 
 /// Parses the scene `text` read from `path` (used in error messages; meshes are found
 /// relative to its folder).
-pub(crate) fn parse(text: &str, path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
+pub(crate) fn parse(
+    text: &str,
+    path: &Path,
+    options: LoadOptions,
+) -> Result<(Scene, Duration), SceneError> {
     let file: SceneFile<'_> = ron_options()
         .from_str(text)
         .map_err(|e| ron_error(path, Origin::FILE, &e))?;
@@ -246,9 +251,11 @@ pub(crate) fn parse(text: &str, path: &Path, options: LoadOptions) -> Result<Sce
         objects.push(object);
         object_materials.push(object_material);
     }
+    let started = Instant::now();
     let world = World::new(objects).map_err(|e| SceneError::at(path, None, e.to_string()))?;
+    let build_time = meshes.build_time + started.elapsed();
 
-    Ok(Scene {
+    let scene = Scene {
         camera,
         samples,
         background,
@@ -262,7 +269,8 @@ pub(crate) fn parse(text: &str, path: &Path, options: LoadOptions) -> Result<Sce
         lights,
         world,
         object_materials,
-    })
+    };
+    Ok((scene, build_time))
 }
 
 /// Parses the values kept as raw text, placing their errors in the file.

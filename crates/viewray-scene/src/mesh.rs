@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use viewray_geometry::{Mesh, MeshData};
@@ -26,6 +27,8 @@ pub(crate) struct LoadedMesh {
 #[derive(Default)]
 pub(crate) struct MeshCache {
     loaded: HashMap<PathBuf, Arc<LoadedMesh>>,
+    /// The time spent building the meshes' BVHs.
+    pub(crate) build_time: Duration,
 }
 
 impl MeshCache {
@@ -40,7 +43,7 @@ impl MeshCache {
         if let Some(mesh) = self.loaded.get(&key) {
             return Ok(Arc::clone(mesh));
         }
-        let mesh = Arc::new(load_obj(&key, path, materials)?);
+        let mesh = Arc::new(load_obj(&key, path, materials, &mut self.build_time)?);
         self.loaded.insert(key, Arc::clone(&mesh));
         Ok(mesh)
     }
@@ -57,6 +60,7 @@ fn load_obj(
     file: &Path,
     shown: &Path,
     materials: &mut Vec<Material>,
+    build_time: &mut Duration,
 ) -> Result<LoadedMesh, String> {
     let metadata = std::fs::metadata(file).map_err(|e| read_error(shown, &e))?;
     if !metadata.is_file() {
@@ -78,7 +82,7 @@ fn load_obj(
             _ => Err(tobj::LoadError::OpenFileFailed),
         }
     };
-    parse_obj(&bytes, mtl_loader, materials)
+    parse_obj(&bytes, mtl_loader, materials, build_time)
 }
 
 /// Builds the mesh in the OBJ text `bytes`, loading MTL libraries with `mtl_loader`; its
@@ -87,6 +91,7 @@ pub(crate) fn parse_obj(
     bytes: &[u8],
     mtl_loader: impl Fn(&Path) -> tobj::MTLLoadResult,
     materials: &mut Vec<Material>,
+    build_time: &mut Duration,
 ) -> Result<LoadedMesh, String> {
     let options = tobj::LoadOptions {
         triangulate: true,
@@ -169,7 +174,9 @@ pub(crate) fn parse_obj(
         data = data.with_uvs(uvs);
     }
     let faces = data.triangles.len();
+    let started = Instant::now();
     let mesh = Mesh::new(data).map_err(|e| e.to_string())?;
+    *build_time += started.elapsed();
     if mesh.triangle_count() == 0 {
         return Err(format!(
             "all {faces} faces are degenerate (zero area), so there is nothing to see"
