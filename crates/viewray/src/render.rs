@@ -2,14 +2,12 @@
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use tempfile::NamedTempFile;
-use viewray_geometry::{Mesh, Object, World};
 use viewray_render::{ImageFormat, RenderSettings};
 use viewray_scene::{LoadOptions, Scene};
 
@@ -37,24 +35,18 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
     // Open the output's temporary file first, so that an unwritable path fails before
     // a long render rather than after it.
     let mut output = OutputFile::create(&args.output)?;
+    remove_on_interrupt(output.temporary.path(), &args.output);
 
     // Load the scene (this builds its BVHs too).
     let options = LoadOptions {
         size: args.size,
         samples: args.samples,
     };
-    let start = Instant::now();
-    let scene = match &args.scene {
-        Some(path) => Scene::load_with(path, options)?,
-        None => Scene::parse_with(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
+    let (scene, load_times) = match &args.scene {
+        Some(path) => Scene::load_timed(path, options)?,
+        None => Scene::parse_timed(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
     };
-    let load_and_build = start.elapsed();
-    // The rebuild estimates the build; it cannot have taken longer than the whole load.
-    let build = if args.stats {
-        time_bvh_build(&scene.world).min(load_and_build)
-    } else {
-        Duration::ZERO
-    };
+    check_memory(scene.camera.width(), scene.camera.height(), format)?;
 
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
@@ -88,8 +80,8 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
     if args.stats {
         let line = json!({
             "triangles": scene.world.triangle_count(),
-            "load_s": seconds(load_and_build.saturating_sub(build)),
-            "build_s": seconds(build),
+            "load_s": seconds(load_times.total.saturating_sub(load_times.build)),
+            "build_s": seconds(load_times.build),
             "render_s": seconds(render_time),
             "rays": rendered.stats.rays,
         });
@@ -119,33 +111,64 @@ fn progress_bar(interactive: bool) -> ProgressBar {
     bar
 }
 
-/// How long building the scene's BVHs takes: each distinct mesh's and the world's.
+/// Refuses an image whose buffers would not fit in the memory the machine has free,
+/// before any of them is allocated.
 ///
-/// The scene crate builds them while loading and does not time them, so this builds
-/// them once more from the same data and times that.
-fn time_bvh_build(world: &World) -> Duration {
-    let mut meshes: Vec<&Arc<Mesh>> = Vec::new();
-    for object in world.objects() {
-        if let Object::Instance(instance) = object
-            && !meshes.iter().any(|m| Arc::ptr_eq(m, instance.mesh()))
-        {
-            meshes.push(instance.mesh());
-        }
+/// A render holds the image as linear floats (12 bytes a pixel) and encodes it to 8-bit
+/// (3 bytes) or float (12 bytes) output, plus the encoder's own buffers; twice the
+/// encoded size covers those.
+fn check_memory(width: u32, height: u32, format: ImageFormat) -> Result<()> {
+    check_memory_against(width, height, format, available_memory())
+}
+
+fn check_memory_against(
+    width: u32,
+    height: u32,
+    format: ImageFormat,
+    available: Option<u64>,
+) -> Result<()> {
+    let pixels = u64::from(width) * u64::from(height);
+    let encoded = match format {
+        ImageFormat::Png => 3,
+        ImageFormat::Exr => 12,
+    };
+    let needed = pixels * (12 + 2 * encoded);
+    if let Some(available) = available
+        && needed > available
+    {
+        bail!(
+            "a {width} x {height} image needs about {:.1} GiB of memory, but only {:.1} GiB is free",
+            gib(needed),
+            gib(available)
+        );
     }
-    let mut total = Duration::ZERO;
-    for mesh in meshes {
-        let data = mesh.data().clone();
-        let start = Instant::now();
-        let rebuilt = Mesh::new(data);
-        total += start.elapsed();
-        drop(rebuilt);
-    }
-    let objects = world.objects().to_vec();
-    let start = Instant::now();
-    let rebuilt = World::new(objects);
-    total += start.elapsed();
-    drop(rebuilt);
-    total
+    Ok(())
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / f64::from(1u32 << 30)
+}
+
+/// The memory the system can give this process without swapping (Linux's
+/// `MemAvailable`); `None` where the system does not say.
+fn available_memory() -> Option<u64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// On Ctrl-C, deletes the unfinished temporary file and exits with 130 (the shell's code
+/// for SIGINT): the output path keeps what it held, and no stray file is left beside it.
+fn remove_on_interrupt(temporary: &Path, output: &Path) {
+    let temporary = temporary.to_owned();
+    let output = output.to_owned();
+    // Only a second handler fails to install; the first one already does the job.
+    let _ = ctrlc::set_handler(move || {
+        let _ = std::fs::remove_file(&temporary);
+        eprintln!("interrupted: {} was not written", output.display());
+        std::process::exit(130);
+    });
 }
 
 /// An output file written atomically: into a temporary file beside it, renamed into
@@ -200,5 +223,27 @@ impl OutputFile {
             .persist(&path)
             .map_err(|error| anyhow!("cannot write {}: {}", path.display(), error.error))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_image_larger_than_free_memory_is_refused_before_rendering() {
+        let gib = 1 << 30;
+        // 16384 x 16384 PNG: 2^28 pixels at 18 bytes, 4.5 GiB.
+        let error = check_memory_against(16384, 16384, ImageFormat::Png, Some(4 * gib))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            error,
+            "a 16384 x 16384 image needs about 4.5 GiB of memory, but only 4.0 GiB is free"
+        );
+        assert!(check_memory_against(16384, 16384, ImageFormat::Png, Some(5 * gib)).is_ok());
+        assert!(check_memory_against(16384, 16384, ImageFormat::Exr, Some(5 * gib)).is_err());
+        // Where the system does not say, the render goes ahead.
+        assert!(check_memory_against(16384, 16384, ImageFormat::Exr, None).is_ok());
     }
 }
