@@ -56,13 +56,16 @@
 //!   skips them altogether).
 //!
 //! `cargo bench -p viewray-geometry` measures build time, memory and throughput on a
-//! 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH). On the
-//! 2-core development machine, shared with other builds (so absolute numbers are low
-//! and noisy; the ratios come from one run): build 0.79 s on 1 thread, 0.52 s on 2
-//! (obvhs 1.29 s, 1.00 s); 54 bytes per triangle for nodes and packets (obvhs 60);
-//! 1024 x 1024 primary rays 6.0 Mrays/s on 1 thread (obvhs 2.3, 2.6x); 10^6 incoherent
-//! rays 1.24 Mrays/s (obvhs 0.68, 1.8x). Computing the full [`Hit`] costs about a
-//! third more on incoherent rays, for the vertex data it reads.
+//! 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with
+//! `--features embree` Embree 3 too. On the 2-core development machine, shared with
+//! other builds (absolute numbers vary by a third between runs; ratios come from one
+//! run), the last full run gave: build 0.67 s on 1 thread, 0.42 s on 2 (obvhs 1.26 s /
+//! 1.20 s, Embree 0.81 s / 0.74 s); 54 bytes per triangle for nodes and packets (obvhs
+//! 60); 1024 x 1024 primary rays 5.1 Mrays/s on 1 thread (obvhs 2.0, Embree 5.9);
+//! 10^6 incoherent rays 0.87 Mrays/s (obvhs 0.53, Embree 1.6). On quieter runs:
+//! primary 6.6 (obvhs 3.4, Embree 8.4), incoherent 1.3 to 1.6 (obvhs 0.8 to 0.9,
+//! Embree 1.75 to 1.9). Computing the full [`Hit`] costs a third more on incoherent
+//! rays, for the vertex data it reads.
 
 mod aabb;
 mod bvh;
