@@ -1,7 +1,7 @@
 //! Build and trace benchmarks of viewray-geometry's BVH on a 1,310,720-triangle
 //! icosphere, side by side with the obvhs crate (CWBVH) on the same mesh and rays.
 //!
-//! `cargo bench -p viewray-geometry` prints, before criterion's timings, the memory per
+//! `cargo bench -p viewray-geometry --features bench` prints, before criterion's timings, the memory per
 //! triangle of both structures and a check that both find the same hits. Criterion's
 //! `thrpt` lines are rays (or triangles, for the build) per second. `viewray` traces
 //! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray full Hit`

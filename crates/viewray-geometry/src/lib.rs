@@ -55,8 +55,8 @@
 //!   texture coordinates are computed once, for the winner ([`Mesh::closest_triangle`]
 //!   skips them altogether).
 //!
-//! `cargo bench -p viewray-geometry` measures build time, memory and throughput on a
-//! 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with
+//! `cargo bench -p viewray-geometry --features bench` measures build time, memory and
+//! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with
 //! `--features embree` Embree 3 too. On the 2-core development machine, shared with
 //! other builds (absolute numbers vary by a third between runs; ratios come from one
 //! run), the last full run gave: build 0.67 s on 1 thread, 0.42 s on 2 (obvhs 1.26 s /
