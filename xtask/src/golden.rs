@@ -1,7 +1,8 @@
 //! `cargo xtask golden`: every projection family rendered and compared with its committed
 //! golden image.
 //!
-//! Each scene `fixtures/scenes/<name>.ron` is rendered in-process and compared with
+//! Each scene `fixtures/scenes/<name>.ron` (and `viewray render`'s built-in
+//! `fixtures/default.ron`, as `default`) is rendered in-process and compared with
 //! `golden/scenes/<name>.png` by decoded pixels, never by PNG bytes, through
 //! viewray-compare's golden gates ([`Thresholds::GOLDEN`]): a per-pixel gate that absorbs
 //! last-bit floating-point differences between machines, and a perceptual (FLIP) gate that
@@ -19,7 +20,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use viewray_compare::{Comparison, ReportEntry, RgbaImage, Thresholds};
 use viewray_render::RenderSettings;
-use viewray_scene::Scene;
+use viewray_scene::{LoadOptions, Scene};
 
 /// The command line of `cargo xtask golden`.
 #[derive(Debug, Default)]
@@ -58,8 +59,13 @@ struct Case {
 }
 
 enum Source {
-    Scene(PathBuf),
+    /// A scene file, rendered with these overrides.
+    Scene(PathBuf, LoadOptions),
 }
+
+/// `viewray render`'s built-in scene; its golden is rendered at half its 640 x 480 so the
+/// committed PNG stays small.
+const DEFAULT_SCENE: &str = "fixtures/default.ron";
 
 /// An image a case made, in the form its golden PNG stores and the form it is encoded
 /// from.
@@ -184,13 +190,23 @@ pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
 
 /// The cases the filter selects, and the goldens that no case produces.
 fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
-    let mut cases = Vec::new();
+    let mut cases = vec![Case {
+        id: "scenes/default".to_owned(),
+        golden: root.join("golden/scenes/default.png"),
+        source: Source::Scene(
+            root.join(DEFAULT_SCENE),
+            LoadOptions {
+                size: Some((320, 240)),
+                samples: None,
+            },
+        ),
+    }];
     for scene in files_with_extension(&root.join("fixtures/scenes"), "ron")? {
         let name = stem(&scene);
         cases.push(Case {
             id: format!("scenes/{name}"),
             golden: root.join("golden/scenes").join(format!("{name}.png")),
-            source: Source::Scene(scene),
+            source: Source::Scene(scene, LoadOptions::default()),
         });
     }
     let produced: Vec<&Path> = cases.iter().map(|c| c.golden.as_path()).collect();
@@ -259,8 +275,8 @@ fn check(case: &Case) -> Verdict {
 /// The image a case produces.
 fn make(case: &Case) -> Result<Made> {
     match &case.source {
-        Source::Scene(path) => {
-            let scene = Scene::load(path)?;
+        Source::Scene(path, options) => {
+            let scene = Scene::load_with(path, *options)?;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
             let rgb = image::RgbImage::from_raw(image.width(), image.height(), image.to_rgb8())

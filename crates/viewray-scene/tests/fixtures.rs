@@ -65,8 +65,10 @@ fn vec3(v: DVec3) -> String {
 #[test]
 fn every_fixture_scene_loads() {
     let mut report = String::new();
-    let scenes = ron_files(&fixtures().join("scenes"));
+    let mut scenes = ron_files(&fixtures().join("scenes"));
     assert!(scenes.len() >= 25, "expected a scene per projection family");
+    // `viewray render`'s built-in scene is tested like the others.
+    scenes.insert(0, fixtures().join("default.ron"));
     for path in scenes {
         let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let camera = &scene.camera;
