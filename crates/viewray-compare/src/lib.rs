@@ -55,3 +55,10 @@ pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, judge};
 pub use load::{LoadError, load_png};
 pub use report::{Outcome, ReportEntry, write_report};
+
+/// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
+/// target.
+#[doc(hidden)]
+pub fn fuzz_decode_png(bytes: &[u8]) -> Result<RgbaImage, String> {
+    load::decode_png_bytes(bytes)
+}

@@ -77,3 +77,11 @@ fn decode_png(bytes: &[u8]) -> Result<RgbaImage, DecodeError> {
     let image = reader.decode().map_err(DecodeError::Image)?;
     Ok(image.into_rgba8())
 }
+
+/// [`decode_png`] with its error as a sentence.
+pub(crate) fn decode_png_bytes(bytes: &[u8]) -> Result<RgbaImage, String> {
+    decode_png(bytes).map_err(|error| match error {
+        DecodeError::NotPng => "not a PNG file".to_owned(),
+        DecodeError::Image(source) => source.to_string(),
+    })
+}
