@@ -11,11 +11,14 @@
 //! `viewray-camera` camera's `project` and every ray one its `generate_ray` makes; its
 //! registry ([`figures::all_figures`], [`figures::figure_by_name`]) is what `viewray
 //! figure(s)` and `cargo xtask figures` list. Pictures inside figures come from a
-//! [`figures::Pictures`] source: a renderer, or projected polygons until one is plugged
-//! in.
+//! [`figures::Pictures`] source: [`figures::RenderedPictures`] builds each picture's
+//! scene in code and renders it with `viewray-render` (the default, what
+//! [`figures::NamedFigure::figure`] draws), [`figures::Wireframes`] draws projected
+//! polygons instead, without ray tracing.
 //!
-//! It knows nothing about scene files, and it does no I/O except
-//! [`Figure::write_png`] and [`Figure::write_svg`], which write one file atomically.
+//! It knows nothing about scene files (it builds `viewray-scene`'s runtime `Scene`
+//! directly), and it does no I/O except [`Figure::write_png`] and [`Figure::write_svg`],
+//! which write one file atomically.
 //!
 //! Text is set with the DejaVu Sans faces bundled in the `dejavu` crate (nothing to
 //! install), laid out with the font's kerning and rasterized from its glyph outlines with

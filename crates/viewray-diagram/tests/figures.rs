@@ -319,7 +319,7 @@ fn rendered_pictures_fill_the_same_slots_without_moving_anything() {
         let named = figure_by_name(name).expect("registered");
         requests.borrow_mut().clear();
         let with = named.draw(&rendered).figure;
-        let without = named.figure();
+        let without = named.wireframe();
         let images: Vec<Rect> = with
             .items
             .iter()

@@ -8,8 +8,26 @@
 //! figures against the cameras number by number, and a figure can never disagree with a
 //! render.
 //!
+//! The pictures inside figures (the taxonomy's thumbnails, the distortions' and the thin
+//! lens's pictures) are rendered by the ray tracer through [`RenderedPictures`], at the
+//! size of their slot, so they land on the figure pixel for pixel.
+//!
 //! [`all_figures`] lists them by name for `viewray figure NAME` and `cargo xtask
-//! figures`; [`figure_by_name`] finds one.
+//! figures`; [`figure_by_name`] finds one. `cargo xtask golden` compares
+//! [`render_all`] with `golden/figures/`:
+//!
+//! ```no_run
+//! use viewray_diagram::figures::{RenderedPictures, all_figures, render_all};
+//!
+//! // Every figure, rasterized with rendered pictures: (name, RGBA pixels).
+//! let images = render_all();
+//! // The same, one figure at a time.
+//! for named in all_figures() {
+//!     let pixels = named.draw(&RenderedPictures::default()).figure.render();
+//!     assert_eq!(pixels, named.figure().render());
+//! }
+//! # let _ = images;
+//! ```
 
 mod assumptions;
 mod canonical;
@@ -18,6 +36,7 @@ mod distortions;
 mod frame;
 mod image_plane;
 mod pictures;
+mod rendered;
 mod side;
 mod sketch;
 mod taxonomy;
@@ -28,6 +47,7 @@ mod viewing_rays;
 use std::fmt;
 
 use glam::{DVec3, Vec2};
+use image::RgbaImage;
 use viewray_camera::{Camera, CameraSample};
 
 use crate::Figure;
@@ -41,6 +61,7 @@ pub use pictures::{
     AXIS_COLOURS, GROUND, Paint, PictureRequest, PictureScene, Pictures, SKY, SceneObject, Shape,
     Wireframes,
 };
+pub use rendered::{EARTH_DEPTH, RenderedPictures, picture_lights, picture_scene};
 pub use taxonomy::{THUMBNAIL_IMAGE, taxonomy, taxonomy_camera};
 pub use thin_lens::{
     CONE_PIXEL, FOCUS, LENS_POINTS, PICTURE_APERTURES, thin_lens, thin_lens_camera,
@@ -105,8 +126,15 @@ impl NamedFigure {
         (self.draw)(pictures)
     }
 
-    /// The figure with every picture drawn as projected polygons ([`Wireframes`]).
+    /// The figure as the lecture shows it: its pictures rendered by the ray tracer
+    /// ([`RenderedPictures::default`]).
     pub fn figure(&self) -> Figure {
+        self.draw(&RenderedPictures::default()).figure
+    }
+
+    /// The figure with every picture drawn as projected polygons ([`Wireframes`]):
+    /// nothing is ray traced, so it is quick, for tests and previews.
+    pub fn wireframe(&self) -> Figure {
         self.draw(&Wireframes).figure
     }
 }
@@ -194,6 +222,18 @@ pub fn all_figures() -> Vec<NamedFigure> {
             draw: thin_lens,
         },
     ]
+}
+
+/// Every figure as the lecture shows it (pictures rendered, [`NamedFigure::figure`]),
+/// rasterized: `(name, pixels)` in the lecture's order, the images that
+/// `golden/figures/<name>.png` holds.
+///
+/// Deterministic: the same pixels on every run and every number of threads.
+pub fn render_all() -> Vec<(String, RgbaImage)> {
+    all_figures()
+        .iter()
+        .map(|named| (named.name.to_owned(), named.figure().render()))
+        .collect()
 }
 
 /// The figure called `name`, if there is one; see [`figure_names`] for the names and

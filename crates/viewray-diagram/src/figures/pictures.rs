@@ -1,5 +1,6 @@
-//! Pictures inside figures: what a camera sees of a small scene, drawn as flat-shaded
-//! polygons projected with the camera, or a rendered image plugged in instead.
+//! Pictures inside figures: what a camera sees of a small scene, rendered by the ray
+//! tracer ([`RenderedPictures`](super::RenderedPictures)) or drawn as flat-shaded
+//! polygons projected with the camera ([`Wireframes`]).
 
 use std::f64::consts::TAU;
 
@@ -151,28 +152,39 @@ impl PictureScene {
     }
 }
 
-/// What a figure asks for to fill a picture slot: the scene and the camera that sees
-/// it. The picture fills the camera's whole image (`W x H` pixels, stretched to the
-/// slot if its size differs).
+/// What a figure asks for to fill a picture slot: the scene, the camera that sees it,
+/// and the slot's size.
+///
+/// The picture is the camera's whole image, stretched to the slot. The camera's own
+/// image size (`W x H`) is the one the figure computes with (the pixel whose rays it
+/// draws, for example); a renderer should make the picture `size` pixels instead, with
+/// the same camera at that size ([`Camera::with_image_size`]: the same view, more
+/// pixels), so that it lands on the figure pixel for pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PictureRequest {
     /// What is in the picture.
     pub scene: PictureScene,
     /// The camera that takes it.
     pub camera: Camera,
+    /// The slot's size in figure pixels, `(width, height)`, rounded: the same aspect
+    /// ratio as the camera's image.
+    pub size: (u32, u32),
 }
 
-/// Where a figure's pictures come from: a renderer plugged in, or nothing.
+/// Where a figure's pictures come from: the ray tracer
+/// ([`RenderedPictures`](super::RenderedPictures), what users see), or nothing.
 ///
 /// Returning `None` draws the picture as flat-shaded polygons projected with the
-/// request's camera ([`Wireframes`] always does). The slot's place and size on the
-/// figure do not depend on the answer, so plugging in a renderer changes no layout.
+/// request's camera ([`Wireframes`] always does: quick, for tests that must not ray
+/// trace). The slot's place and size on the figure do not depend on the answer, so the
+/// two give the same layout.
 pub trait Pictures {
     /// A rendered picture for `request`, or `None` to draw it from polygons.
     fn picture(&self, request: &PictureRequest) -> Option<RgbaImage>;
 }
 
-/// No rendered pictures: every slot is drawn as projected polygons.
+/// No rendered pictures: every slot is drawn as projected polygons, and nothing is ray
+/// traced.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Wireframes;
 
@@ -203,9 +215,16 @@ pub(crate) fn draw_picture(
     scene: PictureScene,
     pictures: &dyn Pictures,
 ) {
+    // The slots are a few hundred pixels wide, so the rounded sizes are positive.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let size = (
+        view.rect.width().round().max(1.0) as u32,
+        view.rect.height().round().max(1.0) as u32,
+    );
     let request = PictureRequest {
         scene,
         camera: view.camera,
+        size,
     };
     if let Some(pixels) = pictures.picture(&request) {
         sketch.push(Item::Image {
