@@ -76,6 +76,16 @@ pub(crate) enum Command {
     /// compared (a file on one side only, not a PNG, different sizes) is reported and
     /// fails. Exit code 0 when every pair passes, 1 when any fails, 2 on bad usage.
     Compare(crate::compare::CompareArgs),
+    /// Draw one of the lecture's figures to a PNG or SVG.
+    ///
+    /// Every figure is computed from the camera code: each 3D point is placed by a
+    /// camera's projection and each ray drawn is one the camera generates. The pictures
+    /// inside figures (the taxonomy's thumbnails, the distortions', the thin lens at two
+    /// apertures) are rendered by the ray tracer. Writes a .png or an .svg as OUT's
+    /// extension says, atomically. NAME is one of the figures listed below.
+    Figure(crate::figures::FigureArgs),
+    /// Draw every lecture figure into a folder, as NAME.png and NAME.svg.
+    Figures(crate::figures::FiguresArgs),
 }
 
 #[derive(Args, Debug)]

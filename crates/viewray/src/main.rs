@@ -1,5 +1,6 @@
-//! The `viewray` command: render scenes, and print camera frames, viewing rays and
-//! projections so students can check homework numbers.
+//! The `viewray` command: render scenes, print camera frames, viewing rays and
+//! projections so students can check homework numbers, compare renders, and draw the
+//! lecture's figures.
 //!
 //! Output meant for programs (and for checking by hand) is JSON lines on stdout. Errors
 //! are one line, `error: ...`, on stderr.
@@ -10,6 +11,7 @@
 mod cli;
 mod commands;
 mod compare;
+mod figures;
 mod json;
 mod render;
 
@@ -34,6 +36,8 @@ fn main() -> ExitCode {
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
         Command::Compare(args) => return compare::run(&args),
+        Command::Figure(args) => figures::figure(&args),
+        Command::Figures(args) => figures::figures(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
