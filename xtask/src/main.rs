@@ -2,6 +2,7 @@
 //!
 //! `cargo xtask` (an alias in `.cargo/config.toml`) with no argument lists the commands.
 
+mod figures;
 mod golden;
 
 use std::path::{Path, PathBuf};
@@ -21,6 +22,8 @@ commands:
                           `scenes/<name>` contains it
   golden [FILTER] --bless rewrite the goldens whose pixels changed, add missing ones and
                           remove those with no scene (refused when CI is set)
+  figures [--out DIR]     draw every lecture figure, pictures ray traced, as <name>.png
+                          and <name>.svg into DIR (default target/figures/)
 ";
 
 fn main() -> ExitCode {
@@ -29,6 +32,8 @@ fn main() -> ExitCode {
         Some("ci") => ci(),
         Some("golden") => golden::GoldenArgs::parse(&args[1..])
             .and_then(|a| golden::golden(&workspace_root(), &a)),
+        Some("figures") => figures::FiguresArgs::parse(&args[1..])
+            .and_then(|a| figures::figures(&workspace_root(), &a)),
         Some("help" | "--help" | "-h") | None => {
             print!("{HELP}");
             Ok(())
