@@ -67,8 +67,8 @@ impl Pictures for RenderedPictures {
     }
 }
 
-/// The fixtures' light rig: a directional key light from above right and behind the
-/// viewer, a blue-white point light up left, and ambient light (as in every scene of
+/// The fixtures' light rig: a directional key light from above, from `+x` and `+z`, a
+/// slightly blue point light up at `(-4, 5, 6)`, and ambient light (as in every scene of
 /// `fixtures/scenes/`).
 pub fn picture_lights() -> Vec<Light> {
     vec![
@@ -89,8 +89,9 @@ pub fn picture_lights() -> Vec<Light> {
 /// The scene a [`RenderedPictures`] renders for `request`: its camera at the slot's
 /// size ([`PictureRequest::size`]), `samples` per pixel, [`SKY`] as the background, the
 /// ground plane `y = 0` with the fixtures' 1-unit grid (and the earth below it, see
-/// [`EARTH_DEPTH`]), the objects of
-/// [`PictureScene::objects`], and the fixtures' lights ([`picture_lights`]).
+/// [`EARTH_DEPTH`]), the objects of the request's scene
+/// ([`PictureScene::objects`](super::PictureScene::objects)), and the fixtures' lights
+/// ([`picture_lights`]).
 ///
 /// Materials are the fixtures': the axis colours are matte (`cube.mtl`), uniform
 /// colours get a little specular highlight (the `red`, `green` and `blue` materials),
