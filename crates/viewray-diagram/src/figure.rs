@@ -291,6 +291,12 @@ impl Figure {
         crate::raster::render(self)
     }
 
+    /// Renders the figure scaled by `scale`: a `round(scale * width) x round(scale *
+    /// height)` image of the same drawing (the golden check keeps figures at half size).
+    pub fn render_scaled(&self, scale: f32) -> RgbaImage {
+        crate::raster::render_scaled(self, scale)
+    }
+
     /// Renders the figure and encodes it as PNG bytes, with no timestamp or other
     /// metadata, so the same figure always gives the same bytes.
     ///

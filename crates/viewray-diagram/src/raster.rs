@@ -12,19 +12,35 @@ use crate::{Color, Figure, Item, Rect, Sampling, Stroke};
 
 /// Renders `figure` into straight-alpha RGBA8 pixels.
 pub(crate) fn render(figure: &Figure) -> RgbaImage {
-    let Some(mut pixmap) = Pixmap::new(figure.width, figure.height) else {
-        return RgbaImage::new(figure.width, figure.height);
+    render_scaled(figure, 1.0)
+}
+
+/// Renders `figure` scaled by `scale` into straight-alpha RGBA8 pixels: the canvas is
+/// `round(scale * width) x round(scale * height)` and every item is drawn through the
+/// scale, so the picture is the same, only finer or coarser.
+pub(crate) fn render_scaled(figure: &Figure, scale: f32) -> RgbaImage {
+    let size = |side: u32| (side as f32 * scale).round() as u32;
+    let (width, height) = (size(figure.width), size(figure.height));
+    let Some(mut pixmap) = Pixmap::new(width, height) else {
+        return RgbaImage::new(width, height);
     };
     pixmap.fill(figure.background.to_skia());
+    let transform = Transform::from_scale(scale, scale);
     for item in &figure.items {
-        draw_item(&mut pixmap, item);
+        draw_item(&mut pixmap, item, transform);
     }
-    RgbaImage::from_raw(figure.width, figure.height, pixmap.take_demultiplied())
+    RgbaImage::from_raw(width, height, pixmap.take_demultiplied())
         .expect("a pixmap holds width * height RGBA pixels")
 }
 
-/// Paints one display-list item.
-fn draw_item(pixmap: &mut Pixmap, item: &Item) {
+/// Paints one display-list item through `transform` (figure space to pixels).
+fn draw_item(pixmap: &mut Pixmap, item: &Item, transform: Transform) {
+    let fill_path = |pixmap: &mut Pixmap, path: Option<&Path>, color: Color| {
+        fill_path(pixmap, path, color, transform);
+    };
+    let stroke_path = |pixmap: &mut Pixmap, path: Option<&Path>, stroke: &Stroke| {
+        stroke_path(pixmap, path, stroke, transform);
+    };
     match item {
         Item::Line { from, to, stroke } => {
             stroke_path(pixmap, polyline_path(&[*from, *to], false).as_ref(), stroke);
@@ -87,7 +103,7 @@ fn draw_item(pixmap: &mut Pixmap, item: &Item) {
             pixels,
             rect,
             sampling,
-        } => draw_image(pixmap, pixels, *rect, *sampling),
+        } => draw_image(pixmap, pixels, *rect, *sampling, transform),
     }
 }
 
@@ -130,20 +146,14 @@ fn solid(color: Color) -> Paint<'static> {
 }
 
 /// Fills `path` (non-zero winding) with `color`.
-fn fill_path(pixmap: &mut Pixmap, path: Option<&Path>, color: Color) {
+fn fill_path(pixmap: &mut Pixmap, path: Option<&Path>, color: Color, transform: Transform) {
     if let Some(path) = path {
-        pixmap.fill_path(
-            path,
-            &solid(color),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
+        pixmap.fill_path(path, &solid(color), FillRule::Winding, transform, None);
     }
 }
 
 /// Strokes `path` as `stroke` says: round caps and joins, butt caps when dashed.
-fn stroke_path(pixmap: &mut Pixmap, path: Option<&Path>, stroke: &Stroke) {
+fn stroke_path(pixmap: &mut Pixmap, path: Option<&Path>, stroke: &Stroke, transform: Transform) {
     let Some(path) = path else {
         return;
     };
@@ -165,17 +175,17 @@ fn stroke_path(pixmap: &mut Pixmap, path: Option<&Path>, stroke: &Stroke) {
         dash,
         ..tiny_skia::Stroke::default()
     };
-    pixmap.stroke_path(
-        path,
-        &solid(stroke.color),
-        &skia_stroke,
-        Transform::identity(),
-        None,
-    );
+    pixmap.stroke_path(path, &solid(stroke.color), &skia_stroke, transform, None);
 }
 
 /// Stretches `pixels` over `rect`.
-fn draw_image(pixmap: &mut Pixmap, pixels: &RgbaImage, rect: Rect, sampling: Sampling) {
+fn draw_image(
+    pixmap: &mut Pixmap,
+    pixels: &RgbaImage,
+    rect: Rect,
+    sampling: Sampling,
+    transform: Transform,
+) {
     let Some(mut source) = Pixmap::new(pixels.width(), pixels.height()) else {
         return;
     };
@@ -210,5 +220,5 @@ fn draw_image(pixmap: &mut Pixmap, pixels: &RgbaImage, rect: Rect, sampling: Sam
         anti_alias: true,
         ..Paint::default()
     };
-    pixmap.fill_rect(target, &paint, Transform::identity(), None);
+    pixmap.fill_rect(target, &paint, transform, None);
 }

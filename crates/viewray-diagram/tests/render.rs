@@ -57,6 +57,24 @@ fn horizontal_line_colours_its_row_and_nothing_far_away() {
 }
 
 #[test]
+fn a_scaled_render_draws_the_same_figure_smaller() {
+    let mut fig = figure();
+    fig.push(Item::Line {
+        from: Vec2::new(50.0, 100.0),
+        to: Vec2::new(350.0, 100.0),
+        stroke: Stroke::new(INK, 4.0),
+    });
+    let half = fig.render_scaled(0.5);
+    assert_eq!(half.dimensions(), (200, 150));
+    // The 4-wide line at row 100 becomes a 2-wide line at row 50, from x 25 to 175.
+    assert!(inked(&half, 100, 49) && inked(&half, 100, 50));
+    for (x, y) in ink(&half) {
+        assert!((48..=52).contains(&y), "ink at row {y}");
+        assert!((23..=177).contains(&x), "ink at column {x}");
+    }
+}
+
+#[test]
 fn dashed_line_has_gaps_where_the_pattern_says() {
     let mut fig = figure();
     fig.push(Item::Line {
