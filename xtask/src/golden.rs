@@ -3,7 +3,8 @@
 //!
 //! Each scene `fixtures/scenes/<name>.ron` (and `viewray render`'s built-in
 //! `fixtures/default.ron`, as `default`) is rendered in-process and compared with
-//! `golden/scenes/<name>.png` by decoded pixels, never by PNG bytes, through
+//! `golden/scenes/<name>.png`, and each lecture figure with `golden/figures/<name>.png`,
+//! by decoded pixels, never by PNG bytes, through
 //! viewray-compare's golden gates ([`Thresholds::GOLDEN`]): a per-pixel gate that absorbs
 //! last-bit floating-point differences between machines, and a perceptual (FLIP) gate that
 //! catches a one-pixel edge shift or a colour change a person would notice. A missing
@@ -61,7 +62,13 @@ struct Case {
 enum Source {
     /// A scene file, rendered with these overrides.
     Scene(PathBuf, LoadOptions),
+    /// A lecture figure by name, drawn at [`FIGURE_SCALE`].
+    Figure(&'static str),
 }
+
+/// Figures are checked at half their slide size: every item and label is still drawn
+/// (a moved label or line still shows), and the goldens stay tens of KiB.
+const FIGURE_SCALE: f32 = 0.5;
 
 /// `viewray render`'s built-in scene; its golden is rendered at half its 640 x 480 so the
 /// committed PNG stays small.
@@ -76,6 +83,7 @@ struct Made {
 
 enum Output {
     Render(viewray_render::Image),
+    Figure(RgbaImage),
 }
 
 impl Output {
@@ -84,6 +92,22 @@ impl Output {
         let mut png = Vec::new();
         match self {
             Output::Render(image) => image.write_png(&mut png)?,
+            Output::Figure(pixels) => {
+                // Figures are opaque: store RGB, compressed hard, to keep goldens small.
+                use image::ImageEncoder as _;
+                let rgb = image::DynamicImage::ImageRgba8(pixels.clone()).to_rgb8();
+                image::codecs::png::PngEncoder::new_with_quality(
+                    &mut png,
+                    image::codecs::png::CompressionType::Best,
+                    image::codecs::png::FilterType::Adaptive,
+                )
+                .write_image(
+                    rgb.as_raw(),
+                    rgb.width(),
+                    rgb.height(),
+                    image::ExtendedColorType::Rgb8,
+                )?;
+            }
         }
         Ok(png)
     }
@@ -209,6 +233,15 @@ fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
             source: Source::Scene(scene, LoadOptions::default()),
         });
     }
+    for figure in viewray_diagram::figures::all_figures() {
+        cases.push(Case {
+            id: format!("figures/{}", figure.name),
+            golden: root
+                .join("golden/figures")
+                .join(format!("{}.png", figure.name)),
+            source: Source::Figure(figure.name),
+        });
+    }
     let produced: Vec<&Path> = cases.iter().map(|c| c.golden.as_path()).collect();
     let mut orphans = Vec::new();
     for kind in ["scenes", "figures"] {
@@ -284,6 +317,15 @@ fn make(case: &Case) -> Result<Made> {
             Ok(Made {
                 pixels: image::DynamicImage::ImageRgb8(rgb).to_rgba8(),
                 output: Output::Render(image),
+            })
+        }
+        Source::Figure(name) => {
+            let figure = viewray_diagram::figures::figure_by_name(name)
+                .with_context(|| format!("no figure named {name}"))?;
+            let pixels = figure.figure().render_scaled(FIGURE_SCALE);
+            Ok(Made {
+                pixels: pixels.clone(),
+                output: Output::Figure(pixels),
             })
         }
     }

@@ -16,12 +16,13 @@ usage: cargo xtask <command>
 commands:
   ci                      every check CI runs: cargo fmt --check, cargo clippy (warnings
                           are errors), cargo test, then the golden check
-  golden [FILTER]         render every scene in fixtures/scenes and compare it with
-                          golden/scenes/<name>.png; a report of the failures goes to
-                          target/golden/index.html. FILTER keeps the images whose
-                          `scenes/<name>` contains it
+  golden [FILTER]         render every scene in fixtures/scenes (and the default scene)
+                          and every lecture figure, and compare each with
+                          golden/{scenes,figures}/<name>.png; a report of the failures
+                          goes to target/golden/index.html. FILTER keeps the images
+                          whose `scenes/<name>` or `figures/<name>` contains it
   golden [FILTER] --bless rewrite the goldens whose pixels changed, add missing ones and
-                          remove those with no scene (refused when CI is set)
+                          remove those with no scene or figure (refused when CI is set)
   figures [--out DIR]     draw every lecture figure, pictures ray traced, as <name>.png
                           and <name>.svg into DIR (default target/figures/)
 ";
