@@ -132,3 +132,16 @@ fn a_mesh_placed_twice_is_loaded_once() {
     assert!(std::sync::Arc::ptr_eq(&meshes[0], &meshes[1]));
     assert!(std::sync::Arc::ptr_eq(&meshes[0], &meshes[2]));
 }
+
+#[test]
+fn the_readme_example_scene_loads() {
+    let readme = std::fs::read_to_string(fixtures().join("../README.md")).unwrap();
+    let start = readme.find("```ron\n").expect("README shows a scene") + "```ron\n".len();
+    let length = readme[start..].find("```").unwrap();
+    // Its mesh path is relative to a file in fixtures/, as the fixtures' are.
+    let path = fixtures().join("readme_example.ron");
+    let scene =
+        Scene::parse(&readme[start..start + length], &path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.world.objects().len(), 5);
+    assert_eq!(scene.lights.len(), 3);
+}
