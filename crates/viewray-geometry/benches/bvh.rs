@@ -4,8 +4,10 @@
 //! `cargo bench -p viewray-geometry --features bench` prints, before criterion's timings, the memory per
 //! triangle of both structures and a check that both find the same hits. Criterion's
 //! `thrpt` lines are rays (or triangles, for the build) per second. `viewray` traces
-//! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray full Hit`
-//! with `Mesh::closest_hit`, which also interpolates normals and uv.
+//! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray packets`
+//! with `Mesh::closest_triangles`, which traces 64 rays at a time (the primary rays in
+//! blocks of 8 x 8 pixels, as the renderer does); `viewray full Hit` with
+//! `Mesh::closest_hit`, which also interpolates normals and uv.
 //!
 //! With `--features embree` (needs the system's Embree 3, e.g. Debian's
 //! `libembree-dev`), Embree joins the comparison: build and single-ray queries. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
@@ -33,6 +35,22 @@ fn primary_rays(width: usize, height: usize) -> Vec<Ray> {
             })
         })
         .collect()
+}
+
+/// The same rays reordered into blocks of 8 x 8 pixels, block after block, as a
+/// renderer hands them to [`Mesh::closest_triangles`].
+fn in_blocks(rays: &[Ray], width: usize) -> Vec<Ray> {
+    let height = rays.len() / width;
+    let mut blocked = Vec::with_capacity(rays.len());
+    for block_row in (0..height).step_by(8) {
+        for block_col in (0..width).step_by(8) {
+            for row in block_row..(block_row + 8).min(height) {
+                let start = row * width + block_col;
+                blocked.extend_from_slice(&rays[start..start + 8.min(width - block_col)]);
+            }
+        }
+    }
+    blocked
 }
 
 /// `count` rays with origins uniform in `[-1, 1]^3` and directions uniform on the
@@ -176,6 +194,13 @@ fn trace_viewray(mesh: &Mesh, rays: &[Ray]) -> f32 {
         .sum()
 }
 
+/// The same with the rays traced in packets of 64 by [`Mesh::closest_triangles`].
+fn trace_viewray_packets(mesh: &Mesh, rays: &[Ray]) -> f32 {
+    let mut hits = vec![None; rays.len()];
+    mesh.closest_triangles(rays, 0.0..f32::INFINITY, &mut hits);
+    hits.iter().flatten().map(|hit| hit.t).sum()
+}
+
 /// The same with the full [`viewray_geometry::Hit`] (normals, shading normal, uv).
 fn trace_viewray_full_hit(mesh: &Mesh, rays: &[Ray]) -> f32 {
     rays.iter()
@@ -211,6 +236,7 @@ fn main() {
     #[cfg(feature = "embree")]
     let embree = Embree::build(&data, 0);
     let primary = primary_rays(1024, 1024);
+    let primary_blocks = in_blocks(&primary, 1024);
     let incoherent = incoherent_rays(1_000_000);
 
     println!("icosphere: {triangles} triangles, {threads} threads");
@@ -293,7 +319,10 @@ fn main() {
         group.finish();
     }
 
-    for (name, rays) in [("primary", &primary), ("incoherent", &incoherent)] {
+    for (name, rays, packet_rays) in [
+        ("primary", &primary, &primary_blocks),
+        ("incoherent", &incoherent, &incoherent),
+    ] {
         let mut group = criterion.benchmark_group(name);
         group.throughput(Throughput::Elements(rays.len() as u64));
         group.bench_function("viewray/1 thread", |b| {
@@ -301,6 +330,12 @@ fn main() {
         });
         group.bench_function(format!("viewray/{threads} threads"), |b| {
             b.iter(|| black_box(parallel(rays, |r| trace_viewray(&mesh, r))))
+        });
+        group.bench_function("viewray packets/1 thread", |b| {
+            b.iter(|| black_box(trace_viewray_packets(&mesh, packet_rays)))
+        });
+        group.bench_function(format!("viewray packets/{threads} threads"), |b| {
+            b.iter(|| black_box(parallel(packet_rays, |r| trace_viewray_packets(&mesh, r))))
         });
         group.bench_function("viewray full Hit/1 thread", |b| {
             b.iter(|| black_box(trace_viewray_full_hit(&mesh, rays)))

@@ -68,17 +68,17 @@ impl Default for BuildParams {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub(crate) struct Node {
-    planes: [[f32; WIDTH]; 6],
-    children: [u32; WIDTH],
+    pub(crate) planes: [[f32; WIDTH]; 6],
+    pub(crate) children: [u32; WIDTH],
 }
 
 /// Children per node.
-const WIDTH: usize = 8;
+pub(crate) const WIDTH: usize = 8;
 /// SIMD groups of four children per node.
-const GROUPS: usize = WIDTH / 4;
+pub(crate) const GROUPS: usize = WIDTH / 4;
 
 /// Child ref flag: the child is a leaf `(start, count)` rather than a node index.
-const LEAF: u32 = 1 << 31;
+pub(crate) const LEAF: u32 = 1 << 31;
 /// Bits of a leaf ref that hold `count - 1`.
 const COUNT_BITS: u32 = 4;
 /// The most items a leaf can refer to.
@@ -94,7 +94,7 @@ const EMPTY_REF: u32 = u32::MAX;
 const FORCE_MEDIAN_DEPTH: u32 = 40;
 /// The traversal stack: a node pushes at most 3 entries more than it pops, and the
 /// tree is less than 67 nodes deep.
-const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
+pub(crate) const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
 /// Ranges at least this large are split with parallel binning and built in parallel.
 const PARALLEL_ITEMS: usize = 16 * 1024;
 
@@ -131,9 +131,9 @@ impl Node {
 
 /// A traversal stack: subtrees still to visit and the distances at which the ray
 /// enters them.
-struct Stack {
-    refs: [u32; STACK_SIZE],
-    t: [f32; STACK_SIZE],
+pub(crate) struct Stack {
+    pub(crate) refs: [u32; STACK_SIZE],
+    pub(crate) t: [f32; STACK_SIZE],
 }
 
 impl Stack {
@@ -144,16 +144,24 @@ impl Stack {
 }
 
 thread_local! {
-    /// Two stacks per thread, enough for a world traversal and the mesh traversal
-    /// nested in it: a stack is several kilobytes, and zeroing a fresh one for every
-    /// ray cost a quarter of the time of a primary ray.
-    static STACKS: [RefCell<Stack>; 2] = const { [RefCell::new(Stack::EMPTY), RefCell::new(Stack::EMPTY)] };
+    /// Four stacks per thread, enough for a world's packet traversal, the mesh packet
+    /// traversal nested in it and the single rays that finish its subtrees: a stack is
+    /// several kilobytes, and zeroing a fresh one for every ray cost a quarter of the
+    /// time of a primary ray.
+    static STACKS: [RefCell<Stack>; 4] = const {
+        [
+            RefCell::new(Stack::EMPTY),
+            RefCell::new(Stack::EMPTY),
+            RefCell::new(Stack::EMPTY),
+            RefCell::new(Stack::EMPTY),
+        ]
+    };
 }
 
-/// Runs `f` with a free traversal stack of this thread (a fresh one when a leaf
-/// callback nests traversals more than two deep).
+/// Runs `f` with a free traversal stack of this thread (a fresh one when callbacks
+/// nest traversals more than four deep).
 #[inline(always)]
-fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
+pub(crate) fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
     let mut f = Some(f);
     let done = STACKS.with(|stacks| {
         for cell in stacks {
@@ -202,7 +210,7 @@ fn leaf_ref(start: usize, count: usize) -> u32 {
     LEAF | ((start as u32) << COUNT_BITS) | (count as u32 - 1)
 }
 
-fn decode_leaf(child: u32) -> (u32, u32) {
+pub(crate) fn decode_leaf(child: u32) -> (u32, u32) {
     ((child & !LEAF) >> COUNT_BITS, (child & (MAX_LEAF - 1)) + 1)
 }
 
@@ -217,6 +225,61 @@ pub struct Bvh {
     nodes: Vec<Node>,
     item_order: Vec<u32>,
     bounds: Aabb,
+}
+
+/// The numbers of a ray's slab tests: per axis the origin moved for the near and the far
+/// plane and the reciprocal direction (see [`SlabNumbers::new`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SlabNumbers {
+    pub(crate) origin_near: Vec3,
+    pub(crate) origin_far: Vec3,
+    pub(crate) inverse: Vec3,
+    /// Bit `axis` is set when the direction is negative on that axis.
+    pub(crate) octant: u8,
+    /// Whether origin and direction are finite and the direction is not zero; other
+    /// rays hit nothing (and would make NaN of the box tests).
+    pub(crate) valid: bool,
+}
+
+impl SlabNumbers {
+    #[inline]
+    pub(crate) fn new(ray: &Ray) -> Self {
+        let (o, d) = (ray.origin, ray.direction);
+        let mut origin_near = o;
+        let mut origin_far = o;
+        let mut inverse = Vec3::ZERO;
+        for axis in 0..3 {
+            let sign = if d[axis].is_sign_negative() {
+                -1.0
+            } else {
+                1.0
+            };
+            let mut d_axis = d[axis];
+            if d_axis.abs() < 1e-30 {
+                // A ray parallel to the slabs never leaves the slab it starts in. With
+                // 1 / 0 = inf, a ray exactly on a box face would give 0 * inf = NaN; a
+                // huge finite reciprocal avoids the NaN, and moving the origin a little
+                // into the slab for each plane (toward the far plane for the near one,
+                // and back for the far one) keeps a ray on the face inside the closed
+                // slab: (max - o) * 1e30 would otherwise make it leave at t = 0.
+                let shift = (o[axis].abs() * 1e-6).max(1e-20);
+                origin_near[axis] += sign * shift;
+                origin_far[axis] -= sign * shift;
+                d_axis = sign * 1e-30;
+            }
+            inverse[axis] = 1.0 / d_axis;
+        }
+        let octant = (0..3).fold(0, |bits, axis| {
+            bits | (u8::from(d[axis].is_sign_negative()) << axis)
+        });
+        Self {
+            origin_near,
+            origin_far,
+            inverse,
+            octant,
+            valid: o.is_finite() && d.is_finite() && d != Vec3::ZERO,
+        }
+    }
 }
 
 /// A ray prepared for box tests: origin and reciprocal direction splatted across lanes,
@@ -235,43 +298,30 @@ pub(crate) struct BoxRay {
 
 impl BoxRay {
     pub(crate) fn new(ray: &Ray) -> Self {
-        let (o, d) = (ray.origin, ray.direction);
-        let mut origin_near = [Vec4::ZERO; 3];
-        let mut origin_far = [Vec4::ZERO; 3];
-        let mut inverse = [Vec4::ZERO; 3];
-        for axis in 0..3 {
-            let sign = if d[axis].is_sign_negative() {
-                -1.0
-            } else {
-                1.0
-            };
-            let (mut o_near, mut o_far) = (o[axis], o[axis]);
-            let mut d_axis = d[axis];
-            if d_axis.abs() < 1e-30 {
-                // A ray parallel to the slabs never leaves the slab it starts in. With
-                // 1 / 0 = inf, a ray exactly on a box face would give 0 * inf = NaN; a
-                // huge finite reciprocal avoids the NaN, and moving the origin a little
-                // into the slab for each plane (toward the far plane for the near one,
-                // and back for the far one) keeps a ray on the face inside the closed
-                // slab: (max - o) * 1e30 would otherwise make it leave at t = 0.
-                let shift = (o[axis].abs() * 1e-6).max(1e-20);
-                o_near += sign * shift;
-                o_far -= sign * shift;
-                d_axis = sign * 1e-30;
-            }
-            origin_near[axis] = Vec4::splat(o_near);
-            origin_far[axis] = Vec4::splat(o_far);
-            inverse[axis] = Vec4::splat(1.0 / d_axis);
-        }
-        let octant = (0..3).fold(0, |bits, axis| {
-            bits | (u8::from(d[axis].is_sign_negative()) << axis)
-        });
+        let numbers = SlabNumbers::new(ray);
         Self {
-            origin_near,
-            origin_far,
-            inverse,
+            origin_near: numbers.origin_near.to_array().map(Vec4::splat),
+            origin_far: numbers.origin_far.to_array().map(Vec4::splat),
+            inverse: numbers.inverse.to_array().map(Vec4::splat),
+            octant: numbers.octant,
+            valid: numbers.valid,
+        }
+    }
+
+    /// The ray of lane `lane` of a packet.
+    #[inline(always)]
+    pub(crate) fn from_lanes(
+        origin_near: [f32; 3],
+        origin_far: [f32; 3],
+        inverse: [f32; 3],
+        octant: u8,
+    ) -> Self {
+        Self {
+            origin_near: origin_near.map(Vec4::splat),
+            origin_far: origin_far.map(Vec4::splat),
+            inverse: inverse.map(Vec4::splat),
             octant,
-            valid: o.is_finite() && d.is_finite() && d != Vec3::ZERO,
+            valid: true,
         }
     }
 
@@ -281,7 +331,7 @@ impl BoxRay {
     /// The exit distance is enlarged by `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
     /// Traversal", JCGT 2013) so that rounding never culls a box the ray grazes.
     #[inline(always)]
-    fn hit_children<const OCTANT: u8>(
+    pub(crate) fn hit_children<const OCTANT: u8>(
         &self,
         node: &Node,
         t_min: Vec4,
@@ -423,6 +473,11 @@ impl Bvh {
         self.closest_prepared(&BoxRay::new(ray), t_min, t_max, leaf, |_, _| {})
     }
 
+    /// The nodes, root first.
+    pub(crate) fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
     pub(crate) fn closest_prepared(
         &self,
         ray: &BoxRay,
@@ -459,13 +514,18 @@ impl Bvh {
             return t_max;
         }
         with_stack(|stack| {
-            self.closest_with_stack::<OCTANT>(ray, t_min, t_max, leaf, prefetch_leaf, stack)
+            self.closest_with_stack::<OCTANT>(ray, 0, t_min, t_max, leaf, prefetch_leaf, stack)
         })
     }
 
-    fn closest_with_stack<const OCTANT: u8>(
+    /// The closest-hit traversal of the subtree `start` (a node index or a leaf ref)
+    /// for rays whose direction signs are `OCTANT`, with a stack to use.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn closest_with_stack<const OCTANT: u8>(
         &self,
         ray: &BoxRay,
+        start: u32,
         t_min: f32,
         mut t_max: f32,
         mut leaf: impl FnMut(u32, u32, f32) -> f32,
@@ -477,7 +537,7 @@ impl Bvh {
             t: stack_t,
         } = stack;
         let mut sp = 0usize;
-        let mut current = 0u32;
+        let mut current = start;
         let t_min4 = Vec4::splat(t_min);
         loop {
             if current & LEAF != 0 {

@@ -3,9 +3,13 @@
 use std::ops::Range;
 use std::sync::Arc;
 
-use glam::{Affine3A, Mat3A, Vec3};
+use glam::{Affine3A, Mat3A, Vec3, Vec4};
 
 use crate::hit::{Hit, RawHit};
+use crate::packet::{
+    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, for_each_packet, lane as packet_lane, lanes_of,
+    set_lane,
+};
 use crate::{Aabb, GeometryError, Mesh, Ray};
 
 /// A shared [`Mesh`] placed by an affine transform (scale, rotation, translation).
@@ -23,6 +27,8 @@ use crate::{Aabb, GeometryError, Mesh, Ray};
 #[derive(Clone, Debug)]
 pub struct Instance {
     mesh: Arc<Mesh>,
+    /// Whether the transform is exactly the identity: rays then need no carrying.
+    identity: bool,
     world_from_object: Affine3A,
     object_from_world: Affine3A,
     normal_matrix: Mat3A,
@@ -58,6 +64,7 @@ impl Instance {
         };
         Ok(Self {
             mesh,
+            identity: world_from_object == Affine3A::IDENTITY,
             world_from_object,
             object_from_world,
             normal_matrix,
@@ -70,6 +77,7 @@ impl Instance {
         let bounds = mesh.bounds();
         Self {
             mesh,
+            identity: true,
             world_from_object: Affine3A::IDENTITY,
             object_from_world: Affine3A::IDENTITY,
             normal_matrix: Mat3A::IDENTITY,
@@ -111,7 +119,70 @@ impl Instance {
     }
 
     pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
-        self.mesh.intersect(&self.object_ray(ray), t_min, t_max)
+        if self.identity {
+            // The identity maps a ray onto itself (up to the sign of zero components,
+            // which no test depends on).
+            self.mesh.intersect(ray, t_min, t_max)
+        } else {
+            self.mesh.intersect(&self.object_ray(ray), t_min, t_max)
+        }
+    }
+
+    /// The closest hits of a packet's rays (filled from `rays`, in world space): see
+    /// [`Mesh::intersect_packet`]. Rays are carried into the mesh's space and regrouped
+    /// into packets there, unless the transform is the identity.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn intersect_packet(
+        &self,
+        packet: &BoxPacket,
+        rays: &[Ray],
+        lanes: u64,
+        t_min: f32,
+        t_max: &mut Lanes,
+        object: u32,
+        best: &mut [Option<RawHit>; PACKET_SIZE],
+    ) {
+        if self.identity {
+            self.mesh
+                .intersect_packet(packet, rays, lanes, t_min, t_max, object, best);
+            return;
+        }
+        let mut object_rays = [Ray::new(Vec3::ZERO, Vec3::ZERO); PACKET_SIZE];
+        let mut lane_of = [0u8; PACKET_SIZE];
+        let mut count = 0;
+        for lane in lanes_of(lanes) {
+            object_rays[count] = self.object_ray(&rays[usize::from(packet.rays()[lane])]);
+            lane_of[count] = lane as u8;
+            count += 1;
+        }
+        let object_rays = &object_rays[..count];
+        let mut object_packet = BoxPacket::new();
+        for_each_packet(object_rays, &mut object_packet, |object_packet| {
+            let lanes = object_packet
+                .rays()
+                .iter()
+                .map(|&i| usize::from(lane_of[usize::from(i)]));
+            let mut object_t_max = [Vec4::ZERO; PACKET_GROUPS];
+            for (object_lane, lane) in lanes.clone().enumerate() {
+                set_lane(&mut object_t_max, object_lane, packet_lane(t_max, lane));
+            }
+            let mut object_best = [None; PACKET_SIZE];
+            self.mesh.intersect_packet(
+                object_packet,
+                object_rays,
+                object_packet.all_lanes(),
+                t_min,
+                &mut object_t_max,
+                object,
+                &mut object_best,
+            );
+            for (object_lane, lane) in lanes.enumerate() {
+                if let Some(hit) = object_best[object_lane] {
+                    best[lane] = Some(hit);
+                    set_lane(t_max, lane, hit.t);
+                }
+            }
+        });
     }
 
     pub(crate) fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {

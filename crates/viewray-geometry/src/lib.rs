@@ -73,6 +73,7 @@ mod error;
 mod hit;
 mod instance;
 mod mesh;
+mod packet;
 mod ray;
 mod shapes;
 #[cfg(test)]
@@ -87,4 +88,4 @@ pub use instance::Instance;
 pub use mesh::{Mesh, MeshData, TriangleHit};
 pub use ray::{DRay, Ray};
 pub use shapes::{Plane, Sphere, Triangle};
-pub use world::{Object, World};
+pub use world::{Object, ObjectHit, World};

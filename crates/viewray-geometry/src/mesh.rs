@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, prefetch};
 use crate::hit::{Hit, RawHit, face_toward};
+use crate::packet::{BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketVisitor, for_each_packet};
 use crate::shapes::{WatertightRay, edge_functions_f64};
 use crate::{Aabb, GeometryError, Ray};
 
@@ -455,49 +456,177 @@ impl Mesh {
 
     /// The closest hit as a raw hit: `t`, face and barycentrics.
     pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
+        self.intersect_prepared(ray, &BoxRay::new(ray), t_min, t_max)
+    }
+
+    /// [`Mesh::intersect`] with the ray's box numbers already worked out.
+    #[inline]
+    pub(crate) fn intersect_prepared(
+        &self,
+        ray: &Ray,
+        box_ray: &BoxRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<RawHit> {
         // The triangle test's setup waits for the first leaf: most rays of a typical
         // image miss a given mesh's boxes altogether.
         let mut packet_ray = None;
         let t_min4 = Vec4::splat(t_min);
         let mut best = None;
         self.bvh.closest_prepared(
-            &BoxRay::new(ray),
+            box_ray,
             t_min,
             t_max,
-            |start, count, mut t_max| {
+            |start, count, t_max| {
                 let packet_ray =
                     packet_ray.get_or_insert_with(|| PacketRay::new(&WatertightRay::new(ray)));
-                for packet in &self.packets[start as usize..(start + count) as usize] {
-                    let (valid, t, [_, v, w], det) =
-                        packet_ray.test(packet, t_min4, Vec4::splat(t_max));
-                    if valid.any() {
-                        let t_valid = Vec4::select(valid, t, Vec4::INFINITY);
-                        t_max = t_valid.min_element();
-                        let lane =
-                            t_valid.cmpeq(Vec4::splat(t_max)).bitmask().trailing_zeros() as usize;
-                        let (v, w, det) =
-                            (v.to_array()[lane], w.to_array()[lane], det.to_array()[lane]);
-                        best = Some(RawHit {
-                            t: t_max,
-                            object: 0,
-                            primitive: packet.faces[lane],
-                            barycentric: Vec2::new(v / det, w / det),
-                        });
-                    }
-                }
-                t_max
+                self.intersect_leaf(packet_ray, start, count, t_min4, t_max, 0, &mut best)
             },
-            |start, count| {
-                // Packets are 160 bytes, 16-byte aligned: the first of a leaf touches at
-                // most 4 cache lines, the first two at most 6.
-                if count == 1 {
-                    prefetch(&self.packets, start as usize, [0, 64, 128, 159]);
-                } else {
-                    prefetch(&self.packets, start as usize, [0, 64, 128, 192, 256, 319]);
-                }
-            },
+            |start, count| self.prefetch_leaf(start, count),
         );
         best
+    }
+
+    /// Intersects the triangle packets `start..start + count` with a ray whose closest
+    /// hit so far (`best`, of object `object`) is at `t_max`; returns the new closest
+    /// distance.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn intersect_leaf(
+        &self,
+        packet_ray: &PacketRay,
+        start: u32,
+        count: u32,
+        t_min4: Vec4,
+        mut t_max: f32,
+        object: u32,
+        best: &mut Option<RawHit>,
+    ) -> f32 {
+        for packet in &self.packets[start as usize..(start + count) as usize] {
+            let (valid, t, [_, v, w], det) = packet_ray.test(packet, t_min4, Vec4::splat(t_max));
+            if valid.any() {
+                let t_valid = Vec4::select(valid, t, Vec4::INFINITY);
+                t_max = t_valid.min_element();
+                let lane = t_valid.cmpeq(Vec4::splat(t_max)).bitmask().trailing_zeros() as usize;
+                let (v, w, det) = (v.to_array()[lane], w.to_array()[lane], det.to_array()[lane]);
+                *best = Some(RawHit {
+                    t: t_max,
+                    object,
+                    primitive: packet.faces[lane],
+                    barycentric: Vec2::new(v / det, w / det),
+                });
+            }
+        }
+        t_max
+    }
+
+    /// Starts loading the first triangle packets of a leaf.
+    #[inline(always)]
+    fn prefetch_leaf(&self, start: u32, count: u32) {
+        // Packets are 160 bytes, 16-byte aligned: the first of a leaf touches at most 4
+        // cache lines, the first two at most 6.
+        if count == 1 {
+            prefetch(&self.packets, start as usize, [0, 64, 128, 159]);
+        } else {
+            prefetch(&self.packets, start as usize, [0, 64, 128, 192, 256, 319]);
+        }
+    }
+
+    /// The closest hits of a packet's rays (filled from `rays`, in the mesh's space)
+    /// with `t` from `t_min` to each ray's `t_max[lane]`: updates `t_max` and `best[lane]`
+    /// (as hits on object `object`) for the lanes in `lanes`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn intersect_packet(
+        &self,
+        packet: &BoxPacket,
+        rays: &[Ray],
+        lanes: u64,
+        t_min: f32,
+        t_max: &mut Lanes,
+        object: u32,
+        best: &mut [Option<RawHit>; PACKET_SIZE],
+    ) {
+        struct Visitor<'a> {
+            mesh: &'a Mesh,
+            rays: &'a [Ray],
+            rays_of_lanes: &'a [u8],
+            packet_rays: [Option<PacketRay>; PACKET_SIZE],
+            t_min4: Vec4,
+            object: u32,
+            best: &'a mut [Option<RawHit>; PACKET_SIZE],
+        }
+        impl PacketVisitor for Visitor<'_> {
+            #[inline(always)]
+            fn leaf(&mut self, lane: usize, start: u32, count: u32, t_max: f32) -> f32 {
+                let ray = &self.rays[usize::from(self.rays_of_lanes[lane])];
+                let packet_ray = self.packet_rays[lane]
+                    .get_or_insert_with(|| PacketRay::new(&WatertightRay::new(ray)));
+                self.mesh.intersect_leaf(
+                    packet_ray,
+                    start,
+                    count,
+                    self.t_min4,
+                    t_max,
+                    self.object,
+                    &mut self.best[lane],
+                )
+            }
+        }
+        let mut visitor = Visitor {
+            mesh: self,
+            rays,
+            rays_of_lanes: packet.rays(),
+            packet_rays: [None; PACKET_SIZE],
+            t_min4: Vec4::splat(t_min),
+            object,
+            best,
+        };
+        self.bvh
+            .closest_packet(packet, lanes, t_min, t_max, &mut visitor, |start, count| {
+                self.prefetch_leaf(start, count)
+            });
+    }
+
+    /// The closest triangle hit of each ray of `rays` with `t` in `t_range`, into
+    /// `hits`: the same hits as [`Mesh::closest_triangle`] ray by ray, found faster
+    /// when the rays are coherent (neighbouring pixels' viewing rays, in blocks of up to
+    /// 64 such as 8 x 8 pixels), because each block is traced as a packet through the
+    /// upper levels of the BVH.
+    ///
+    /// # Panics
+    ///
+    /// When `rays` and `hits` differ in length.
+    pub fn closest_triangles(
+        &self,
+        rays: &[Ray],
+        t_range: Range<f32>,
+        hits: &mut [Option<TriangleHit>],
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit per ray");
+        let mut packet = BoxPacket::new();
+        for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
+            hits.fill(None);
+            for_each_packet(rays, &mut packet, |packet| {
+                let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
+                let mut best = [None; PACKET_SIZE];
+                self.intersect_packet(
+                    packet,
+                    rays,
+                    packet.all_lanes(),
+                    t_range.start,
+                    &mut t_max,
+                    0,
+                    &mut best,
+                );
+                for (&ray, raw) in packet.rays().iter().zip(best) {
+                    hits[usize::from(ray)] = raw.map(|raw| TriangleHit {
+                        t: raw.t,
+                        primitive: raw.primitive,
+                        barycentric: raw.barycentric,
+                    });
+                }
+            });
+        }
     }
 
     /// The surface details of a raw hit on face `raw.primitive`.

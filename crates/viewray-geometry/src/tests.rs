@@ -6,8 +6,8 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 use proptest::prelude::*;
 
 use crate::{
-    Aabb, BuildParams, Bvh, GeometryError, Hit, Instance, Mesh, MeshData, Object, Plane, Ray,
-    Sphere, Triangle, World,
+    Aabb, BuildParams, Bvh, GeometryError, Hit, Instance, Mesh, MeshData, Object, ObjectHit, Plane,
+    Ray, Sphere, Triangle, World,
 };
 
 fn vec3(range: std::ops::Range<f32>) -> impl Strategy<Value = Vec3> {
@@ -125,6 +125,273 @@ proptest! {
                 (a, e) => prop_assert!(false, "world {:?} but scan {:?}", a, e),
             }
         }
+    }
+}
+
+/// Packets of up to 130 rays (so that some span several packets of 64) of the kinds a
+/// camera makes and of the kinds that stress packets:
+/// - perspective: one origin, directions within a small cone, some exactly along an
+///   axis or in a coordinate plane, and some cones around an axis so that the
+///   packet's rays fall into several octants;
+/// - orthographic: one direction (possibly along an axis), origins spread over a
+///   square, so that the packet covers much of the scene;
+/// - incoherent: random rays, traced one by one;
+/// - each with some degenerate rays mixed in (a zero, NaN or infinite direction).
+fn packet() -> impl Strategy<Value = Vec<Ray>> {
+    let count = 1usize..130;
+    let cone = prop_oneof![Just(0.0f32), 1e-4f32..0.02, 0.02f32..0.3];
+    let perspective = (
+        vec3(-1.5..1.5),
+        direction(),
+        cone.clone(),
+        count.clone(),
+        any::<u64>(),
+    )
+        .prop_map(|(origin, d, spread, count, seed)| {
+            let mut random = splitmix(seed);
+            (0..count)
+                .map(|_| {
+                    let offset = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+                    let mut direction = d + spread * d.length() * offset;
+                    if random() < 0.1 {
+                        // Exactly along an axis or in a coordinate plane.
+                        direction[(random() * 3.0) as usize % 3] = 0.0;
+                    }
+                    Ray::new(origin, direction)
+                })
+                .collect::<Vec<_>>()
+        });
+    let around_axis = (
+        vec3(-1.5..1.5),
+        0usize..3,
+        prop::bool::ANY,
+        cone,
+        count.clone(),
+        any::<u64>(),
+    )
+        .prop_map(|(origin, axis, negative, spread, count, seed)| {
+            let mut random = splitmix(seed);
+            let mut d = Vec3::ZERO;
+            d[axis] = if negative { -1.0 } else { 1.0 };
+            (0..count)
+                .map(|_| {
+                    let offset = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+                    Ray::new(origin, d + spread * offset)
+                })
+                .collect::<Vec<_>>()
+        });
+    let orthographic = (direction(), 0.0f32..2.0, count.clone(), any::<u64>()).prop_map(
+        |(d, size, count, seed)| {
+            let mut random = splitmix(seed);
+            // A square of origins across the direction, 2 units behind the scene.
+            let (u, v) = d.normalize().any_orthonormal_pair();
+            (0..count)
+                .map(|_| {
+                    let origin = -2.0 * d.normalize()
+                        + size * ((random() * 2.0 - 1.0) * u + (random() * 2.0 - 1.0) * v);
+                    Ray::new(origin, d)
+                })
+                .collect::<Vec<_>>()
+        },
+    );
+    let incoherent = prop::collection::vec(ray(), count);
+    let degenerate = prop::collection::vec(
+        (
+            0usize..130,
+            prop_oneof![
+                Just(Vec3::ZERO),
+                Just(Vec3::NAN),
+                Just(Vec3::new(f32::INFINITY, 0.0, 1.0))
+            ],
+        ),
+        0..3,
+    );
+    (
+        prop_oneof![3 => perspective, 2 => around_axis, 2 => orthographic, 1 => incoherent],
+        degenerate,
+    )
+        .prop_map(|(mut rays, degenerate)| {
+            for (i, direction) in degenerate {
+                let n = rays.len();
+                rays[i % n].direction = direction;
+            }
+            rays
+        })
+}
+
+/// A SplitMix64 generator of numbers in [0, 1), for rays derived from one seed.
+fn splitmix(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// Checks that a packet found the hit a single ray finds: the same `t`, and the same
+/// face or another one hit at exactly that `t` (a tie).
+#[track_caller]
+fn check_packet_hit(
+    ray: &Ray,
+    packet: Option<(f32, u32)>,
+    single: Option<(f32, u32)>,
+    alone_t: impl Fn(u32) -> Option<f32>,
+) {
+    match (packet, single) {
+        (None, None) => {}
+        (Some((t, face)), Some((single_t, single_face))) => {
+            assert_eq!(t, single_t, "t differs for {ray:?}");
+            if face != single_face {
+                assert_eq!(
+                    alone_t(face),
+                    Some(t),
+                    "face {face} is not a tie for {ray:?}"
+                );
+            }
+        }
+        (packet, single) => panic!("packet {packet:?} but single ray {single:?} for {ray:?}"),
+    }
+}
+
+#[track_caller]
+fn check_mesh_packet(mesh: &Mesh, rays: &[Ray], t_range: std::ops::Range<f32>) {
+    let mut hits = vec![None; rays.len()];
+    mesh.closest_triangles(rays, t_range.clone(), &mut hits);
+    for (ray, hit) in rays.iter().zip(hits) {
+        let single = mesh.closest_triangle(ray, t_range.clone());
+        check_packet_hit(
+            ray,
+            hit.map(|h| (h.t, h.primitive)),
+            single.map(|h| (h.t, h.primitive)),
+            |face| {
+                let [a, b, c] =
+                    mesh.data().triangles[face as usize].map(|i| mesh.data().positions[i as usize]);
+                Triangle::new(a, b, c)
+                    .closest_hit(ray, t_range.clone())
+                    .map(|h| h.t)
+            },
+        );
+        if let (Some(hit), Some(single)) = (hit, single) {
+            let expected = mesh.surface(ray, &single);
+            let actual = mesh.surface(ray, &hit);
+            if hit.primitive == single.primitive {
+                assert_eq!(actual, expected);
+            }
+        }
+    }
+}
+
+#[track_caller]
+fn check_world_packet(world: &World, rays: &[Ray], t_range: std::ops::Range<f32>) {
+    let mut hits = vec![None; rays.len()];
+    world.closest_objects(rays, t_range.clone(), &mut hits);
+    for (ray, hit) in rays.iter().zip(hits) {
+        let single = world.closest_object(ray, t_range.clone());
+        let key = |h: ObjectHit| (h.t, h.object);
+        check_packet_hit(ray, hit.map(key), single.map(key), |object| {
+            closest_alone(&world.objects()[object as usize], ray).map(|h| h.t)
+        });
+        if let (Some(hit), Some(single)) = (hit, single)
+            && (hit.object, hit.primitive) == (single.object, single.primitive)
+        {
+            assert_eq!(world.surface(ray, &hit), world.surface(ray, &single));
+            assert_eq!(
+                world.closest_hit(ray, t_range.clone()),
+                Some(world.surface(ray, &single))
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mesh_packets_find_the_hits_of_single_rays(data in soup(), packets in prop::collection::vec(packet(), 4)) {
+        let mesh = Mesh::new(data).unwrap();
+        for rays in &packets {
+            check_mesh_packet(&mesh, rays, 0.0..f32::INFINITY);
+            check_mesh_packet(&mesh, rays, 0.5..2.0);
+        }
+    }
+
+    #[test]
+    fn world_packets_find_the_hits_of_single_rays(objects in prop::collection::vec(object(), 1..30), packets in prop::collection::vec(packet(), 4)) {
+        let world = World::new(objects).unwrap();
+        for rays in &packets {
+            check_world_packet(&world, rays, 0.0..f32::INFINITY);
+            check_world_packet(&world, rays, 0.5..2.0);
+        }
+    }
+}
+
+/// The icosphere seen by an 8 x 8-pixel block of viewing rays, traced as a packet
+/// through a deep BVH: from outside (perspective and orthographic, with the middle
+/// rays exactly along the axis), from inside the sphere, and from inside its box.
+#[test]
+fn icosphere_packets_match_single_rays() {
+    let mesh = Arc::new(Mesh::icosphere(5, 1.0));
+    let world = World::new(vec![Object::Instance(Instance::from_mesh(mesh.clone()))]).unwrap();
+    let rotated = World::new(vec![
+        Object::Instance(
+            Instance::new(
+                mesh.clone(),
+                Affine3A::from_rotation_y(0.3) * Affine3A::from_translation(Vec3::X * 0.1),
+            )
+            .unwrap(),
+        ),
+        Object::Sphere(Sphere::new(Vec3::new(0.0, 0.0, -3.0), 0.5)),
+    ])
+    .unwrap();
+    let block = |origin: Vec3, center: Vec3, step: f32, perspective: bool| -> Vec<Ray> {
+        (0..64)
+            .map(|i| {
+                // Offsets -3.5 ... 3.5 steps, and exactly 0 for the middle column and row.
+                let (x, y) = ((i % 8) as f32 - 3.5, (i / 8) as f32 - 3.5);
+                let (x, y) = (
+                    if i % 8 == 4 { 0.0 } else { x },
+                    if i / 8 == 4 { 0.0 } else { y },
+                );
+                let offset = Vec3::new(x * step, y * step, 0.0);
+                if perspective {
+                    Ray::new(origin, center + offset - origin)
+                } else {
+                    Ray::new(origin + offset, center - origin)
+                }
+            })
+            .collect()
+    };
+    let mut packets = Vec::new();
+    for step in [1e-3, 4e-3, 3e-2] {
+        for center in [
+            Vec3::ZERO,
+            Vec3::new(0.5, 0.3, 0.0),
+            Vec3::new(0.97, 0.0, 0.0),
+        ] {
+            packets.push(block(Vec3::new(0.0, 0.0, 3.0), center, step, true));
+            packets.push(block(Vec3::new(0.0, 0.0, 3.0), center, step * 10.0, false));
+            packets.push(block(
+                Vec3::new(0.1, 0.2, 0.3),
+                center + Vec3::Z * 5.0,
+                step,
+                true,
+            ));
+            packets.push(block(
+                Vec3::new(0.8, 0.8, 0.5),
+                center + Vec3::Z * 5.0,
+                step,
+                true,
+            ));
+        }
+    }
+    for rays in &packets {
+        check_mesh_packet(&mesh, rays, 0.0..f32::INFINITY);
+        check_world_packet(&world, rays, 0.0..f32::INFINITY);
+        check_world_packet(&rotated, rays, 0.0..f32::INFINITY);
+        check_mesh_packet(&mesh, rays, 2.5..3.5);
     }
 }
 

@@ -2,10 +2,14 @@
 
 use std::ops::Range;
 
-use glam::Vec2;
+use glam::{Vec2, Vec4};
 
 use crate::bvh::{BoxRay, BuildParams, Bvh};
 use crate::hit::{Hit, RawHit};
+use crate::packet::{
+    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketVisitor, for_each_packet,
+    lane as lane_value, lanes_of, set_lane,
+};
 use crate::shapes::WatertightRay;
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
@@ -81,6 +85,9 @@ impl Object {
 pub struct World {
     objects: Vec<Object>,
     bvh: Bvh,
+    /// The only bounded object, when there is exactly one: rays then skip the
+    /// top-level BVH, whose one box only repeats the object's own first test.
+    single: Option<u32>,
     /// The object index at each leaf position of the BVH.
     leaf_objects: Vec<u32>,
     planes: Vec<u32>,
@@ -129,9 +136,11 @@ impl World {
                 _ => 0,
             })
             .sum();
+        let single = (bounded.len() == 1).then(|| bounded[0]);
         Ok(Self {
             objects,
             bvh,
+            single,
             leaf_objects,
             planes,
             triangle_count,
@@ -157,31 +166,101 @@ impl World {
 
     /// The closest hit with `t` in `t_range` (`t_range.start <= t < t_range.end`).
     pub fn closest_hit(&self, ray: &Ray, t_range: Range<f32>) -> Option<Hit> {
+        let raw = self.intersect(ray, t_range.start, t_range.end)?;
+        Some(self.surface_of(ray, &raw))
+    }
+
+    /// The closest object hit with `t` in `t_range`: its distance, object and face,
+    /// without the surface details, for visibility queries and deferred shading;
+    /// [`World::surface`] completes it.
+    pub fn closest_object(&self, ray: &Ray, t_range: Range<f32>) -> Option<ObjectHit> {
+        self.intersect(ray, t_range.start, t_range.end)
+            .map(|raw| self.object_hit(raw))
+    }
+
+    /// The full [`Hit`] for a hit of `ray` found by [`World::closest_object`] or
+    /// [`World::closest_objects`]: normals, shading normal and uv.
+    pub fn surface(&self, ray: &Ray, hit: &ObjectHit) -> Hit {
+        self.surface_of(ray, &hit.raw)
+    }
+
+    /// The closest object hit of each ray of `rays` with `t` in `t_range`, into `hits`:
+    /// the same hits as [`World::closest_object`] ray by ray, found faster when the rays
+    /// are coherent (neighbouring pixels' viewing rays, in blocks of up to 64 such as
+    /// 8 x 8 pixels), because each block is traced as a packet through the upper levels
+    /// of the BVHs. (Of two surfaces hit at exactly the same `t`, either may be
+    /// reported.)
+    ///
+    /// # Panics
+    ///
+    /// When `rays` and `hits` differ in length.
+    pub fn closest_objects(
+        &self,
+        rays: &[Ray],
+        t_range: Range<f32>,
+        hits: &mut [Option<ObjectHit>],
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit per ray");
         let t_min = t_range.start;
-        let mut best: Option<RawHit> = None;
-        let mut t_max = t_range.end;
-        for &object in &self.planes {
-            if let Object::Plane(plane) = &self.objects[object as usize]
-                && let Some(t) = plane.intersect_t(ray, t_min, t_max)
-            {
-                t_max = t;
-                best = Some(RawHit {
-                    t,
-                    object,
-                    primitive: 0,
-                    barycentric: Vec2::ZERO,
-                });
-            }
+        let mut packet = BoxPacket::new();
+        for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
+            hits.fill(None);
+            for_each_packet(rays, &mut packet, |packet| {
+                let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
+                let mut best = [None; PACKET_SIZE];
+                // Planes first, ray by ray, as `intersect` does.
+                for (lane, &i) in packet.rays().iter().enumerate() {
+                    let ray = &rays[usize::from(i)];
+                    let mut t = lane_value(&t_max, lane);
+                    best[lane] = self.intersect_planes(ray, t_min, &mut t);
+                    set_lane(&mut t_max, lane, t);
+                }
+                let lanes = packet.all_lanes();
+                match self.single {
+                    Some(object) => self.intersect_object_packet(
+                        object, packet, rays, lanes, t_min, &mut t_max, &mut best,
+                    ),
+                    None => {
+                        let mut visitor = WorldVisitor {
+                            world: self,
+                            packet,
+                            rays,
+                            t_min,
+                            best: &mut best,
+                        };
+                        self.bvh.closest_packet(
+                            packet,
+                            lanes,
+                            t_min,
+                            &mut t_max,
+                            &mut visitor,
+                            |_, _| {},
+                        );
+                    }
+                }
+                for (&i, raw) in packet.rays().iter().zip(best) {
+                    hits[usize::from(i)] = raw.map(|raw| self.object_hit(raw));
+                }
+            });
         }
-        let watertight = WatertightRay::new(ray);
+    }
+
+    /// The closest hit as a raw hit.
+    fn intersect(&self, ray: &Ray, t_min: f32, mut t_max: f32) -> Option<RawHit> {
+        if !is_traceable(ray) {
+            return None;
+        }
+        let mut best = self.intersect_planes(ray, t_min, &mut t_max);
+        if let Some(object) = self.single {
+            return self.intersect_object(object, ray, t_min, t_max).or(best);
+        }
         self.bvh.closest_prepared(
             &BoxRay::new(ray),
             t_min,
             t_max,
             |start, count, mut t_max| {
                 for &object in &self.leaf_objects[start as usize..(start + count) as usize] {
-                    if let Some(hit) = self.intersect_object(object, ray, &watertight, t_min, t_max)
-                    {
+                    if let Some(hit) = self.intersect_object(object, ray, t_min, t_max) {
                         t_max = hit.t;
                         best = Some(hit);
                     }
@@ -190,13 +269,36 @@ impl World {
             },
             |_, _| {},
         );
-        best.map(|raw| self.surface(ray, &raw))
+        best
+    }
+
+    /// The closest plane hit with `t_min <= t < t_max`, lowering `t_max` to it.
+    #[inline]
+    fn intersect_planes(&self, ray: &Ray, t_min: f32, t_max: &mut f32) -> Option<RawHit> {
+        let mut best = None;
+        for &object in &self.planes {
+            if let Object::Plane(plane) = &self.objects[object as usize]
+                && let Some(t) = plane.intersect_t(ray, t_min, *t_max)
+            {
+                *t_max = t;
+                best = Some(RawHit {
+                    t,
+                    object,
+                    primitive: 0,
+                    barycentric: Vec2::ZERO,
+                });
+            }
+        }
+        best
     }
 
     /// Whether anything is hit with `t` in `t_range`: the shadow-ray query, which stops
     /// at the first hit found rather than the closest.
     pub fn any_hit(&self, ray: &Ray, t_range: Range<f32>) -> bool {
         let (t_min, t_max) = (t_range.start, t_range.end);
+        if !is_traceable(ray) {
+            return false;
+        }
         let planes = self
             .planes
             .iter()
@@ -207,28 +309,22 @@ impl World {
         if planes {
             return true;
         }
-        let watertight = WatertightRay::new(ray);
+        let any_object = |object: u32| match &self.objects[object as usize] {
+            Object::Instance(instance) => instance.any_hit(ray, t_min..t_max),
+            _ => self.intersect_object(object, ray, t_min, t_max).is_some(),
+        };
+        if let Some(object) = self.single {
+            return any_object(object);
+        }
         self.bvh
             .any_prepared(&BoxRay::new(ray), t_min, t_max, |start, count| {
                 self.leaf_objects[start as usize..(start + count) as usize]
                     .iter()
-                    .any(|&object| match &self.objects[object as usize] {
-                        Object::Instance(instance) => instance.any_hit(ray, t_min..t_max),
-                        _ => self
-                            .intersect_object(object, ray, &watertight, t_min, t_max)
-                            .is_some(),
-                    })
+                    .any(|&object| any_object(object))
             })
     }
 
-    fn intersect_object(
-        &self,
-        object: u32,
-        ray: &Ray,
-        watertight: &WatertightRay,
-        t_min: f32,
-        t_max: f32,
-    ) -> Option<RawHit> {
+    fn intersect_object(&self, object: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {
         let raw = |t, primitive, barycentric| RawHit {
             t,
             object,
@@ -242,7 +338,7 @@ impl World {
             Object::Plane(p) => p
                 .intersect_t(ray, t_min, t_max)
                 .map(|t| raw(t, 0, Vec2::ZERO)),
-            Object::Triangle(tri) => watertight
+            Object::Triangle(tri) => WatertightRay::new(ray)
                 .intersect(tri.a, tri.b, tri.c, t_min, t_max)
                 .map(|h| raw(h.t, 0, h.barycentric)),
             Object::Box(b) => b
@@ -254,7 +350,47 @@ impl World {
         }
     }
 
-    fn surface(&self, ray: &Ray, raw: &RawHit) -> Hit {
+    /// The closest hits of a packet's rays with object `object`, for the lanes of
+    /// `lanes`: an instance traces them as packets, other shapes ray by ray.
+    #[allow(clippy::too_many_arguments)]
+    fn intersect_object_packet(
+        &self,
+        object: u32,
+        packet: &BoxPacket,
+        rays: &[Ray],
+        lanes: u64,
+        t_min: f32,
+        t_max: &mut Lanes,
+        best: &mut [Option<RawHit>; PACKET_SIZE],
+    ) {
+        if let Object::Instance(instance) = &self.objects[object as usize] {
+            instance.intersect_packet(packet, rays, lanes, t_min, t_max, object, best);
+            return;
+        }
+        for lane in lanes_of(lanes) {
+            let ray = &rays[usize::from(packet.rays()[lane])];
+            if let Some(hit) = self.intersect_object(object, ray, t_min, lane_value(t_max, lane)) {
+                set_lane(t_max, lane, hit.t);
+                best[lane] = Some(hit);
+            }
+        }
+    }
+
+    /// The public face of a raw hit.
+    fn object_hit(&self, raw: RawHit) -> ObjectHit {
+        let primitive = match self.objects[raw.object as usize] {
+            Object::Instance(_) => raw.primitive,
+            _ => 0,
+        };
+        ObjectHit {
+            t: raw.t,
+            object: raw.object,
+            primitive,
+            raw,
+        }
+    }
+
+    fn surface_of(&self, ray: &Ray, raw: &RawHit) -> Hit {
         let hit = match &self.objects[raw.object as usize] {
             Object::Sphere(s) => s.surface(ray, raw.t),
             Object::Plane(p) => p.surface(ray, raw.t),
@@ -265,6 +401,64 @@ impl World {
         Hit {
             object: raw.object,
             ..hit
+        }
+    }
+}
+
+/// Whether a ray can hit anything: a finite origin and direction, and a nonzero
+/// direction (the BVH's own test; an infinite direction would otherwise meet a plane
+/// at `t = 0`).
+fn is_traceable(ray: &Ray) -> bool {
+    ray.origin.is_finite() && ray.direction.is_finite() && ray.direction != glam::Vec3::ZERO
+}
+
+/// The closest object a ray meets, before the surface details are computed (see
+/// [`World::closest_object`]); [`World::surface`] turns it into a [`Hit`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectHit {
+    /// The ray parameter, in units of the ray's direction.
+    pub t: f32,
+    /// The object's index in the list the world was built from, as [`Hit::object`].
+    pub object: u32,
+    /// The face index for meshes, else 0, as [`Hit::primitive`].
+    pub primitive: u32,
+    /// What the surface details are computed from.
+    raw: RawHit,
+}
+
+/// A world's leaves for packet traversal: each object is intersected with the packet's
+/// rays that reach the leaf.
+struct WorldVisitor<'a> {
+    world: &'a World,
+    packet: &'a BoxPacket,
+    rays: &'a [Ray],
+    t_min: f32,
+    best: &'a mut [Option<RawHit>; PACKET_SIZE],
+}
+
+impl PacketVisitor for WorldVisitor<'_> {
+    fn leaf(&mut self, lane: usize, start: u32, count: u32, mut t_max: f32) -> f32 {
+        let ray = &self.rays[usize::from(self.packet.rays()[lane])];
+        for &object in &self.world.leaf_objects[start as usize..(start + count) as usize] {
+            if let Some(hit) = self.world.intersect_object(object, ray, self.t_min, t_max) {
+                t_max = hit.t;
+                self.best[lane] = Some(hit);
+            }
+        }
+        t_max
+    }
+
+    fn leaf_lanes(&mut self, lanes: u64, start: u32, count: u32, t_max: &mut Lanes) {
+        for &object in &self.world.leaf_objects[start as usize..(start + count) as usize] {
+            self.world.intersect_object_packet(
+                object,
+                self.packet,
+                self.rays,
+                lanes,
+                self.t_min,
+                t_max,
+                self.best,
+            );
         }
     }
 }
