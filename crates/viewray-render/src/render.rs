@@ -6,11 +6,13 @@ use std::sync::{Mutex, PoisonError};
 
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
+use viewray_camera::Camera;
+use viewray_geometry::{ObjectHit, Ray};
 use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
 use crate::sampling::Strata;
-use crate::shade::{DepthMap, DepthRange, FilmPoint, Shader};
+use crate::shade::{DepthMap, DepthRange, FilmPoint, RayDifferentials, Shader};
 
 /// The default number of mirror bounces a ray follows.
 pub const MAX_REFLECTION_DEPTH: u32 = 4;
@@ -107,6 +109,108 @@ pub fn render(
     }
 }
 
+/// The side of the blocks of pixels whose viewing rays are traced together, as one
+/// packet of 64 rays (see [`World::closest_objects`](viewray_geometry::World::closest_objects)).
+const BLOCK_SIZE: u32 = 8;
+
+/// What one thread reuses from tile to tile: the pixels' sums, their differentials,
+/// and a block's rays and hits.
+struct TileBuffers {
+    /// The tile's pixels, row by row.
+    pixels: Vec<Vec3>,
+    /// Each pixel's ray differentials, worked out by the first sample that needs them.
+    differentials: Vec<OnceCell<Option<RayDifferentials>>>,
+    /// A block's rays, and for each the pixel it belongs to in `pixels`.
+    rays: Vec<Ray>,
+    ray_pixels: Vec<usize>,
+    hits: Vec<Option<ObjectHit>>,
+}
+
+impl TileBuffers {
+    fn new(tile_size: u32) -> Self {
+        let pixels = tile_size as usize * tile_size as usize;
+        let block = BLOCK_SIZE as usize * BLOCK_SIZE as usize;
+        Self {
+            pixels: Vec::with_capacity(pixels),
+            differentials: Vec::with_capacity(pixels),
+            rays: Vec::with_capacity(block),
+            ray_pixels: Vec::with_capacity(block),
+            hits: Vec::with_capacity(block),
+        }
+    }
+
+    /// Renders `tile` into `pixels`; returns the number of rays traced.
+    ///
+    /// Each sample index is traced over the whole tile, block by block, so that the
+    /// viewing rays of a block of neighbouring pixels go to the geometry as one packet;
+    /// each pixel still adds its samples in index order, so the sums are the same as
+    /// pixel by pixel.
+    fn render(
+        &mut self,
+        tile: &Tile,
+        shader: &Shader<'_>,
+        camera: &Camera,
+        strata: &Strata,
+        samples: u32,
+        spacing: f64,
+    ) -> u64 {
+        let pixel_count = tile.width as usize * tile.height as usize;
+        self.pixels.clear();
+        self.pixels.resize(pixel_count, Vec3::ZERO);
+        self.differentials.clear();
+        self.differentials.resize_with(pixel_count, OnceCell::new);
+        let mut rays = 0;
+        for index in 0..samples {
+            for block_row in (tile.row..tile.row + tile.height).step_by(BLOCK_SIZE as usize) {
+                for block_col in (tile.col..tile.col + tile.width).step_by(BLOCK_SIZE as usize) {
+                    // Generate the block's rays.
+                    self.rays.clear();
+                    self.ray_pixels.clear();
+                    let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
+                    for row in rows {
+                        let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
+                        for col in cols {
+                            let pixel = ((row - tile.row) * tile.width + (col - tile.col)) as usize;
+                            let sample = strata.camera_sample(row, col, index);
+                            match camera.generate_ray(row, col, sample) {
+                                Some(ray) => {
+                                    self.rays.push(ray.as_ray());
+                                    self.ray_pixels.push(pixel);
+                                }
+                                None => self.pixels[pixel] += shader.background(),
+                            }
+                        }
+                    }
+
+                    // Trace them together and shade each hit.
+                    self.hits.clear();
+                    self.hits.resize(self.rays.len(), None);
+                    shader.trace_primary(&self.rays, &mut self.hits);
+                    for ((ray, hit), &pixel) in
+                        self.rays.iter().zip(&self.hits).zip(&self.ray_pixels)
+                    {
+                        let (row, col) = (
+                            tile.row + pixel as u32 / tile.width,
+                            tile.col + pixel as u32 % tile.width,
+                        );
+                        let film = FilmPoint {
+                            pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
+                            spacing,
+                            differentials: &self.differentials[pixel],
+                        };
+                        self.pixels[pixel] +=
+                            shader.shade_primary(ray, hit.as_ref(), &film, &mut rays);
+                    }
+                }
+            }
+        }
+        for pixel in &mut self.pixels {
+            *pixel /= samples as f32;
+        }
+        rays
+    }
+}
+
 /// A rectangle of pixels: rows `row..row + height`, columns `col..col + width`.
 #[derive(Clone, Copy, Debug)]
 struct Tile {
@@ -185,31 +289,12 @@ fn render_on_current_pool(
         .map(Mutex::new)
         .collect();
 
-    // Render the tiles in parallel, each thread reusing one tile buffer.
+    // Render the tiles in parallel, each thread reusing one set of tile buffers.
     tiles.par_iter().for_each_init(
-        || Vec::with_capacity(tile_size as usize * tile_size as usize),
-        |buffer: &mut Vec<Vec3>, tile| {
-            buffer.clear();
-            let mut rays = 0;
-            for row in tile.row..tile.row + tile.height {
-                for col in tile.col..tile.col + tile.width {
-                    let differentials = OnceCell::new();
-                    let film = FilmPoint {
-                        pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
-                        spacing,
-                        differentials: &differentials,
-                    };
-                    let mut sum = Vec3::ZERO;
-                    for index in 0..samples {
-                        let sample = strata.camera_sample(row, col, index);
-                        sum += match camera.generate_ray(row, col, sample) {
-                            Some(ray) => shader.primary(&ray.as_ray(), &film, &mut rays),
-                            None => shader.background(),
-                        };
-                    }
-                    buffer.push(sum / samples as f32);
-                }
-            }
+        || TileBuffers::new(tile_size),
+        |buffers: &mut TileBuffers, tile| {
+            let rays = buffers.render(tile, &shader, camera, &strata, samples, spacing);
+            let buffer = &buffers.pixels;
 
             // Copy the tile into its band of the image.
             {

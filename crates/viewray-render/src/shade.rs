@@ -4,8 +4,8 @@ use std::cell::OnceCell;
 
 use glam::{DVec2, Vec3};
 use viewray_camera::{Camera, Projection};
-use viewray_geometry::{Hit, Object, Ray};
-use viewray_scene::{Grid, Light, Material, Scene, Shading};
+use viewray_geometry::{Hit, Object, ObjectHit, Ray};
+use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
 
 use crate::image::linear_to_srgb;
 
@@ -188,22 +188,59 @@ impl<'a> Shader<'a> {
         self.background
     }
 
-    /// The value of what the viewing ray `ray` through `film` sees.
+    /// The closest hits of viewing rays, traced together: `hits[i]` for `rays[i]`.
     #[inline]
-    pub(crate) fn primary(&self, ray: &Ray, film: &FilmPoint<'_>, rays: &mut u64) -> Vec3 {
+    pub(crate) fn trace_primary(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
+        self.scene
+            .world
+            .closest_objects(rays, T_MIN..f32::INFINITY, hits);
+    }
+
+    /// The value of what the viewing ray `ray` through `film` sees, given its closest
+    /// hit (from [`Shader::trace_primary`]).
+    #[inline]
+    pub(crate) fn shade_primary(
+        &self,
+        ray: &Ray,
+        hit: Option<&ObjectHit>,
+        film: &FilmPoint<'_>,
+        rays: &mut u64,
+    ) -> Vec3 {
         *rays += 1;
-        let Some(hit) = self.scene.world.closest_hit(ray, T_MIN..f32::INFINITY) else {
+        let Some(object_hit) = hit else {
             return self.background;
         };
+        let world = &self.scene.world;
         match self.scene.shading {
             Shading::Flat => {
-                let material = self.scene.material(&hit);
+                // A plain colour needs no surface details.
+                let material = self.material(object_hit.object, object_hit.primitive);
+                if material.grid.is_none() {
+                    return material.color;
+                }
+                let hit = world.surface(ray, object_hit);
                 surface_color(material, &hit, || self.footprint(film, ray, &hit))
             }
-            Shading::Normals => hit.shading_normal * 0.5 + 0.5,
-            Shading::Depth => Vec3::splat(self.depth_map.value(hit.point)),
-            Shading::Lit => self.lit(ray, &hit, Some(film), 0, rays),
+            Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
+            Shading::Depth => {
+                Vec3::splat(self.depth_map.value(world.surface(ray, object_hit).point))
+            }
+            Shading::Lit => {
+                let hit = world.surface(ray, object_hit);
+                self.lit(ray, &hit, Some(film), 0, rays)
+            }
         }
+    }
+
+    /// The material of face `primitive` of object `object`, as
+    /// [`Scene::material`](viewray_scene::Scene::material) finds a hit's.
+    #[inline]
+    fn material(&self, object: u32, primitive: u32) -> &Material {
+        let index = match &self.scene.object_materials[object as usize] {
+            ObjectMaterial::Single(index) => *index,
+            ObjectMaterial::PerTriangle(faces) => faces[primitive as usize],
+        };
+        &self.scene.materials[index as usize]
     }
 
     /// The colour seen along a reflected ray at mirror bounce `depth`.
