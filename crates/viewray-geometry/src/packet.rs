@@ -10,12 +10,11 @@
 //! are exactly the single-ray arithmetic, so a packet finds the same hits as its rays
 //! traced alone.
 
-use glam::{BVec4A, Vec3, Vec4};
+use glam::{BVec4A, Vec4};
 
 use crate::Ray;
 use crate::bvh::{
-    BoxRay, Bvh, GROUPS, LEAF, Node, STACK_SIZE, SlabNumbers, Stack, WIDTH, decode_leaf, prefetch,
-    with_stack,
+    BoxRay, Bvh, GROUPS, LEAF, Node, STACK_SIZE, Stack, WIDTH, decode_leaf, prefetch, with_stack,
 };
 
 /// The most rays in a packet: one bit each of a `u64` mask.
@@ -33,7 +32,7 @@ const MAX_DIRECTION_SPREAD: f32 = 0.05;
 
 /// When the packet enters this many children of a node or more, they are small next to
 /// the packet, and its rays finish them one by one.
-const MANY_CHILDREN: u32 = 5;
+const MANY_CHILDREN: u32 = 6;
 /// Stack entry flag: the child is to be handed to single rays.
 const SINGLE: u32 = 1 << 31;
 
@@ -86,72 +85,95 @@ impl BoxPacket {
         lanes_below(self.len)
     }
 
-    /// Makes this the packet of the rays `rays[i]` for the bits `i` of `mask` (at
-    /// least one): valid rays of octant `octant`.
-    pub(crate) fn fill(&mut self, octant: u8, rays: &[Ray], mask: u64) {
-        let mut len = 0;
-        let mut direction_min = Vec3::INFINITY;
-        let mut direction_max = Vec3::NEG_INFINITY;
-        let mut length_squared_min = f32::INFINITY;
-        let mut near_min = Vec3::INFINITY;
-        let mut near_max = Vec3::NEG_INFINITY;
-        let mut far_min = Vec3::INFINITY;
-        let mut far_max = Vec3::NEG_INFINITY;
-        let mut inverse_min = Vec3::INFINITY;
-        let mut inverse_max = Vec3::NEG_INFINITY;
-        for i in lanes_of(mask) {
-            let ray = &rays[i];
-            let numbers = SlabNumbers::new(ray);
-            debug_assert!(numbers.valid && numbers.octant == octant);
-            let direction = ray.direction;
-            direction_min = direction_min.min(direction);
-            direction_max = direction_max.max(direction);
-            length_squared_min = length_squared_min.min(direction.length_squared());
-            near_min = near_min.min(numbers.origin_near);
-            near_max = near_max.max(numbers.origin_near);
-            far_min = far_min.min(numbers.origin_far);
-            far_max = far_max.max(numbers.origin_far);
-            inverse_min = inverse_min.min(numbers.inverse);
-            inverse_max = inverse_max.max(numbers.inverse);
-            let (group, lane) = (len / 4, len % 4);
-            for axis in 0..3 {
-                self.origin_near[axis][group][lane] = numbers.origin_near[axis];
-                self.origin_far[axis][group][lane] = numbers.origin_far[axis];
-                self.inverse[axis][group][lane] = numbers.inverse[axis];
+    /// Makes this the packet of the rays of `chunk` in `mask` (at least one): valid
+    /// rays of octant `octant`.
+    fn fill(&mut self, chunk: &ChunkNumbers, octant: u8, mask: u64) {
+        let mut direction_min = [Vec4::INFINITY; 3];
+        let mut direction_max = [Vec4::NEG_INFINITY; 3];
+        let mut length_squared_min = Vec4::INFINITY;
+        let len;
+        if mask == chunk.all {
+            // The whole chunk, the common case: copy its numbers.
+            len = chunk.len;
+            self.origin_near = chunk.origin_near;
+            self.origin_far = chunk.origin_far;
+            self.inverse = chunk.inverse;
+            for (lane, ray) in self.rays.iter_mut().enumerate().take(len) {
+                *ray = lane as u8;
             }
-            self.rays[len] = i as u8;
-            len += 1;
+            for group in 0..len.div_ceil(4) {
+                let d = [0, 1, 2].map(|axis| chunk.direction[axis][group]);
+                for axis in 0..3 {
+                    direction_min[axis] = direction_min[axis].min(d[axis]);
+                    direction_max[axis] = direction_max[axis].max(d[axis]);
+                }
+                length_squared_min =
+                    length_squared_min.min(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            }
+        } else {
+            // Gather the rays of `mask`, lane by lane.
+            let mut lane = 0;
+            for i in lanes_of(mask) {
+                let (from, to) = ((i / 4, i % 4), (lane / 4, lane % 4));
+                let d = [0, 1, 2].map(|axis| chunk.direction[axis][from.0][from.1]);
+                length_squared_min =
+                    length_squared_min.min(Vec4::splat(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+                for axis in 0..3 {
+                    self.origin_near[axis][to.0][to.1] = chunk.origin_near[axis][from.0][from.1];
+                    self.origin_far[axis][to.0][to.1] = chunk.origin_far[axis][from.0][from.1];
+                    self.inverse[axis][to.0][to.1] = chunk.inverse[axis][from.0][from.1];
+                    direction_min[axis] = direction_min[axis].min(Vec4::splat(d[axis]));
+                    direction_max[axis] = direction_max[axis].max(Vec4::splat(d[axis]));
+                }
+                self.rays[lane] = i as u8;
+                lane += 1;
+            }
+            len = lane;
+            // Fill the last group's unused lanes with copies of the first ray: they are
+            // never in a mask, but must not widen the bounds.
+            for slot in len..len.next_multiple_of(4) {
+                for axis in 0..3 {
+                    self.origin_near[axis][slot / 4][slot % 4] = self.origin_near[axis][0][0];
+                    self.origin_far[axis][slot / 4][slot % 4] = self.origin_far[axis][0][0];
+                    self.inverse[axis][slot / 4][slot % 4] = self.inverse[axis][0][0];
+                }
+            }
         }
         debug_assert!(len > 0);
-        // Fill the last group's unused lanes with copies of the first ray: they are
-        // never in a mask, but stay harmless numbers.
-        for slot in len..len.next_multiple_of(4) {
-            for axis in 0..3 {
-                self.origin_near[axis][slot / 4][slot % 4] = self.origin_near[axis][0][0];
-                self.origin_far[axis][slot / 4][slot % 4] = self.origin_far[axis][0][0];
-                self.inverse[axis][slot / 4][slot % 4] = self.inverse[axis][0][0];
-            }
-        }
+        let groups = len.div_ceil(4);
         for axis in 0..3 {
-            let negative = (octant >> axis) & 1 == 1;
+            let (mut near_min, mut near_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
+            let (mut far_min, mut far_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
+            let (mut inverse_min, mut inverse_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
+            for group in 0..groups {
+                near_min = near_min.min(self.origin_near[axis][group]);
+                near_max = near_max.max(self.origin_near[axis][group]);
+                far_min = far_min.min(self.origin_far[axis][group]);
+                far_max = far_max.max(self.origin_far[axis][group]);
+                inverse_min = inverse_min.min(self.inverse[axis][group]);
+                inverse_max = inverse_max.max(self.inverse[axis][group]);
+            }
             // Rounding is monotonic, so (plane - o) * inverse computed for the bounding
             // numbers bounds it for every ray of the packet (see `hit_children`).
-            let (near, far) = if negative {
-                (near_min[axis], far_max[axis])
+            let (near, far) = if (octant >> axis) & 1 == 1 {
+                (near_min.min_element(), far_max.max_element())
             } else {
-                (near_max[axis], far_min[axis])
+                (near_max.max_element(), far_min.min_element())
             };
             self.bound_origin_near[axis] = Vec4::splat(near);
             self.bound_origin_far[axis] = Vec4::splat(far);
-            self.inverse_min[axis] = Vec4::splat(inverse_min[axis]);
-            self.inverse_max[axis] = Vec4::splat(inverse_max[axis]);
+            self.inverse_min[axis] = Vec4::splat(inverse_min.min_element());
+            self.inverse_max[axis] = Vec4::splat(inverse_max.max_element());
         }
         self.len = len;
         self.octant = octant;
         // The spread of the unit directions is at most the spread of the directions
-        // over the shortest one's length.
-        let spread = (direction_max - direction_min).max_element();
-        self.coherent = spread <= MAX_DIRECTION_SPREAD * length_squared_min.sqrt();
+        // over the shortest one's length. (A chunk's padding lanes copy a ray of the
+        // packet whenever the packet is the whole chunk; a lone lane is never padding.)
+        let spread = (0..3)
+            .map(|axis| (direction_max[axis] - direction_min[axis]).max_element())
+            .fold(0.0, f32::max);
+        self.coherent = spread <= MAX_DIRECTION_SPREAD * length_squared_min.min_element().sqrt();
     }
 
     /// For each lane, the index of its ray in the slice the packet was filled from.
@@ -301,6 +323,88 @@ fn max_lane(values: &Lanes, mask: u64) -> f32 {
     max.max_element()
 }
 
+/// The slab numbers (see [`SlabNumbers`](crate::bvh::SlabNumbers)) of up to [`PACKET_SIZE`] rays, four rays per
+/// vector, before they are sorted into packets by octant.
+struct ChunkNumbers {
+    len: usize,
+    /// The mask of all the chunk's rays.
+    all: u64,
+    /// The masks of the valid rays of each octant.
+    octants: [u64; 8],
+    origin_near: [Lanes; 3],
+    origin_far: [Lanes; 3],
+    inverse: [Lanes; 3],
+    direction: [Lanes; 3],
+}
+
+impl ChunkNumbers {
+    /// The numbers of `rays`, exactly as
+    /// [`SlabNumbers::new`](crate::bvh::SlabNumbers::new) computes them ray by ray,
+    /// four rays at a time. Lanes past the last ray copy the first one.
+    fn new(rays: &[Ray]) -> Self {
+        debug_assert!(!rays.is_empty() && rays.len() <= PACKET_SIZE);
+        let mut chunk = Self {
+            len: rays.len(),
+            all: lanes_below(rays.len()),
+            octants: [0; 8],
+            origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+            origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+            inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+            direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        };
+        for group in 0..rays.len().div_ceil(4) {
+            let ray = |i: usize| rays.get(4 * group + i).unwrap_or(&rays[0]);
+            let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
+            let mut valid = BVec4A::splat(true);
+            let mut nonzero = BVec4A::splat(false);
+            let mut octant = [0usize; 4];
+            for axis in 0..3 {
+                let o = Vec4::new(
+                    r0.origin[axis],
+                    r1.origin[axis],
+                    r2.origin[axis],
+                    r3.origin[axis],
+                );
+                let d = Vec4::new(
+                    r0.direction[axis],
+                    r1.direction[axis],
+                    r2.direction[axis],
+                    r3.direction[axis],
+                );
+                valid &= o.is_finite_mask() & d.is_finite_mask();
+                nonzero |= d.cmpne(Vec4::ZERO);
+                let negative = d.is_negative_bitmask() as usize;
+                for (i, octant) in octant.iter_mut().enumerate() {
+                    *octant |= ((negative >> i) & 1) << axis;
+                }
+                // See `SlabNumbers::new`: a direction component this small is replaced
+                // by +-1e-30, and the origin moved into the slab for each plane.
+                let small = d.abs().cmplt(Vec4::splat(1e-30));
+                let (mut near, mut far, mut d_axis) = (o, o, d);
+                if small.any() {
+                    let sign = Vec4::ONE.copysign(d);
+                    let shift = (o.abs() * 1e-6).max(Vec4::splat(1e-20));
+                    near = Vec4::select(small, o + sign * shift, o);
+                    far = Vec4::select(small, o - sign * shift, o);
+                    d_axis = Vec4::select(small, sign * 1e-30, d);
+                }
+                chunk.origin_near[axis][group] = near;
+                chunk.origin_far[axis][group] = far;
+                chunk.inverse[axis][group] = Vec4::ONE / d_axis;
+                chunk.direction[axis][group] = d;
+            }
+            let valid = (valid & nonzero).bitmask() as u64;
+            for (i, &octant) in octant.iter().enumerate() {
+                let lane = 4 * group + i;
+                if lane < rays.len() && (valid >> i) & 1 == 1 {
+                    chunk.octants[octant] |= 1 << lane;
+                }
+            }
+        }
+        chunk
+    }
+}
+
 /// Splits `rays` (at most [`PACKET_SIZE`]) into packets of one octant each and calls
 /// `trace(packet)` for each (see [`BoxPacket::rays`]). Rays that hit nothing by
 /// definition (a non-finite origin or direction, a zero direction) are in no packet.
@@ -309,21 +413,13 @@ pub(crate) fn for_each_packet(
     packet: &mut BoxPacket,
     mut trace: impl FnMut(&BoxPacket),
 ) {
-    debug_assert!(rays.len() <= PACKET_SIZE);
-    // The rays of each octant, as a mask.
-    let mut octants = [0u64; 8];
-    for (i, ray) in rays.iter().enumerate() {
-        let (o, d) = (ray.origin, ray.direction);
-        if o.is_finite() && d.is_finite() && d != Vec3::ZERO {
-            let octant = usize::from(d.x.is_sign_negative())
-                | usize::from(d.y.is_sign_negative()) << 1
-                | usize::from(d.z.is_sign_negative()) << 2;
-            octants[octant] |= 1 << i;
-        }
+    if rays.is_empty() {
+        return;
     }
-    for (octant, &mask) in octants.iter().enumerate() {
+    let chunk = ChunkNumbers::new(rays);
+    for (octant, &mask) in chunk.octants.iter().enumerate() {
         if mask != 0 {
-            packet.fill(octant as u8, rays, mask);
+            packet.fill(&chunk, octant as u8, mask);
             trace(packet);
         }
     }
@@ -558,5 +654,63 @@ impl Bvh {
 impl Default for BoxPacket {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::bvh::SlabNumbers;
+
+    /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
+    /// and validity included, for directions with zero, negative-zero, tiny and
+    /// non-finite components.
+    #[test]
+    fn chunk_numbers_are_the_single_ray_numbers() {
+        let components = [
+            0.0,
+            -0.0,
+            1e-31,
+            -1e-31,
+            1e-30,
+            0.5,
+            -2.0,
+            3e-7,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let origins = [
+            Vec3::ZERO,
+            Vec3::new(1.0, -2.0, 1e-25),
+            Vec3::new(-0.0, 3e5, 0.25),
+        ];
+        let mut rays = Vec::new();
+        for &x in &components {
+            for &y in &components {
+                for (i, &z) in components.iter().enumerate() {
+                    rays.push(Ray::new(origins[i % 3], Vec3::new(x, y, z)));
+                }
+            }
+        }
+        for chunk_rays in rays.chunks(37) {
+            let chunk = ChunkNumbers::new(chunk_rays);
+            for (i, ray) in chunk_rays.iter().enumerate() {
+                let single = SlabNumbers::new(ray);
+                let in_octant = chunk.octants.iter().position(|mask| mask & (1 << i) != 0);
+                assert_eq!(in_octant.is_some(), single.valid, "{ray:?}");
+                if !single.valid {
+                    continue;
+                }
+                assert_eq!(in_octant, Some(usize::from(single.octant)), "{ray:?}");
+                for axis in 0..3 {
+                    let lane = |lanes: &[Lanes; 3]| lane(&lanes[axis], i).to_bits();
+                    assert_eq!(lane(&chunk.origin_near), single.origin_near[axis].to_bits());
+                    assert_eq!(lane(&chunk.origin_far), single.origin_far[axis].to_bits());
+                    assert_eq!(lane(&chunk.inverse), single.inverse[axis].to_bits());
+                }
+            }
+        }
     }
 }

@@ -209,11 +209,13 @@ impl World {
                 let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
                 let mut best = [None; PACKET_SIZE];
                 // Planes first, ray by ray, as `intersect` does.
-                for (lane, &i) in packet.rays().iter().enumerate() {
-                    let ray = &rays[usize::from(i)];
-                    let mut t = lane_value(&t_max, lane);
-                    best[lane] = self.intersect_planes(ray, t_min, &mut t);
-                    set_lane(&mut t_max, lane, t);
+                if !self.planes.is_empty() {
+                    for (lane, &i) in packet.rays().iter().enumerate() {
+                        let ray = &rays[usize::from(i)];
+                        let mut t = lane_value(&t_max, lane);
+                        best[lane] = self.intersect_planes(ray, t_min, &mut t);
+                        set_lane(&mut t_max, lane, t);
+                    }
                 }
                 let lanes = packet.all_lanes();
                 match self.single {
