@@ -120,9 +120,10 @@ struct TileBuffers {
     pixels: Vec<Vec3>,
     /// Each pixel's ray differentials, worked out by the first sample that needs them.
     differentials: Vec<OnceCell<Option<RayDifferentials>>>,
-    /// A block's rays, and for each the pixel it belongs to in `pixels`.
+    /// A block's rays, and for each the pixel it belongs to: its index in `pixels`,
+    /// its row and its column.
     rays: Vec<Ray>,
-    ray_pixels: Vec<usize>,
+    ray_pixels: Vec<(usize, u32, u32)>,
     hits: Vec<Option<ObjectHit>>,
 }
 
@@ -175,7 +176,7 @@ impl TileBuffers {
                             match camera.generate_ray(row, col, sample) {
                                 Some(ray) => {
                                     self.rays.push(ray.as_ray());
-                                    self.ray_pixels.push(pixel);
+                                    self.ray_pixels.push((pixel, row, col));
                                 }
                                 None => self.pixels[pixel] += shader.background(),
                             }
@@ -186,13 +187,9 @@ impl TileBuffers {
                     self.hits.clear();
                     self.hits.resize(self.rays.len(), None);
                     shader.trace_primary(&self.rays, &mut self.hits);
-                    for ((ray, hit), &pixel) in
+                    for ((ray, hit), &(pixel, row, col)) in
                         self.rays.iter().zip(&self.hits).zip(&self.ray_pixels)
                     {
-                        let (row, col) = (
-                            tile.row + pixel as u32 / tile.width,
-                            tile.col + pixel as u32 % tile.width,
-                        );
                         let film = FilmPoint {
                             pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
                             spacing,
@@ -251,19 +248,31 @@ fn render_on_current_pool(
     let mut rays = 0;
     if scene.shading == Shading::Depth {
         let probe = Shader::new(scene, 0, depth_map);
-        let (range, probe_rays) = (0..height)
+        // One band of block rows at a time, each block's rays traced as a packet.
+        let (range, probe_rays) = (0..height.div_ceil(BLOCK_SIZE))
             .into_par_iter()
-            .map(|row| {
+            .map(|band| {
                 let mut range = DepthRange::EMPTY;
-                let mut rays = 0;
-                for col in 0..width {
-                    let sample = viewray_camera::CameraSample::CENTER;
-                    if let Some(ray) = camera.generate_ray(row, col, sample) {
-                        rays += 1;
-                        probe.depth_probe(&ray.as_ray(), &mut range);
+                let (mut rays, mut hits) = (Vec::new(), Vec::new());
+                let mut count = 0;
+                let rows = band * BLOCK_SIZE..((band + 1) * BLOCK_SIZE).min(height);
+                for block_col in (0..width).step_by(BLOCK_SIZE as usize) {
+                    rays.clear();
+                    for row in rows.clone() {
+                        for col in block_col..(block_col + BLOCK_SIZE).min(width) {
+                            let sample = viewray_camera::CameraSample::CENTER;
+                            rays.extend(camera.generate_ray(row, col, sample).map(|r| r.as_ray()));
+                        }
+                    }
+                    count += rays.len() as u64;
+                    hits.clear();
+                    hits.resize(rays.len(), None);
+                    probe.trace_primary(&rays, &mut hits);
+                    for (ray, hit) in rays.iter().zip(&hits) {
+                        probe.depth_probe(ray, hit.as_ref(), &mut range);
                     }
                 }
-                (range, rays)
+                (range, count)
             })
             .reduce(
                 || (DepthRange::EMPTY, 0),

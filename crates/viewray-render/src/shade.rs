@@ -374,10 +374,12 @@ impl<'a> Shader<'a> {
         })
     }
 
-    /// The depth of the centre ray of one pixel for the [`Shading::Depth`] pre-pass.
-    pub(crate) fn depth_probe(&self, ray: &Ray, range: &mut DepthRange) {
-        if let Some(hit) = self.scene.world.closest_hit(ray, T_MIN..f32::INFINITY) {
-            let z = self.depth_map.z(hit.point);
+    /// The depth of the centre ray of one pixel for the [`Shading::Depth`] pre-pass,
+    /// given its closest hit (from [`Shader::trace_primary`]).
+    pub(crate) fn depth_probe(&self, ray: &Ray, hit: Option<&ObjectHit>, range: &mut DepthRange) {
+        if let Some(hit) = hit {
+            // Every shape's hit point is `ray.at(t)`.
+            let z = self.depth_map.z(ray.at(hit.t));
             range.near = range.near.min(z);
             range.far_any = range.far_any.max(z);
             let plane = matches!(
