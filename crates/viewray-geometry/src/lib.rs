@@ -18,7 +18,9 @@
 //!   [`MeshData::icosphere`] and [`MeshData::cuboid`] generators) and [`Mesh`] (validated,
 //!   with its BVH); [`Instance`]: a shared mesh placed by an affine transform.
 //! - [`World`]: a list of [`Object`]s with a top-level BVH; hits name the object's index.
-//! - [`Hit`]: what a closest-hit query reports; [`GeometryError`]: why data was refused.
+//! - [`Hit`]: what a closest-hit query reports; [`TriangleHit`] and [`ObjectHit`]: the
+//!   closest triangle or object before its surface details are computed;
+//!   [`GeometryError`]: why data was refused.
 //! - [`Bvh`]: the hierarchy itself, generic over anything [`Bounded`].
 //!
 //! # Design
@@ -51,9 +53,25 @@
 //!   a fresh one per ray cost a quarter of a primary ray). On large meshes rays are
 //!   bound by memory latency, so the children a ray will visit are prefetched as soon
 //!   as their boxes are hit (the crate's one `unsafe`: the x86_64 prefetch hint).
+//! - **Packets for coherent rays.** [`Mesh::closest_triangles`] and
+//!   [`World::closest_objects`] trace up to 64 rays of one octant (a renderer's 8 x 8
+//!   pixel block) together. One interval-arithmetic test per node bounds every ray of
+//!   the packet at once; rounded subtraction and multiplication are monotonic, so it
+//!   never culls a box that a ray's own test would enter. Leaves, and the children of a
+//!   node where the packet enters six or more (geometry fine next to the packet), are
+//!   tested against each ray, four rays per SSE instruction with exactly the single-ray
+//!   arithmetic, and the rays that hit finish them alone. A packet therefore finds the
+//!   hits its rays find alone (of two surfaces at exactly the same `t`, either may be
+//!   reported), for a fraction of the node visits: the upper levels, which every ray of
+//!   a block repeats, are walked once. Packets whose unit directions spread more than
+//!   0.05 (random rays) are traced ray by ray. A packet's slab numbers are set up four
+//!   rays at a time, bit for bit as for single rays.
+//! - **Short cuts for simple worlds.** A world with one bounded object skips its
+//!   top-level BVH (whose one box only repeats the object's own first test), and an
+//!   instance with the identity transform does not carry rays into object space.
 //! - **Deferred surfaces.** Traversal keeps only `t`, face and barycentrics; normals and
-//!   texture coordinates are computed once, for the winner ([`Mesh::closest_triangle`]
-//!   skips them altogether).
+//!   texture coordinates are computed once, for the winner ([`Mesh::closest_triangle`],
+//!   [`World::closest_object`] and the packet queries skip them altogether).
 //!
 //! `cargo bench -p viewray-geometry --features bench` measures build time, memory and
 //! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with

@@ -3,12 +3,13 @@
 //!
 //! A packet holds up to 64 rays whose directions share one sign pattern (octant). Its
 //! upper-level box tests bound every ray at once with interval arithmetic (one test per
-//! node, as for a single ray); subtrees low enough, and leaves, are first tested against
-//! each ray of the packet (four rays per SIMD instruction) and then handed to the rays
-//! that hit their box, which finish them with the ordinary single-ray traversal. Every
-//! test is conservative with respect to the single-ray one, and each ray's own tests
-//! are exactly the single-ray arithmetic, so a packet finds the same hits as its rays
-//! traced alone.
+//! node, as for a single ray). Leaves, and the children of nodes where the packet
+//! enters [`MANY_CHILDREN`] or more (boxes small next to the packet), are first tested
+//! against each ray of the packet (four rays per SIMD instruction) and then handed to
+//! the rays that hit their box, which finish them with the ordinary single-ray
+//! traversal. Every packet test is conservative with respect to the single-ray one, and
+//! each ray's own tests are exactly the single-ray arithmetic, so a packet finds the
+//! same hits as its rays traced alone.
 
 use glam::{BVec4A, Vec4};
 

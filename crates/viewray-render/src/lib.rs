@@ -57,6 +57,13 @@
 //! an image is byte-identical on any number of threads. Pixels average their samples (a
 //! box filter).
 //!
+//! Tiles of 16 x 16 pixels are rendered in parallel. Within a tile, each sample index
+//! is traced block by block: the viewing rays of 8 x 8 neighbouring pixels go to
+//! [`World::closest_objects`](viewray_geometry::World::closest_objects) as one packet
+//! (same hits as ray by ray, a fraction of the work), and each pixel still adds its
+//! samples in index order. Flat shading of a plain colour and Depth shading need no
+//! normals, so they skip the surface details; shadow and mirror rays go one by one.
+//!
 //! # Output
 //!
 //! [`Image`] holds linear `f32` RGB. PNG output is 8-bit with the sRGB transfer function
