@@ -103,7 +103,7 @@ pub(crate) struct RenderArgs {
     /// degrees and presets follow the new aspect ratio.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub(crate) size: Option<(u32, u32)>,
-    /// How many threads to render on (default: one per core).
+    /// How many threads to load, build and render on (default: one per core).
     #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub(crate) threads: Option<usize>,
     /// Print one JSON line of statistics on stdout:

@@ -22,7 +22,22 @@ const DEFAULT_SCENE: &str = include_str!("../../../fixtures/default.ron");
 const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
+///
+/// `--threads N` bounds the whole command, the BVH builds as well as the render, so
+/// that `--threads 1 --stats` times one thread throughout.
 pub(crate) fn render(args: &RenderArgs) -> Result<()> {
+    match args.threads {
+        None => render_on_current_pool(args),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("viewray-{i}"))
+            .build()
+            .map_err(|error| anyhow!("cannot start {threads} threads: {error}"))?
+            .install(|| render_on_current_pool(args)),
+    }
+}
+
+fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     if args.output.is_dir() {
         bail!("cannot write {}: it is a directory", args.output.display());
     }
@@ -51,10 +66,8 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
     let bar = progress_bar(interactive);
-    let settings = RenderSettings {
-        threads: args.threads,
-        ..RenderSettings::default()
-    };
+    // The caller runs this on a pool of `--threads` threads.
+    let settings = RenderSettings::default();
     let start = Instant::now();
     let rendered = viewray_render::render(&scene, &settings, |done, total| {
         bar.set_length(total);
