@@ -334,20 +334,7 @@ fn make(case: &Case) -> Result<Made> {
 /// Writes `golden` from `output`, through a temporary file renamed into place.
 fn write_golden(root: &Path, golden: &Path, output: &Output) -> Result<()> {
     let png = output.png()?;
-    let dir = golden.parent().context("a golden lives in a folder")?;
-    std::fs::create_dir_all(dir)?;
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".golden-").suffix(".tmp");
-    // The temporary file is private (0600) by default; a golden is an ordinary file.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
-    }
-    let mut file = builder.tempfile_in(dir)?;
-    std::io::Write::write_all(&mut file, &png)?;
-    file.persist(golden)
-        .with_context(|| format!("cannot write {}", golden.display()))?;
+    crate::write_atomically(golden, &png)?;
     eprintln!(
         "        wrote {} ({} KiB)",
         relative(root, golden),

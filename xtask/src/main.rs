@@ -4,6 +4,7 @@
 
 mod figures;
 mod golden;
+mod icosphere;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -25,6 +26,9 @@ commands:
                           remove those with no scene or figure (refused when CI is set)
   figures [--out DIR]     draw every lecture figure, pictures ray traced, as <name>.png
                           and <name>.svg into DIR (default target/figures/)
+  icosphere [--out DIR]   write the geometry benchmark's mesh (1,310,720 triangles) and
+                          camera as icosphere.obj and icosphere.ron into DIR (default
+                          target/icosphere/), to time `viewray render --stats` on them
 ";
 
 fn main() -> ExitCode {
@@ -35,6 +39,8 @@ fn main() -> ExitCode {
             .and_then(|a| golden::golden(&workspace_root(), &a)),
         Some("figures") => figures::FiguresArgs::parse(&args[1..])
             .and_then(|a| figures::figures(&workspace_root(), &a)),
+        Some("icosphere") => icosphere::IcosphereArgs::parse(&args[1..])
+            .and_then(|a| icosphere::icosphere(&workspace_root(), &a)),
         Some("help" | "--help" | "-h") | None => {
             print!("{HELP}");
             Ok(())
@@ -82,6 +88,29 @@ fn cargo(args: &[&str]) -> Result<()> {
     if !status.success() {
         bail!("`cargo {}` failed ({status})", args.join(" "));
     }
+    Ok(())
+}
+
+/// Writes `bytes` to `path` (creating its folder) through a temporary file beside it,
+/// renamed into place when complete, so `path` is never left half-written.
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path.parent().context("an output lives in a folder")?;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".xtask-").suffix(".tmp");
+    // The temporary file is private (0600) by default; the outputs are ordinary files.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        builder.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    let mut file = builder
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    std::io::Write::write_all(&mut file, bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    file.persist(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }
 
