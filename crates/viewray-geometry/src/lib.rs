@@ -75,15 +75,20 @@
 //!
 //! `cargo bench -p viewray-geometry --features bench` measures build time, memory and
 //! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with
-//! `--features embree` Embree 3 too. On the 2-core development machine, shared with
-//! other builds (absolute numbers vary by a third between runs; ratios come from one
-//! run), the last full run gave: build 0.67 s on 1 thread, 0.42 s on 2 (obvhs 1.26 s /
-//! 1.20 s, Embree 0.81 s / 0.74 s); 54 bytes per triangle for nodes and packets (obvhs
-//! 60); 1024 x 1024 primary rays 5.1 Mrays/s on 1 thread (obvhs 2.0, Embree 5.9);
-//! 10^6 incoherent rays 0.87 Mrays/s (obvhs 0.53, Embree 1.6). On quieter runs:
-//! primary 6.6 (obvhs 3.4, Embree 8.4), incoherent 1.3 to 1.6 (obvhs 0.8 to 0.9,
-//! Embree 1.75 to 1.9). Computing the full [`Hit`] costs a third more on incoherent
-//! rays, for the vertex data it reads.
+//! `--features embree` Embree 3 too (called ray by ray, `rtcIntersect1`). On the 2-core
+//! development machine, idle (absolute numbers vary by a tenth or more between runs;
+//! ratios come from one run), the last full run gave:
+//!
+//! | | viewray | obvhs | Embree 3 |
+//! |---|---|---|---|
+//! | build, 1 / 2 threads | 0.70 s / 0.41 s | 0.94 s / 0.98 s | 0.27 s / 0.30 s |
+//! | bytes per triangle | 54 | 60 | |
+//! | primary, packets, 1 / 2 threads | 11.1 / 22.4 Mrays/s | | |
+//! | primary, ray by ray, 1 / 2 threads | 5.7 / 10.9 Mrays/s | 2.9 / 6.2 | 8.9 / 17.0 |
+//! | incoherent, ray by ray, 1 / 2 threads | 1.49 / 2.69 Mrays/s | 0.83 / 1.83 | 1.90 / 4.15 |
+//!
+//! Computing the full [`Hit`] costs a sixth more on primary rays and two thirds more
+//! on incoherent ones, for the vertex data it reads.
 
 mod aabb;
 mod bvh;
