@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use viewray_diagram::figures::all_figures;
 
 /// The command line of `cargo xtask figures`.
@@ -19,24 +19,9 @@ pub(crate) struct FiguresArgs {
 
 impl FiguresArgs {
     pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        let mut parsed = Self::default();
-        let mut args = args.iter();
-        while let Some(arg) = args.next() {
-            let dir = match arg.as_str() {
-                "--out" => match args.next() {
-                    Some(dir) => dir.as_str(),
-                    None => bail!("--out needs a folder: --out DIR"),
-                },
-                other => match other.strip_prefix("--out=") {
-                    Some(dir) => dir,
-                    None => bail!("unknown argument `{other}` for figures (only --out DIR)"),
-                },
-            };
-            if parsed.out.replace(PathBuf::from(dir)).is_some() {
-                bail!("--out given twice");
-            }
-        }
-        Ok(parsed)
+        Ok(Self {
+            out: crate::parse_out("figures", args)?,
+        })
     }
 }
 

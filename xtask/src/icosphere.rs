@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use viewray_geometry::MeshData;
 
 /// The benchmark's subdivision level: 20 * 4^8 = 1,310,720 triangles.
@@ -19,24 +19,9 @@ pub(crate) struct IcosphereArgs {
 
 impl IcosphereArgs {
     pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        let mut parsed = Self::default();
-        let mut args = args.iter();
-        while let Some(arg) = args.next() {
-            let dir = match arg.as_str() {
-                "--out" => match args.next() {
-                    Some(dir) => dir.as_str(),
-                    None => bail!("--out needs a folder: --out DIR"),
-                },
-                other => match other.strip_prefix("--out=") {
-                    Some(dir) => dir,
-                    None => bail!("unknown argument `{other}` for icosphere (only --out DIR)"),
-                },
-            };
-            if parsed.out.replace(PathBuf::from(dir)).is_some() {
-                bail!("--out given twice");
-            }
-        }
-        Ok(parsed)
+        Ok(Self {
+            out: crate::parse_out("icosphere", args)?,
+        })
     }
 }
 

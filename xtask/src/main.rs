@@ -91,6 +91,28 @@ fn cargo(args: &[&str]) -> Result<()> {
     Ok(())
 }
 
+/// The folder of a command whose only option is `--out DIR` (or `--out=DIR`).
+pub(crate) fn parse_out(command: &str, args: &[String]) -> Result<Option<PathBuf>> {
+    let mut out = None;
+    let mut args = args.iter();
+    while let Some(arg) = args.next() {
+        let dir = match arg.as_str() {
+            "--out" => match args.next() {
+                Some(dir) => dir.as_str(),
+                None => bail!("--out needs a folder: --out DIR"),
+            },
+            other => match other.strip_prefix("--out=") {
+                Some(dir) => dir,
+                None => bail!("unknown argument `{other}` for {command} (only --out DIR)"),
+            },
+        };
+        if out.replace(PathBuf::from(dir)).is_some() {
+            bail!("--out given twice");
+        }
+    }
+    Ok(out)
+}
+
 /// Writes `bytes` to `path` (creating its folder) through a temporary file beside it,
 /// renamed into place when complete, so `path` is never left half-written.
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
@@ -120,4 +142,31 @@ fn workspace_root() -> PathBuf {
         .parent()
         .expect("xtask lives one level below the workspace root")
         .to_path_buf()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Option<PathBuf>> {
+        let args: Vec<String> = args.iter().map(|&a| a.to_owned()).collect();
+        parse_out("figures", &args)
+    }
+
+    #[test]
+    fn out_is_the_only_option() {
+        assert_eq!(parse(&[]).unwrap(), None);
+        assert_eq!(
+            parse(&["--out", "a/b"]).unwrap(),
+            Some(PathBuf::from("a/b"))
+        );
+        assert_eq!(parse(&["--out=c"]).unwrap(), Some(PathBuf::from("c")));
+        let error = |args: &[&str]| parse(args).unwrap_err().to_string();
+        assert_eq!(error(&["--out"]), "--out needs a folder: --out DIR");
+        assert_eq!(error(&["--out", "a", "--out=b"]), "--out given twice");
+        assert_eq!(
+            error(&["--bless"]),
+            "unknown argument `--bless` for figures (only --out DIR)"
+        );
+    }
 }
