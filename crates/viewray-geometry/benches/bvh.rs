@@ -196,9 +196,14 @@ fn trace_viewray(mesh: &Mesh, rays: &[Ray]) -> f32 {
 
 /// The same with the rays traced in packets of 64 by [`Mesh::closest_triangles`].
 fn trace_viewray_packets(mesh: &Mesh, rays: &[Ray]) -> f32 {
-    let mut hits = vec![None; rays.len()];
-    mesh.closest_triangles(rays, 0.0..f32::INFINITY, &mut hits);
-    hits.iter().flatten().map(|hit| hit.t).sum()
+    let mut hits = vec![None; rays.len().min(1024)];
+    rays.chunks(1024)
+        .map(|rays| {
+            let hits = &mut hits[..rays.len()];
+            mesh.closest_triangles(rays, 0.0..f32::INFINITY, hits);
+            hits.iter().flatten().map(|hit| hit.t).sum::<f32>()
+        })
+        .sum()
 }
 
 /// The same with the full [`viewray_geometry::Hit`] (normals, shading normal, uv).
