@@ -74,21 +74,23 @@
 //!   [`World::closest_object`] and the packet queries skip them altogether).
 //!
 //! `cargo bench -p viewray-geometry --features bench` measures build time, memory and
-//! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate (CWBVH), and with
-//! `--features embree` Embree 3 too (called ray by ray, `rtcIntersect1`). On the 2-core
-//! development machine, idle (absolute numbers vary by a tenth or more between runs;
-//! ratios come from one run), the last full run gave:
+//! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate
+//! (CWBVH), and with `--features embree` Embree 3 too (called ray by ray,
+//! `rtcIntersect1`). On the 2-core
+//! development machine, idle, the last full run gave (ratios come from one run):
 //!
 //! | | viewray | obvhs | Embree 3 |
 //! |---|---|---|---|
-//! | build, 1 / 2 threads | 0.70 s / 0.41 s | 0.94 s / 0.98 s | 0.27 s / 0.30 s |
+//! | build, 1 / 2 threads | 0.71 s / 0.48 s | 1.06 s / 0.87 s | 0.25 s / 0.28 s |
 //! | bytes per triangle | 54 | 60 | |
-//! | primary, packets, 1 / 2 threads | 11.1 / 22.4 Mrays/s | | |
-//! | primary, ray by ray, 1 / 2 threads | 5.7 / 10.9 Mrays/s | 2.9 / 6.2 | 8.9 / 17.0 |
-//! | incoherent, ray by ray, 1 / 2 threads | 1.49 / 2.69 Mrays/s | 0.83 / 1.83 | 1.90 / 4.15 |
+//! | primary, packets, 1 / 2 threads | 14.0 / 26.2 Mrays/s | | |
+//! | primary, ray by ray, 1 / 2 threads | 6.0 / 11.1 Mrays/s | 3.2 / 6.5 | 9.1 / 17.9 |
+//! | incoherent, ray by ray, 1 / 2 threads | 1.62 / 3.29 Mrays/s | 0.92 / 1.84 | 1.94 / 3.93 |
 //!
-//! Computing the full [`Hit`] costs a sixth more on primary rays and two thirds more
-//! on incoherent ones, for the vertex data it reads.
+//! Runs vary: over several runs, primary packets on 1 thread gave 11.1 to 14.0 Mrays/s
+//! and the incoherent ratio to obvhs 1.5 to 1.8. Computing the full [`Hit`]
+//! costs a twentieth more on primary rays and half again on incoherent ones, for the
+//! vertex data it reads.
 
 mod aabb;
 mod bvh;
