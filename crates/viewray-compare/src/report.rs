@@ -235,11 +235,20 @@ fn page(entries: &[ReportEntry<'_>], sections: &str) -> String {
     );
     out.push_str(STYLE);
     out.push_str("</style>\n</head>\n<body>\n<h1>viewray image comparison</h1>\n");
+    let errors = entries
+        .iter()
+        .filter(|e| matches!(e.outcome, Outcome::Error(_)))
+        .count();
+    let not_compared = if errors > 0 {
+        format!(", {errors} could not be compared")
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         out,
-        "<p class=\"summary\">{} passed, {} failed, of {}.</p>",
+        "<p class=\"summary\">{} passed, {} failed{not_compared}, of {}.</p>",
         entries.len() - failed.len(),
-        failed.len(),
+        failed.len() - errors,
         entries.len()
     );
     if !failed.is_empty() {

@@ -72,9 +72,11 @@ pub(crate) enum Command {
     /// Prints a table (NAME, VERDICT, PEAK FLIP, DIAGNOSIS) and a summary line, or with
     /// --json one JSON line per pair ({"name", "verdict": "pass" | "fail" | "error",
     /// "peak_flip", "mean_flip", "threshold", "diagnosis", "transform", "reasons", "error"})
-    /// and a last line {"summary": {"total", "passed", "failed"}}. A pair that cannot be
-    /// compared (a file on one side only, not a PNG, different sizes) is reported and
-    /// fails. Exit code 0 when every pair passes, 1 when any fails, 2 on bad usage.
+    /// and a last line {"summary": {"total", "passed", "failed", "errors"}}. Images of
+    /// different sizes fail. A pair that cannot be compared (a file on one side only, an
+    /// unreadable file, not a PNG) is reported as an error, and every other pair is still
+    /// judged. Exit code 0 when every pair passes, 1 when any fails, 2 when a pair could
+    /// not be compared or on bad usage.
     Compare(crate::compare::CompareArgs),
     /// Draw one of the lecture's figures to a PNG or SVG.
     ///

@@ -17,7 +17,7 @@ use viewray_compare::{
 
 use crate::EXIT_BAD_INPUT;
 
-/// Exit code when a comparison failed (or a pair could not be compared).
+/// Exit code when a comparison failed.
 const EXIT_FAILED: u8 = 1;
 
 #[derive(Args, Debug)]
@@ -71,9 +71,52 @@ struct Judged {
     outcome: Result<Comparison, String>,
 }
 
-impl Judged {
-    fn passed(&self) -> bool {
-        matches!(&self.outcome, Ok(c) if c.passed())
+/// How the pairs fared: `passed + failed + errors` is the number of pairs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Tally {
+    passed: usize,
+    /// Compared, and judged different.
+    failed: usize,
+    /// Not compared: a side missing, unreadable or not a PNG.
+    errors: usize,
+}
+
+impl Tally {
+    fn of(results: &[Judged]) -> Self {
+        let mut tally = Self::default();
+        for judged in results {
+            match &judged.outcome {
+                Ok(c) if c.passed() => tally.passed += 1,
+                Ok(_) => tally.failed += 1,
+                Err(_) => tally.errors += 1,
+            }
+        }
+        tally
+    }
+
+    /// 2 when a pair could not be compared (bad input), else 1 when one failed, else 0.
+    fn exit_code(self) -> ExitCode {
+        if self.errors > 0 {
+            ExitCode::from(EXIT_BAD_INPUT)
+        } else if self.failed > 0 {
+            ExitCode::from(EXIT_FAILED)
+        } else {
+            ExitCode::SUCCESS
+        }
+    }
+
+    /// The summary line, e.g. `6 images: 1 passed, 3 failed, 2 could not be compared`.
+    fn summary(self) -> String {
+        let total = self.passed + self.failed + self.errors;
+        let noun = if total == 1 { "image" } else { "images" };
+        let mut line = format!(
+            "{total} {noun}: {} passed, {} failed",
+            self.passed, self.failed
+        );
+        if self.errors > 0 {
+            line.push_str(&format!(", {} could not be compared", self.errors));
+        }
+        line
     }
 }
 
@@ -87,8 +130,7 @@ pub(crate) fn run(args: &CompareArgs) -> ExitCode {
         }
     };
     match judge_all(args, &pairs) {
-        Ok(true) => ExitCode::SUCCESS,
-        Ok(false) => ExitCode::from(EXIT_FAILED),
+        Ok(tally) => tally.exit_code(),
         Err(error) => {
             eprintln!("error: {error:#}");
             ExitCode::from(EXIT_BAD_INPUT)
@@ -171,8 +213,8 @@ fn png_names(folder: &Path) -> Result<BTreeSet<String>> {
 }
 
 /// Judges every pair, printing a row (or a JSON line) as each is done, then the summary
-/// and, with `--report`, the report. Returns whether every pair passed.
-fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<bool> {
+/// and, with `--report`, the report. Returns how the pairs fared.
+fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
     let thresholds = InstructorThresholds {
         max_peak_flip: args.threshold,
         ..InstructorThresholds::default()
@@ -208,24 +250,17 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<bool> {
             }
         });
     }
-    let passed = results.iter().filter(|r| r.passed()).count();
-    let failed = results.len() - passed;
+    let tally = Tally::of(&results);
     if args.json {
-        let summary =
-            json!({"summary": {"total": results.len(), "passed": passed, "failed": failed}});
+        let summary = json!({"summary": {
+            "total": results.len(),
+            "passed": tally.passed,
+            "failed": tally.failed,
+            "errors": tally.errors,
+        }});
         crate::json::write_line(&mut out, &summary)?;
     } else {
-        writeln!(
-            out,
-            "{} {}: {passed} passed, {failed} failed (threshold {})",
-            results.len(),
-            if results.len() == 1 {
-                "image"
-            } else {
-                "images"
-            },
-            args.threshold
-        )?;
+        writeln!(out, "{} (threshold {})", tally.summary(), args.threshold)?;
     }
     out.flush()?;
     if let Some(directory) = &args.report {
@@ -247,7 +282,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<bool> {
             .with_context(|| format!("cannot write the report into `{}`", directory.display()))?;
         eprintln!("report: {}", page.display());
     }
-    Ok(failed == 0)
+    Ok(tally)
 }
 
 /// Loads and judges one pair; a missing side or an unreadable file is the pair's error.

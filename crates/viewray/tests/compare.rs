@@ -127,7 +127,8 @@ fn folders_are_paired_by_name_and_every_problem_is_a_row() {
     let (expected, actual) = folders(dir.path());
     let out = viewray(&["compare", s(&expected), s(&actual)]);
     let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    // Two pairs could not be compared: bad input, exit code 2, after every row.
+    assert_eq!(out.status.code(), Some(2), "{stdout}");
     let row = |name: &str| {
         stdout
             .lines()
@@ -144,7 +145,34 @@ fn folders_are_paired_by_name_and_every_problem_is_a_row() {
     assert!(row("notes.png").contains("notes.png: not a PNG file"));
     assert!(row("extra.png").ends_with("only in EXPECTED: ACTUAL has no extra.png"));
     assert!(!stdout.contains("readme"));
-    assert!(stdout.ends_with("6 images: 1 passed, 5 failed (threshold 0.3)\n"));
+    assert!(
+        stdout.ends_with("6 images: 1 passed, 3 failed, 2 could not be compared (threshold 0.3)\n")
+    );
+}
+
+#[test]
+fn folders_whose_pairs_all_compare_exit_1_when_one_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    for name in ["notes.png", "extra.png"] {
+        std::fs::remove_file(expected.join(name)).unwrap();
+        let _ = std::fs::remove_file(actual.join(name));
+    }
+    let out = viewray(&["compare", s(&expected), s(&actual)]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.ends_with("4 images: 1 passed, 3 failed (threshold 0.3)\n"));
+    // Without the failing pairs, all pass.
+    for name in ["mirrored.png", "moved.png", "small.png"] {
+        std::fs::remove_file(expected.join(name)).unwrap();
+        std::fs::remove_file(actual.join(name)).unwrap();
+    }
+    assert_eq!(
+        viewray(&["compare", s(&expected), s(&actual)])
+            .status
+            .code(),
+        Some(0)
+    );
 }
 
 #[test]
@@ -152,7 +180,7 @@ fn json_lines_parse_and_end_with_a_summary() {
     let dir = tempfile::tempdir().unwrap();
     let (expected, actual) = folders(dir.path());
     let out = viewray(&["compare", s(&expected), s(&actual), "--json"]);
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2));
     let lines: Vec<Value> = String::from_utf8(out.stdout)
         .unwrap()
         .lines()
@@ -181,7 +209,7 @@ fn json_lines_parse_and_end_with_a_summary() {
     );
     assert_eq!(
         lines[6]["summary"],
-        serde_json::json!({"total": 6, "passed": 1, "failed": 5})
+        serde_json::json!({"total": 6, "passed": 1, "failed": 3, "errors": 2})
     );
 }
 
@@ -191,14 +219,14 @@ fn report_writes_a_page_and_heatmaps() {
     let (expected, actual) = folders(dir.path());
     let report = dir.path().join("report");
     let out = viewray(&["compare", s(&expected), s(&actual), "--report", s(&report)]);
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(
         stderr.contains("report: ") && stderr.contains("index.html"),
         "{stderr}"
     );
     let page = std::fs::read_to_string(report.join("index.html")).unwrap();
-    assert!(page.contains("1 passed, 5 failed, of 6."));
+    assert!(page.contains("1 passed, 3 failed, 2 could not be compared, of 6."));
     assert!(page.contains("mirrored left-right: check u = up x w"));
     for name in ["correct", "mirrored", "moved"] {
         let heatmap = image::open(report.join(format!("{name}.diff.png"))).unwrap();
