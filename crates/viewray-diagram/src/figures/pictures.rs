@@ -22,7 +22,7 @@ use crate::{Color, Item, Sampling, Stroke, style};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PictureScene {
     /// The axis-coloured cube `[-1, 1]^3` lifted onto the ground (centre `(0, 1, 0)`),
-    /// as in the multiview, axonometric and oblique fixtures: faces perpendicular to x
+    /// as in the axonometric and oblique fixtures: faces perpendicular to x
     /// red, to y green, to z blue.
     AxisCube,
     /// A tower 1.5 x 6 x 1.5 with a floor line every unit and a lower block beside it,
