@@ -222,9 +222,8 @@ impl<'a> Shader<'a> {
                 surface_color(material, &hit, || self.footprint(film, ray, &hit))
             }
             Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
-            Shading::Depth => {
-                Vec3::splat(self.depth_map.value(world.surface(ray, object_hit).point))
-            }
+            // Every shape's hit point is `ray.at(t)`, as in the depth pre-pass.
+            Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
             Shading::Lit => {
                 let hit = world.surface(ray, object_hit);
                 self.lit(ray, &hit, Some(film), 0, rays)
