@@ -5,9 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn viewray() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
-}
+mod support;
+use support::command as viewray;
 
 fn bad_scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/bad");

@@ -2,16 +2,11 @@
 //! clear error line for bad input.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn viewray(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
-        .args(args)
-        .output()
-        .expect("the viewray binary runs")
-}
+mod support;
+use support::{error_line, viewray};
 
 /// Runs `viewray` expecting success; returns the JSON lines it printed.
 #[track_caller]
@@ -24,23 +19,6 @@ fn json_lines(args: &[&str]) -> Vec<Value> {
         .lines()
         .map(|line| serde_json::from_str(line).expect("every line is JSON"))
         .collect()
-}
-
-/// Runs `viewray` expecting bad input: exit code 2 and exactly one `error:` line.
-#[track_caller]
-fn error_line(args: &[&str]) -> String {
-    let out = viewray(args);
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2), "viewray {args:?}: {stderr}");
-    assert!(
-        out.stdout.is_empty(),
-        "viewray {args:?} printed {:?}",
-        out.stdout
-    );
-    assert_eq!(stderr.lines().count(), 1, "not one line: {stderr}");
-    assert!(stderr.starts_with("error: "), "{stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    stderr.trim_end().to_owned()
 }
 
 #[track_caller]

@@ -2,17 +2,12 @@
 //! codes 0 / 1 / 2, the summary table, JSON lines and the HTML report.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
 use image::{Rgba, RgbaImage};
 use serde_json::Value;
 
-fn viewray(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
-        .args(args)
-        .output()
-        .expect("the viewray binary runs")
-}
+mod support;
+use support::{error_line, viewray};
 
 /// A small picture: a red disc, a green triangle and a yellow bar on a dark background,
 /// seen through a camera whose image may be mirrored left-right, moved by `shift_x`
@@ -256,21 +251,6 @@ fn the_threshold_decides_a_small_difference() {
     );
     let out = viewray(&["compare", s(&expected), s(&actual), "--threshold", "1"]);
     assert_eq!(out.status.code(), Some(0));
-}
-
-/// Bad usage: exit code 2, one `error:` line, nothing on stdout.
-#[track_caller]
-fn error_line(args: &[&str]) -> String {
-    let out = viewray(args);
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(out.stdout.is_empty(), "{args:?}");
-    assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.starts_with("error: ") && !stderr.contains("panicked"),
-        "{stderr}"
-    );
-    stderr.trim_end().to_owned()
 }
 
 #[test]

@@ -2,18 +2,12 @@
 //! or one error line and no file at all.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
 use tempfile::TempDir;
 use viewray_diagram::figures::{figure_by_name, figure_names};
 
-fn viewray_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the viewray binary runs")
-}
+mod support;
+use support::{error_line_in as error_line, viewray_in};
 
 #[track_caller]
 fn run_ok(dir: &Path, args: &[&str]) {
@@ -23,19 +17,6 @@ fn run_ok(dir: &Path, args: &[&str]) {
     // Not a terminal: no chatter.
     assert!(out.stderr.is_empty(), "stderr: {stderr}");
     assert!(out.stdout.is_empty(), "stdout: {:?}", out.stdout);
-}
-
-/// Runs `viewray` expecting bad input: exit code 2, exactly one `error:` line.
-#[track_caller]
-fn error_line(dir: &Path, args: &[&str]) -> String {
-    let out = viewray_in(dir, args);
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2), "viewray {args:?}: {stderr}");
-    assert!(out.stdout.is_empty(), "viewray {args:?} printed output");
-    assert_eq!(stderr.lines().count(), 1, "not one line: {stderr}");
-    assert!(stderr.starts_with("error: "), "{stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    stderr.trim_end().to_owned()
 }
 
 /// The names of the files in `dir`, sorted.

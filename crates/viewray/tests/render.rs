@@ -2,17 +2,12 @@
 //! file at all.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 use tempfile::TempDir;
 
-fn viewray(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
-        .args(args)
-        .output()
-        .expect("the viewray binary runs")
-}
+mod support;
+use support::{error_line, viewray};
 
 #[track_caller]
 fn run_ok(args: &[&str]) -> String {
@@ -22,19 +17,6 @@ fn run_ok(args: &[&str]) -> String {
     // Not a terminal: no progress bar, no chatter.
     assert!(out.stderr.is_empty(), "stderr: {stderr}");
     String::from_utf8(out.stdout).unwrap()
-}
-
-/// Runs `viewray` expecting bad input: exit code 2, exactly one `error:` line.
-#[track_caller]
-fn error_line(args: &[&str]) -> String {
-    let out = viewray(args);
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2), "viewray {args:?}: {stderr}");
-    assert!(out.stdout.is_empty(), "viewray {args:?} printed output");
-    assert_eq!(stderr.lines().count(), 1, "not one line: {stderr}");
-    assert!(stderr.starts_with("error: "), "{stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    stderr.trim_end().to_owned()
 }
 
 fn path(dir: &TempDir, name: &str) -> String {
