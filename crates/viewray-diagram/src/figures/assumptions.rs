@@ -229,32 +229,7 @@ pub fn assumption_viewport() -> Diagram {
 
     // Axes and pixel centres, with the centres' u and v along the edges.
     let origin = map.to_canvas(Vec2::ZERO);
-    let u_end = Vec2::new(outline[1].x + 70.0, origin.y);
-    let v_end = Vec2::new(origin.x, outline[0].y - 80.0);
-    sketch.arrow(
-        Vec2::new(outline[0].x, origin.y),
-        u_end,
-        Stroke::new(style::U_AXIS, style::LINE_REGULAR),
-    );
-    sketch.arrow(
-        Vec2::new(origin.x, outline[2].y),
-        v_end,
-        Stroke::new(style::V_AXIS, style::LINE_REGULAR),
-    );
-    sketch.label_at(
-        "$u$",
-        u_end + Vec2::new(-4.0, -10.0),
-        (Anchor::End, Baseline::Bottom),
-        style::U_AXIS,
-        style::LABEL_SIZE,
-    );
-    sketch.label_at(
-        "$v$",
-        v_end + Vec2::new(12.0, 0.0),
-        (Anchor::Start, Baseline::Top),
-        style::V_AXIS,
-        style::LABEL_SIZE,
-    );
+    sketch.uv_axes(origin, (outline[0], outline[2]), 80.0, 10.0);
     for row in 0..h {
         for col in 0..w {
             let p = plane(row, col, DVec2::splat(0.5), size, viewport);
@@ -514,21 +489,7 @@ pub fn assumption_basis() -> Diagram {
         stroke: Some(Stroke::new(style::IMAGE_PLANE, style::LINE_THICK)),
     });
     for pixel in pixels() {
-        let drawn = sketch.camera_ray(
-            &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (0.0, 1.0),
-            ray_stroke.clone(),
-            false,
-        );
-        let color = if pixel == example {
-            style::HIGHLIGHT
-        } else {
-            style::RAY
-        };
-        sketch.dot(drawn.to_px, style::DOT_RADIUS * 0.7, color);
+        sketch.ray_to_pixel_centre(&fv, &camera, pixel, ray_stroke.clone(), pixel == example);
     }
 
     // The example ray's direction, leg by leg: -d w, then u u, then v v.

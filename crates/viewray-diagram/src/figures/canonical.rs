@@ -137,21 +137,7 @@ fn canonical_camera_on(canvas: Canvas) -> Diagram {
         } else {
             ray_stroke.clone()
         };
-        let drawn = sketch.camera_ray(
-            &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (0.0, 1.0),
-            stroke,
-            false,
-        );
-        let color = if pixel == EXAMPLE {
-            style::HIGHLIGHT
-        } else {
-            style::RAY
-        };
-        sketch.dot(drawn.to_px, style::DOT_RADIUS * 0.7, color);
+        sketch.ray_to_pixel_centre(&fv, &camera, pixel, stroke, pixel == EXAMPLE);
     }
 
     // The camera frame at the eye: here u, v, w are the world's x, y, z.

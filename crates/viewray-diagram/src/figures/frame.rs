@@ -6,7 +6,7 @@ use viewray_camera::Frame;
 use super::Diagram;
 use super::sketch::{Canvas, Sketch, vector};
 use super::view::{CameraView, FigureView};
-use crate::{Item, Rect, Stroke, style};
+use crate::{Color, Item, Rect, Stroke, style};
 
 /// The camera's eye in the frame figure.
 const EYE: DVec3 = DVec3::new(1.2, 1.3, 1.8);
@@ -146,56 +146,47 @@ fn camera_frame_on(canvas: Canvas) -> Diagram {
     let u_line = format!("*u* = {}", vector(frame.u));
     let v_line = format!("*v* = {}", vector(frame.v));
     let w_line = format!("*w* = {}", vector(frame.w));
+    let recipe = |size: f32| {
+        [
+            ("1.  *e* = *eye*", style::EYE, size),
+            ("2.  *w* = −*view* / |*view*|", style::W_AXIS, size),
+            ("3.  *u* = *up* × *w* / |*up* × *w*|", style::U_AXIS, size),
+            ("4.  *v* = *w* × *u*", style::V_AXIS, size),
+        ]
+    };
+    let numbers = [
+        (given_line.as_str(), style::ANNOTATION, s),
+        (&view_line, style::ANNOTATION, s),
+        (&up_line, style::ANNOTATION, s),
+        (&u_line, style::U_AXIS, s),
+        (&v_line, style::V_AXIS, s),
+        (&w_line, style::W_AXIS, s),
+    ];
     if canvas == Canvas::Square {
-        let recipe = style::CAPTION_SIZE;
-        sketch.text_lines(
-            Vec2::new(50.0, 760.0),
-            &[
-                ("1.  *e* = *eye*", style::EYE, recipe),
-                ("2.  *w* = −*view* / |*view*|", style::W_AXIS, recipe),
-                ("3.  *u* = *up* × *w* / |*up* × *w*|", style::U_AXIS, recipe),
-                ("4.  *v* = *w* × *u*", style::V_AXIS, recipe),
-            ],
-        );
-        sketch.text_lines(
-            Vec2::new(620.0, 750.0),
-            &[
-                (&given_line, style::ANNOTATION, s),
-                (&view_line, style::ANNOTATION, s),
-                (&up_line, style::ANNOTATION, s),
-                (&u_line, style::U_AXIS, s),
-                (&v_line, style::V_AXIS, s),
-                (&w_line, style::W_AXIS, s),
-            ],
-        );
+        sketch.text_lines(Vec2::new(50.0, 760.0), &recipe(style::CAPTION_SIZE));
+        sketch.text_lines(Vec2::new(620.0, 750.0), &numbers);
         return sketch.finish();
     }
-    sketch.text_lines(
-        Vec2::new(960.0, 190.0),
-        &[
-            ("1.  *e* = *eye*", style::EYE, l),
-            ("2.  *w* = −*view* / |*view*|", style::W_AXIS, l),
-            ("3.  *u* = *up* × *w* / |*up* × *w*|", style::U_AXIS, l),
-            ("4.  *v* = *w* × *u*", style::V_AXIS, l),
-            ("", style::TEXT, l),
-            (&given_line, style::ANNOTATION, s),
-            (&view_line, style::ANNOTATION, s),
-            (&up_line, style::ANNOTATION, s),
-            (&u_line, style::U_AXIS, s),
-            (&v_line, style::V_AXIS, s),
-            (&w_line, style::W_AXIS, s),
-            ("", style::TEXT, l),
-            (
-                "*up* need not be perpendicular to *view*:",
-                style::ANNOTATION,
-                s,
-            ),
-            (
-                "*v* is *up* made perpendicular to *w*",
-                style::ANNOTATION,
-                s,
-            ),
-        ],
-    );
+    let blank = ("", style::TEXT, l);
+    let notes = [
+        (
+            "*up* need not be perpendicular to *view*:",
+            style::ANNOTATION,
+            s,
+        ),
+        (
+            "*v* is *up* made perpendicular to *w*",
+            style::ANNOTATION,
+            s,
+        ),
+    ];
+    let lines: Vec<(&str, Color, f32)> = recipe(l)
+        .into_iter()
+        .chain([blank])
+        .chain(numbers)
+        .chain([blank])
+        .chain(notes)
+        .collect();
+    sketch.text_lines(Vec2::new(960.0, 190.0), &lines);
     sketch.finish()
 }

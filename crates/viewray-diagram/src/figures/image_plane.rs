@@ -84,32 +84,7 @@ pub fn pixel_to_image_plane() -> Diagram {
 
     // The u and v axes through the viewport's centre.
     let origin = map.to_canvas(Vec2::ZERO);
-    let u_end = Vec2::new(bottom_right.x + 70.0, origin.y);
-    let v_end = Vec2::new(origin.x, top_left.y - 100.0);
-    sketch.arrow(
-        Vec2::new(top_left.x, origin.y),
-        u_end,
-        Stroke::new(style::U_AXIS, style::LINE_REGULAR),
-    );
-    sketch.arrow(
-        Vec2::new(origin.x, bottom_right.y),
-        v_end,
-        Stroke::new(style::V_AXIS, style::LINE_REGULAR),
-    );
-    sketch.label_at(
-        "$u$",
-        u_end + Vec2::new(-4.0, -12.0),
-        (Anchor::End, Baseline::Bottom),
-        style::U_AXIS,
-        style::LABEL_SIZE,
-    );
-    sketch.label_at(
-        "$v$",
-        v_end + Vec2::new(14.0, 0.0),
-        (Anchor::Start, Baseline::Top),
-        style::V_AXIS,
-        style::LABEL_SIZE,
-    );
+    sketch.uv_axes(origin, (top_left, bottom_right), 100.0, 12.0);
 
     // Pixel centres.
     for row in 0..h {

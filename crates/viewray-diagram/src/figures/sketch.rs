@@ -134,6 +134,45 @@ impl Sketch {
         });
     }
 
+    /// The image plane's u and v axes through `origin`, the centre of a viewport drawn
+    /// from `top_left` to `bottom_right`: u from the left edge to 70 px past the right one,
+    /// v from the bottom edge to `v_overshoot` px above the top one, each named at its
+    /// head, `label_gap` px clear of the arrow.
+    pub(crate) fn uv_axes(
+        &mut self,
+        origin: Vec2,
+        (top_left, bottom_right): (Vec2, Vec2),
+        v_overshoot: f32,
+        label_gap: f32,
+    ) {
+        let u_end = Vec2::new(bottom_right.x + 70.0, origin.y);
+        let v_end = Vec2::new(origin.x, top_left.y - v_overshoot);
+        self.arrow(
+            Vec2::new(top_left.x, origin.y),
+            u_end,
+            Stroke::new(style::U_AXIS, style::LINE_REGULAR),
+        );
+        self.arrow(
+            Vec2::new(origin.x, bottom_right.y),
+            v_end,
+            Stroke::new(style::V_AXIS, style::LINE_REGULAR),
+        );
+        self.label_at(
+            "$u$",
+            u_end + Vec2::new(-4.0, -label_gap),
+            (Anchor::End, Baseline::Bottom),
+            style::U_AXIS,
+            style::LABEL_SIZE,
+        );
+        self.label_at(
+            "$v$",
+            v_end + Vec2::new(label_gap + 2.0, 0.0),
+            (Anchor::Start, Baseline::Top),
+            style::V_AXIS,
+            style::LABEL_SIZE,
+        );
+    }
+
     /// A dimension: a thin two-headed arrow from `from` to `to` with short extension
     /// ticks at both ends, perpendicular to it.
     pub(crate) fn dimension(&mut self, from: Vec2, to: Vec2) {
@@ -190,6 +229,34 @@ impl Sketch {
         };
         self.rays.push(drawn);
         drawn
+    }
+
+    /// The centre ray of pixel `pixel` from the eye to the image plane (`t` from 0 to 1),
+    /// ending in a small dot at the pixel centre: the highlight colour for the figure's
+    /// example pixel, the ray colour for the others.
+    pub(crate) fn ray_to_pixel_centre(
+        &mut self,
+        view: &FigureView,
+        camera: &Camera,
+        pixel: (u32, u32),
+        stroke: Stroke,
+        example: bool,
+    ) {
+        let drawn = self.camera_ray(
+            view,
+            camera,
+            pixel,
+            CameraSample::CENTER,
+            (0.0, 1.0),
+            stroke,
+            false,
+        );
+        let color = if example {
+            style::HIGHLIGHT
+        } else {
+            style::RAY
+        };
+        self.dot(drawn.to_px, style::DOT_RADIUS * 0.7, color);
     }
 
     /// The viewing ray through the continuous image point `image` (and the lens sample
