@@ -114,7 +114,7 @@ pub enum Item {
         /// Which ends have heads.
         ends: ArrowEnds,
     },
-    /// A filled disc marking a point, such as the eye **e** or a pixel centre.
+    /// A filled disc marking a point, such as an eye or a pixel centre.
     Dot {
         /// The marked point.
         center: Vec2,

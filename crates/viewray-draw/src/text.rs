@@ -20,7 +20,7 @@ const SUPERSCRIPT_RISE: f32 = 0.38;
 
 /// One of the four bundled DejaVu Sans faces.
 ///
-/// The lecture writes vectors in bold (**e**, **u**, **v**, **w**) and scalars in
+/// Mathematical writing sets vectors in bold (**e**, **u**, **v**, **w**) and scalars in
 /// italics (*u*, *v*, *d*, *vw*, *vh*, *i*, *j*); [`Label::vector`] and [`Label::math`]
 /// choose those faces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -30,7 +30,7 @@ pub enum FontFace {
     Regular,
     /// DejaVu Sans Oblique: scalar symbols such as *d* and *vw*.
     Italic,
-    /// DejaVu Sans Bold: vectors such as **u** and the eye **e**.
+    /// DejaVu Sans Bold: vectors such as **u** and points such as **e**.
     Bold,
     /// DejaVu Sans Bold Oblique.
     BoldItalic,
@@ -156,7 +156,7 @@ pub fn measure_text(text: &str, size: f32, face: FontFace) -> TextExtent {
 /// character literally: `file\_name`. Scripts are 70 % of the label's size, subscripts
 /// lowered by 0.2 em and superscripts raised by 0.38 em.
 ///
-/// Formulas mix faces as the lecture does: between dollar signs (`$u = (j - 1/2)/W$`)
+/// Formulas mix faces as mathematical writing does: between dollar signs (`$u = (j - 1/2)/W$`)
 /// letters are set in italics and `-` becomes the minus sign `−`, while digits and
 /// punctuation stay upright; between asterisks (`*u*`) text is set in bold, so a ray
 /// direction reads `$u *u* + v *v* - d *w*$`. Escape either sign with a backslash.
@@ -198,12 +198,12 @@ impl Label {
         }
     }
 
-    /// A scalar symbol in italics, as the lecture writes *d*, *vw* or *v_h*.
+    /// A scalar symbol in italics, as mathematics writes *d*, *vw* or *v_h*.
     pub fn math(text: impl Into<String>, position: Vec2) -> Label {
         Label::new(text, position).with_face(FontFace::Italic)
     }
 
-    /// A vector symbol in bold, as the lecture writes **e**, **u**, **v**, **w**.
+    /// A vector symbol in bold, as mathematics writes **e**, **u**, **v**, **w**.
     pub fn vector(text: impl Into<String>, position: Vec2) -> Label {
         Label::new(text, position).with_face(FontFace::Bold)
     }
