@@ -39,10 +39,9 @@ pub(crate) fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
         let figure = named.figure();
         let png = out.join(format!("{}.png", named.name));
         let svg = out.join(format!("{}.svg", named.name));
-        viewray_draw::write_png(&figure, &png)
-            .with_context(|| format!("cannot write {}", png.display()))?;
-        viewray_draw::write_svg(&figure, &svg)
-            .with_context(|| format!("cannot write {}", svg.display()))?;
+        // The errors name the file.
+        viewray_draw::write_png(&figure, &png)?;
+        viewray_draw::write_svg(&figure, &svg)?;
         eprintln!(
             "  {:<28} {} x {} {:>6} ms",
             named.name,

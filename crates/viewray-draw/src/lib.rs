@@ -15,7 +15,9 @@
 //!   computed once so the PNG and the SVG cannot disagree;
 //! - outputs: [`raster`] paints a figure into RGBA pixels with tiny-skia, [`svg`] writes
 //!   it as an SVG document with an XML writer;
-//! - files: [`write_png`] and [`write_svg`] write one file atomically.
+//! - files: [`write_png`] and [`write_svg`] write one file atomically, through
+//!   `viewray-output` (its PNG encoder and atomic writer, shared by every viewray crate
+//!   that writes a file; the only viewray crate this one uses).
 //!
 //! # Text
 //! Text is set with the DejaVu Sans faces bundled in the `dejavu` crate (no system font
@@ -59,7 +61,6 @@ mod color;
 mod figure;
 mod mapping;
 mod output;
-mod png;
 pub mod raster;
 mod rect;
 mod shape;

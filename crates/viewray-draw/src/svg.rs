@@ -23,6 +23,7 @@ use glam::Vec2;
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
 use tiny_skia::{Path, PathSegment};
+use viewray_output::{Compression, encode_png};
 
 use crate::shape::{arrow_shape, label_outline};
 use crate::text::Label;
@@ -269,8 +270,8 @@ fn style_and_weight(face: FontFace) -> (&'static str, &'static str) {
 /// solid block, and looks pixelated even where the hint is ignored.
 fn write_image(svg: &mut Svg, pixels: &image::RgbaImage, rect: Rect, sampling: Sampling) {
     let png = match sampling {
-        Sampling::Nearest => crate::png::encode_png(&enlarge_for(pixels, rect)),
-        Sampling::Smooth => crate::png::encode_png(pixels),
+        Sampling::Nearest => encode_png(&enlarge_for(pixels, rect), Compression::Balanced),
+        Sampling::Smooth => encode_png(pixels, Compression::Balanced),
     };
     let Ok(png) = png else {
         return;

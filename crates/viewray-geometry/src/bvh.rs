@@ -266,21 +266,28 @@ pub(crate) fn slab_test(near: [Vec4; 3], far: [Vec4; 3], t_min: Vec4, t_max: Vec
     (t_near.cmple(t_far).bitmask(), t_near)
 }
 
-/// The distances along four rays to four near and far slab planes on one axis:
+/// The distances along four rays to four near and far slab planes on each axis:
 /// `(plane - origin) * inverse`, with the origin moved for each plane (see
 /// [`slab_numbers`]).
 #[inline(always)]
 pub(crate) fn plane_distances(
-    near_plane: Vec4,
-    far_plane: Vec4,
-    origin_near: Vec4,
-    origin_far: Vec4,
-    inverse: Vec4,
-) -> (Vec4, Vec4) {
+    near_plane: [Vec4; 3],
+    far_plane: [Vec4; 3],
+    origin_near: [Vec4; 3],
+    origin_far: [Vec4; 3],
+    inverse: [Vec4; 3],
+) -> ([Vec4; 3], [Vec4; 3]) {
     (
-        (near_plane - origin_near) * inverse,
-        (far_plane - origin_far) * inverse,
+        per_axis(|axis| (near_plane[axis] - origin_near[axis]) * inverse[axis]),
+        per_axis(|axis| (far_plane[axis] - origin_far[axis]) * inverse[axis]),
     )
+}
+
+/// `[f(0), f(1), f(2)]`, written out: `array::map` is not always inlined in the hot
+/// loops, and then costs a call per box test.
+#[inline(always)]
+pub(crate) fn per_axis<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
 }
 
 /// What a single ray's closest-hit traversal carries down the tree besides its closest
@@ -312,15 +319,14 @@ pub(crate) struct BoxRay {
 impl BoxRay {
     pub(crate) fn new(ray: &Ray) -> Self {
         let (o, d) = (ray.origin, ray.direction);
-        let numbers =
-            [0, 1, 2].map(|axis| slab_numbers(Vec4::splat(o[axis]), Vec4::splat(d[axis])));
+        let numbers = per_axis(|axis| slab_numbers(Vec4::splat(o[axis]), Vec4::splat(d[axis])));
         let octant = (0..3).fold(0, |bits, axis| {
             bits | (u8::from(d[axis].is_sign_negative()) << axis)
         });
         Self {
-            origin_near: numbers.map(|n| n.0),
-            origin_far: numbers.map(|n| n.1),
-            inverse: numbers.map(|n| n.2),
+            origin_near: per_axis(|axis| numbers[axis].0),
+            origin_far: per_axis(|axis| numbers[axis].1),
+            inverse: per_axis(|axis| numbers[axis].2),
             octant,
             valid: o.is_finite() && d.is_finite() && d != Vec3::ZERO,
         }
@@ -358,18 +364,15 @@ impl BoxRay {
         let mut t_near_all = [0.0; WIDTH];
         for group in 0..GROUPS {
             let lanes = 4 * group..4 * group + 4;
-            let (near, far) = node_planes::<OCTANT>(p, lanes.clone());
-            let distances = [0, 1, 2].map(|axis| {
-                plane_distances(
-                    near[axis],
-                    far[axis],
-                    self.origin_near[axis],
-                    self.origin_far[axis],
-                    self.inverse[axis],
-                )
-            });
-            let (hit, t_near) =
-                slab_test(distances.map(|d| d.0), distances.map(|d| d.1), t_min, t_max);
+            let (near_plane, far_plane) = node_planes::<OCTANT>(p, lanes.clone());
+            let (near, far) = plane_distances(
+                near_plane,
+                far_plane,
+                self.origin_near,
+                self.origin_far,
+                self.inverse,
+            );
+            let (hit, t_near) = slab_test(near, far, t_min, t_max);
             mask |= hit << (4 * group);
             t_near.write_to_slice(&mut t_near_all[lanes]);
         }
@@ -400,8 +403,8 @@ pub(crate) fn node_planes<const OCTANT: u8>(
         Vec4::from_slice(&planes[plane_index::<OCTANT>(axis, far)][lanes.clone()])
     };
     (
-        [0, 1, 2].map(|axis| plane(axis, false)),
-        [0, 1, 2].map(|axis| plane(axis, true)),
+        per_axis(|axis| plane(axis, false)),
+        per_axis(|axis| plane(axis, true)),
     )
 }
 

@@ -16,7 +16,8 @@ use glam::{BVec4A, Vec4};
 use crate::Ray;
 use crate::bvh::{
     BoxRay, Bvh, GROUPS, LEAF, Node, RayTraversal, STACK_SIZE, Stack, WIDTH, decode_leaf,
-    node_planes, plane_distances, plane_index, prefetch, slab_numbers, slab_test, with_stack,
+    node_planes, per_axis, plane_distances, plane_index, prefetch, slab_numbers, slab_test,
+    with_stack,
 };
 use crate::hit::RawHit;
 
@@ -214,11 +215,11 @@ impl BoxPacket {
         for group in 0..GROUPS {
             let lanes = 4 * group..4 * group + 4;
             let (near_plane, far_plane) = node_planes::<OCTANT>(&node.planes, lanes.clone());
-            let near = [0, 1, 2].map(|axis| {
+            let near = per_axis(|axis| {
                 let near = near_plane[axis] - self.bound_origin_near[axis];
                 (near * self.inverse_min[axis]).min(near * self.inverse_max[axis])
             });
-            let far = [0, 1, 2].map(|axis| {
+            let far = per_axis(|axis| {
                 let far = far_plane[axis] - self.bound_origin_far[axis];
                 (far * self.inverse_min[axis]).max(far * self.inverse_max[axis])
             });
@@ -244,28 +245,21 @@ impl BoxPacket {
         let plane = |axis: usize, far: bool| {
             Vec4::splat(node.planes[plane_index::<OCTANT>(axis, far)][slot])
         };
-        let near_plane = [0, 1, 2].map(|axis| plane(axis, false));
-        let far_plane = [0, 1, 2].map(|axis| plane(axis, true));
+        let near_plane = per_axis(|axis| plane(axis, false));
+        let far_plane = per_axis(|axis| plane(axis, true));
         let mut hit = 0;
         let mut rest = lanes;
         while rest != 0 {
             let group = rest.trailing_zeros() as usize / 4;
             rest &= !(0xf << (4 * group));
-            let distances = [0, 1, 2].map(|axis| {
-                plane_distances(
-                    near_plane[axis],
-                    far_plane[axis],
-                    self.origin_near[axis][group],
-                    self.origin_far[axis][group],
-                    self.inverse[axis][group],
-                )
-            });
-            let (group_hit, _) = slab_test(
-                distances.map(|d| d.0),
-                distances.map(|d| d.1),
-                t_min,
-                t_max[group],
+            let (near, far) = plane_distances(
+                near_plane,
+                far_plane,
+                per_axis(|axis| self.origin_near[axis][group]),
+                per_axis(|axis| self.origin_far[axis][group]),
+                per_axis(|axis| self.inverse[axis][group]),
             );
+            let (group_hit, _) = slab_test(near, far, t_min, t_max[group]);
             hit |= u64::from(group_hit) << (4 * group);
         }
         hit & lanes

@@ -78,13 +78,14 @@ impl Format {
     }
 }
 
-/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into place).
+/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into
+/// place); an error names `path`.
 fn write(figure: &Figure, path: &Path, format: Format) -> Result<()> {
     match format {
-        Format::Png => viewray_draw::write_png(figure, path),
-        Format::Svg => viewray_draw::write_svg(figure, path),
+        Format::Png => viewray_draw::write_png(figure, path)?,
+        Format::Svg => viewray_draw::write_svg(figure, path)?,
     }
-    .with_context(|| format!("cannot write {}", path.display()))
+    Ok(())
 }
 
 /// `viewray figure`: one figure to a PNG or SVG.
