@@ -8,8 +8,8 @@
 //! # Layers
 //! Each module uses only those above it in this list, so the model never calls its
 //! outputs:
-//! - the model: [`Color`], [`Rect`], [`Mapping`]; text ([`Label`], [`FontFace`],
-//!   [`measure_text`]: fonts, markup, layout, glyph outlines); the display list
+//! - the model: [`Color`], [`Rect`], [`Mapping`]; text ([`Label`], [`FontFace`]: fonts,
+//!   markup, layout, measured boxes); the display list
 //!   ([`Figure`], [`Item`], [`Stroke`]);
 //! - shapes: the geometry every output draws (arrowheads, ellipses, glyph outlines),
 //!   computed once so the PNG and the SVG cannot disagree;
@@ -72,4 +72,4 @@ pub use figure::{ArrowEnds, Figure, Item, Sampling, Stroke};
 pub use mapping::Mapping;
 pub use output::{write_png, write_svg};
 pub use rect::Rect;
-pub use text::{Anchor, Baseline, FontFace, Label, TextExtent, measure_text};
+pub use text::{Anchor, Baseline, FontFace, Label};

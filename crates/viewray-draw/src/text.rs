@@ -106,8 +106,8 @@ pub enum Anchor {
 pub enum Baseline {
     /// The baseline the letters sit on.
     Alphabetic,
-    /// Halfway between the top of [`TextExtent::ascent`] and the bottom of
-    /// [`TextExtent::descent`]: the label is centred on its position.
+    /// Halfway between the top of the text box and its bottom (see [`Label::bounds`]):
+    /// the label is centred on its position.
     #[default]
     Middle,
     /// The top of the ascent: the label hangs below its position.
@@ -116,32 +116,19 @@ pub enum Baseline {
     Bottom,
 }
 
-/// The size of a line of text, in pixels, from [`measure_text`] or [`Label::extent`].
+/// The size of a line of text, in pixels: its text box.
 ///
 /// The box `width` x (`ascent` + `descent`) uses the font's line metrics rather than the
 /// ink of the particular letters, so "u" and "d" measure equally tall and labels line up;
 /// [`Label::bounds`] adds any ink that overhangs the box (an italic letter's tail).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TextExtent {
+pub(crate) struct TextExtent {
     /// The advance width, kerning included.
     pub width: f32,
     /// Height above the baseline, raised superscripts included.
     pub ascent: f32,
     /// Depth below the baseline (positive), lowered subscripts included.
     pub descent: f32,
-}
-
-/// Measures one line of `text` (with [markup](Label#markup)) set at `size` pixels per em
-/// in `face`.
-///
-/// ```
-/// # use viewray_draw::{measure_text, FontFace};
-/// let e = measure_text("v_h", 40.0, FontFace::Italic);
-/// assert!(e.width > measure_text("v", 40.0, FontFace::Italic).width);
-/// assert!(e.ascent > 0.0 && e.descent > 0.0);
-/// ```
-pub fn measure_text(text: &str, size: f32, face: FontFace) -> TextExtent {
-    layout_text(text, size, face).extent
 }
 
 /// A text label drawn at `position` in figure pixels.
@@ -237,13 +224,13 @@ impl Label {
         Label { rotation, ..self }
     }
 
-    /// The measured size of the text, as [`measure_text`].
-    pub fn extent(&self) -> TextExtent {
-        self.layout().extent
-    }
-
     /// The axis-aligned box in figure pixels that holds the label's text box and all of
     /// its ink, rotation included: what to test against the canvas or other labels.
+    ///
+    /// The text box is the advance width (kerning included) by the font's ascent and
+    /// descent (raised and lowered scripts included), not the ink of the particular
+    /// letters, so "u" and "d" are equally tall and labels line up; ink that overhangs it
+    /// (an italic letter's tail) is added.
     pub fn bounds(&self) -> Rect {
         let layout = self.layout();
         let e = layout.extent;
@@ -521,6 +508,11 @@ fn layout_text(text: &str, size: f32, face: FontFace) -> TextLayout {
 mod tests {
     use super::*;
 
+    /// The text box of one line of `text` set at `size` pixels per em in `face`.
+    fn measure_text(text: &str, size: f32, face: FontFace) -> TextExtent {
+        layout_text(text, size, face).extent
+    }
+
     #[track_caller]
     fn check_markup(text: &str, expected: &[(Script, &str)]) {
         let got = parse_markup(text, FontFace::Regular);
@@ -630,7 +622,7 @@ mod tests {
         let at = Vec2::new(500.0, 300.0);
         let label = Label::math("d", at).with_anchor(Anchor::Start, Baseline::Alphabetic);
         let b = label.bounds();
-        let e = label.extent();
+        let e = label.layout().extent;
         assert!((b.min.x - at.x).abs() < 2.0, "{b:?}");
         assert!((b.min.y - (at.y - e.ascent)).abs() < 1e-3);
         assert!((b.max.y - (at.y + e.descent)).abs() < 1e-3);
