@@ -695,12 +695,13 @@ fn ron_error(path: &Path, text: &str, origin: Origin, error: &SpannedError) -> S
     SceneError::at(path, Some(position), describe(&error.code))
 }
 
-/// What to say about an empty scene file, or one that holds only comments.
+/// What to say about an empty scene file, or one that holds only comments (after its
+/// name, as "is not a text file" is).
 fn empty_file_message(text: &str) -> String {
     let what = if text.trim().is_empty() {
-        "the file is empty"
+        "is empty"
     } else {
-        "the file holds only comments"
+        "holds only comments"
     };
     format!(
         "{what}: a scene is one value in parentheses, at least \
