@@ -562,3 +562,63 @@ fn colour_only_on_request_and_never_with_no_color() {
             .starts_with("error: ")
     );
 }
+
+/// Every `$ viewray frame|rays|project ...` example in the user docs prints exactly what
+/// the docs show under it, so the docs cannot drift from the program.
+#[test]
+fn the_documented_examples_print_what_the_docs_show() {
+    for doc in ["docs/cameras.md", "README.md"] {
+        let text = std::fs::read_to_string(repository().join(doc)).unwrap();
+        let mut checked = 0;
+        for block in text.split("```console\n").skip(1) {
+            let block = block.split("```").next().unwrap();
+            let mut lines = block.lines().peekable();
+            while let Some(line) = lines.next() {
+                let Some(command) = line.strip_prefix("$ viewray ") else {
+                    continue;
+                };
+                let mut expected = String::new();
+                while let Some(next) = lines.next_if(|l| !l.starts_with("$ ")) {
+                    if !next.is_empty() {
+                        expected += next;
+                        expected += "\n";
+                    }
+                }
+                let args: Vec<&str> = command.split_whitespace().collect();
+                if !["frame", "rays", "project"].contains(&args[0]) {
+                    continue;
+                }
+                let out = support::viewray_in(&repository(), &args);
+                assert!(out.status.success(), "{doc}: viewray {command}");
+                let stdout = String::from_utf8(out.stdout).unwrap();
+                assert_eq!(stdout, expected, "{doc}: viewray {command}");
+                checked += 1;
+            }
+        }
+        assert!(checked >= 3, "{doc}: only {checked} examples found");
+    }
+}
+
+#[test]
+fn compare_colours_its_verdicts_only_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let image = dir.path().join("a.png");
+    let image = image.to_str().unwrap();
+    let out = viewray(&["render", "-o", image, "--size", "16x12", "--samples", "1"]);
+    assert!(out.status.success());
+    let plain = viewray(&["compare", image, image]);
+    let table = String::from_utf8(plain.stdout).unwrap();
+    assert!(table.contains("a.png  PASS "), "{table}");
+    assert!(!table.contains('\u{1b}'), "{table:?}");
+    let forced = command()
+        .args(["compare", image, image])
+        .env("CLICOLOR_FORCE", "1")
+        .output()
+        .unwrap();
+    let table = String::from_utf8(forced.stdout).unwrap();
+    // PASS in bold green, padded outside the colour so the columns still line up.
+    assert!(
+        table.contains("a.png  \u{1b}[1m\u{1b}[32mPASS\u{1b}[0m     "),
+        "{table:?}"
+    );
+}
