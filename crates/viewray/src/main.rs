@@ -12,12 +12,14 @@
 //! internal error. A closed standard output (`viewray rays scene.ron | head`) ends the
 //! command quietly with 0.
 
+mod animate;
 mod cli;
 mod commands;
 mod compare;
 mod figures;
 mod input;
 mod json;
+mod output;
 mod render;
 mod style;
 
@@ -44,6 +46,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Render(args) => render::render(&args),
+        Command::Animate(args) => animate::animate(&args),
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
