@@ -94,18 +94,21 @@ mod tests {
         std::fs::write(dir.path().join("icosphere.obj"), obj_text(&mesh)).expect("an OBJ");
         std::fs::write(dir.path().join("icosphere.ron"), SCENE).expect("a scene");
         let scene = Scene::load(&dir.path().join("icosphere.ron")).expect("a valid scene");
-        assert_eq!(scene.world.triangle_count(), 320);
-        assert_eq!(scene.world.triangle_count(), mesh.triangles.len());
-        assert_eq!((scene.camera.width(), scene.camera.height()), (1024, 1024));
-        assert_eq!(scene.samples, 1);
+        assert_eq!(scene.world().triangle_count(), 320);
+        assert_eq!(scene.world().triangle_count(), mesh.triangles.len());
+        assert_eq!(
+            (scene.camera().width(), scene.camera().height()),
+            (1024, 1024)
+        );
+        assert_eq!(scene.samples(), 1);
         // The eye at (0, 0, 3) looking down -z: the centre ray meets the sphere near
         // z = 1, a little below it, since the flat facets lie inside the sphere.
         let centre = scene
-            .camera
+            .camera()
             .generate_ray(512, 512, viewray_camera::CameraSample::CENTER)
             .expect("a ray");
         let hit = scene
-            .world
+            .world()
             .closest_hit(&centre.as_ray(), 0.0..f32::INFINITY)
             .expect("the sphere straight ahead");
         let z = hit.point.z;

@@ -20,7 +20,9 @@ use crate::schema::{
     ExplicitCamera, ImageDef, LightDef, MaterialDef, ObjectDef, PresetDef, ProjectionDef, Scale,
     SceneFile, ShadingDef, Specular, TransformDef, V2, V3,
 };
-use crate::{Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, Shading};
+use crate::{
+    Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, SceneParts, Shading,
+};
 
 /// The largest image side viewray renders.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -255,7 +257,7 @@ pub(crate) fn parse(
     let world = World::new(objects).map_err(|e| SceneError::at(path, None, e.to_string()))?;
     let build_time = meshes.build_time + started.elapsed();
 
-    let scene = Scene {
+    let scene = Scene::new(SceneParts {
         camera,
         samples,
         background,
@@ -269,7 +271,8 @@ pub(crate) fn parse(
         lights,
         world,
         object_materials,
-    };
+    })
+    .map_err(|e| SceneError::at(path, None, e.to_string()))?;
     Ok((scene, build_time))
 }
 

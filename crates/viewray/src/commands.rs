@@ -31,7 +31,7 @@ pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
 }
 
 fn load_camera(path: &std::path::Path) -> Result<Camera> {
-    Ok(Scene::load(path)?.camera)
+    Ok(*Scene::load(path)?.camera())
 }
 
 /// `viewray rays`: the viewing rays of pixels.

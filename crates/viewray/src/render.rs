@@ -61,7 +61,7 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         Some(path) => Scene::load_timed(path, options)?,
         None => Scene::parse_timed(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
     };
-    check_memory(scene.camera.width(), scene.camera.height(), format)?;
+    check_memory(scene.camera().width(), scene.camera().height(), format)?;
 
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
@@ -85,13 +85,13 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
             args.output.display(),
             rendered.image.width(),
             rendered.image.height(),
-            scene.samples,
+            scene.samples(),
             render_time.as_secs_f64()
         );
     }
     if args.stats {
         let line = json!({
-            "triangles": scene.world.triangle_count(),
+            "triangles": scene.world().triangle_count(),
             "load_s": seconds(load_times.total.saturating_sub(load_times.build)),
             "build_s": seconds(load_times.build),
             "render_s": seconds(render_time),
