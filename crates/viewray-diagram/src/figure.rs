@@ -303,7 +303,7 @@ impl Figure {
     /// # Errors
     /// An error of kind `InvalidInput` when the figure has a zero width or height.
     pub fn encode_png(&self) -> io::Result<Vec<u8>> {
-        crate::output::encode_png(&self.render())
+        viewray_output::encode_png(&self.render(), viewray_output::Compression::Balanced)
     }
 
     /// The figure as a standalone SVG document, text drawn as glyph outlines
@@ -324,7 +324,7 @@ impl Figure {
     /// Any I/O error, or `InvalidInput` for a figure with a zero width or height.
     pub fn write_png(&self, path: impl AsRef<Path>) -> io::Result<()> {
         let bytes = self.encode_png()?;
-        crate::output::write_atomically(path.as_ref(), &bytes)
+        Ok(viewray_output::write_atomically(path, &bytes)?)
     }
 
     /// Writes [`Figure::to_svg`] to `path` atomically, as [`Figure::write_png`] does.
@@ -332,7 +332,10 @@ impl Figure {
     /// # Errors
     /// Any I/O error.
     pub fn write_svg(&self, path: impl AsRef<Path>) -> io::Result<()> {
-        crate::output::write_atomically(path.as_ref(), self.to_svg().as_bytes())
+        Ok(viewray_output::write_atomically(
+            path,
+            self.to_svg().as_bytes(),
+        )?)
     }
 }
 

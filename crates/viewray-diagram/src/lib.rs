@@ -49,7 +49,6 @@ mod color;
 mod figure;
 pub mod figures;
 mod mapping;
-mod output;
 mod raster;
 pub mod style;
 mod svg;

@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 use base64::Engine as _;
 use glam::Vec2;
 use tiny_skia::{Path, PathSegment};
+use viewray_output::{Compression, encode_png};
 
 use crate::figure::arrow_shape;
 use crate::text::Label;
@@ -242,8 +243,8 @@ fn write_label_text(out: &mut String, label: &Label) {
 /// solid block, and looks pixelated even where the hint is ignored.
 fn write_image(out: &mut String, pixels: &image::RgbaImage, rect: Rect, sampling: Sampling) {
     let png = match sampling {
-        Sampling::Nearest => crate::output::encode_png(&enlarge_for(pixels, rect)),
-        Sampling::Smooth => crate::output::encode_png(pixels),
+        Sampling::Nearest => encode_png(&enlarge_for(pixels, rect), Compression::Balanced),
+        Sampling::Smooth => encode_png(pixels, Compression::Balanced),
     };
     let Ok(png) = png else {
         return;

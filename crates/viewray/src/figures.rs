@@ -78,13 +78,14 @@ impl Format {
     }
 }
 
-/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into place).
+/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into
+/// place); an error names `path`.
 fn write(figure: &Figure, path: &Path, format: Format) -> Result<()> {
     match format {
-        Format::Png => figure.write_png(path),
-        Format::Svg => figure.write_svg(path),
+        Format::Png => figure.write_png(path)?,
+        Format::Svg => figure.write_svg(path)?,
     }
-    .with_context(|| format!("cannot write {}", path.display()))
+    Ok(())
 }
 
 /// `viewray figure`: one figure to a PNG or SVG.

@@ -7,6 +7,7 @@ use std::f64::consts::TAU;
 use glam::{DVec2, DVec3, Vec2};
 use image::RgbaImage;
 use viewray_camera::Camera;
+use viewray_output::{LinearRgb, Srgb8};
 
 use super::clip::{HalfPlane, clip_polygon, clip_segment};
 use super::sketch::Sketch;
@@ -515,19 +516,9 @@ fn shaded(base: DVec3, normal: DVec3) -> Color {
     srgb(base * (0.45 + 0.75 * lambert))
 }
 
-/// The sRGB colour of a linear RGB colour (clamped to [0, 1]).
+/// The sRGB colour of a linear RGB colour (each channel clamped to [0, 1]), by
+/// viewray-output's transfer function, as the renderer stores its pixels.
 pub(crate) fn srgb(linear: DVec3) -> Color {
-    let encode = |c: f64| {
-        let c = c.clamp(0.0, 1.0);
-        let s = if c <= 0.003_130_8 {
-            12.92 * c
-        } else {
-            1.055 * c.powf(1.0 / 2.4) - 0.055
-        };
-        // In [0, 255] after the clamp.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let byte = (s * 255.0).round() as u8;
-        byte
-    };
-    Color::rgb(encode(linear.x), encode(linear.y), encode(linear.z))
+    let Srgb8([r, g, b]) = LinearRgb(linear.as_vec3().to_array()).to_srgb8();
+    Color::rgb(r, g, b)
 }
