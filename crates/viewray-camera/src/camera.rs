@@ -34,6 +34,21 @@ impl Default for CameraSample {
     }
 }
 
+/// A viewing ray with its neighbours: the rays through the image points one step to the
+/// right and one step down (pbrt's `RayDifferential`).
+///
+/// Their differences say how the ray changes across the film, which is what a renderer
+/// needs to filter textures and grid lines over a sample's footprint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayDifferential {
+    /// The ray through the image point itself.
+    pub ray: DRay,
+    /// The ray through the point `step` pixels to the right (`+x`).
+    pub rx: DRay,
+    /// The ray through the point `step` pixels down (`+y`).
+    pub ry: DRay,
+}
+
 /// A camera: where it is ([`Frame`]), how it projects ([`Projection`]) and the image it
 /// makes, `W` columns by `H` rows.
 ///
@@ -145,6 +160,35 @@ impl Camera {
             self.frame.world_from_camera_point(ray.origin),
             self.frame.world_from_camera_vector(ray.direction),
         ))
+    }
+
+    /// The viewing ray through the continuous image point `image` and the lens sample
+    /// `p_lens`, with its neighbours through `image + (step, 0)` and `image + (0, step)`
+    /// and the same lens sample (pbrt's `GenerateRayDifferential`, with the step chosen
+    /// by the caller: one pixel, or the spacing of a pixel's samples).
+    ///
+    /// For the planar families the differences are constant across the image, e.g. for
+    /// a perspective camera
+    ///
+    /// ```text
+    /// rx.direction - ray.direction = step (vw / W) U,   ry.direction - ray.direction = -step (vh / H) V
+    /// ```
+    ///
+    /// and for a parallel camera the origins differ by the same amounts while the
+    /// directions agree. Returns `None` where any of the three rays does not exist
+    /// (outside a fisheye's image circle).
+    pub fn generate_ray_differential(
+        &self,
+        image: DVec2,
+        p_lens: DVec2,
+        step: f64,
+    ) -> Option<RayDifferential> {
+        let ray = |offset: DVec2| self.generate_ray_through(image + offset * step, p_lens);
+        Some(RayDifferential {
+            ray: ray(DVec2::ZERO)?,
+            rx: ray(DVec2::X)?,
+            ry: ray(DVec2::Y)?,
+        })
     }
 
     /// Where the world point `p` appears: continuous image coordinates `(x, y)`, `x` from

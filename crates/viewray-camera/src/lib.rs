@@ -51,7 +51,7 @@ mod presets;
 mod projection;
 mod sampling;
 
-pub use camera::{Camera, CameraSample, pixel_to_image_plane};
+pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
 pub use error::CameraError;
 pub use frame::Frame;

@@ -351,14 +351,11 @@ impl<'a> Shader<'a> {
     /// The ray differentials at the image point `center` for a step of `spacing` pixels,
     /// or `None` where a neighbouring ray does not exist (outside a fisheye's circle).
     fn differentials(&self, center: DVec2, spacing: f64) -> Option<RayDifferentials> {
-        let camera = &self.scene.camera();
-        let lens = DVec2::splat(0.5);
-        let ray = |offset: DVec2| {
-            camera
-                .generate_ray_through(center + offset * spacing, lens)
-                .map(|r| r.as_ray())
-        };
-        let (c, x, y) = (ray(DVec2::ZERO)?, ray(DVec2::X)?, ray(DVec2::Y)?);
+        let differential =
+            self.scene
+                .camera()
+                .generate_ray_differential(center, DVec2::splat(0.5), spacing)?;
+        let [c, x, y] = [differential.ray, differential.rx, differential.ry].map(|r| r.as_ray());
         Some(RayDifferentials {
             origin_dx: x.origin - c.origin,
             direction_dx: x.direction - c.direction,
