@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use viewray_compare::{Comparison, ReportEntry, RgbaImage, Thresholds};
+use viewray_compare::{Comparison, Report, ReportEntry, RgbaImage, Rules, Thresholds};
 use viewray_output::Compression;
 use viewray_render::RenderSettings;
 use viewray_scene::{LoadOptions, Scene};
@@ -141,6 +141,12 @@ pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
             Verdict::Passed(_, c) => {
                 eprintln!("  ok    {:<40} {} {ms:>6} ms", case.id, figures(c));
             }
+            // As the report says: ERROR when there was nothing to compare.
+            Verdict::Failed {
+                reason,
+                comparison: None,
+                ..
+            } => eprintln!("  ERROR {:<40} {reason}", case.id),
             Verdict::Failed { reason, .. } => eprintln!("  FAIL  {:<40} {reason}", case.id),
         }
         match verdict {
@@ -186,18 +192,20 @@ pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
         eprintln!("golden: all {total} images match their goldens ({elapsed:.1} s)");
         return Ok(());
     }
-    let report = write_failure_report(root, &failures)?;
+    let summary = format!(
+        "{} of {total} golden images differ and {} goldens have no scene",
+        failures.len(),
+        orphans.len(),
+    );
+    let report = write_failure_report(root, &failures, &summary)?;
     let filter = args
         .filter
         .as_deref()
         .map(|f| format!(" {f}"))
         .unwrap_or_default();
     bail!(
-        "{} of {total} golden images differ and {} goldens have no scene ({elapsed:.1} s)\n  \
-         report: {}\n  if the change is intended, look at each image, then run: \
-         cargo xtask golden{filter} --bless",
-        failures.len(),
-        orphans.len(),
+        "{summary} ({elapsed:.1} s)\n  report: {}\n  if the change is intended, look at each \
+         image, then run: cargo xtask golden{filter} --bless",
         relative(root, &report),
     )
 }
@@ -331,7 +339,12 @@ fn write_golden(root: &Path, golden: &Path, output: &Output) -> Result<()> {
     Ok(())
 }
 
-fn write_failure_report(root: &Path, failures: &[(String, Verdict)]) -> Result<PathBuf> {
+/// The failures' report, headed by the same `summary` the console prints.
+fn write_failure_report(
+    root: &Path,
+    failures: &[(String, Verdict)],
+    summary: &str,
+) -> Result<PathBuf> {
     let entries: Vec<ReportEntry<'_>> = failures
         .iter()
         .filter_map(|(id, verdict)| match verdict {
@@ -366,7 +379,13 @@ fn write_failure_report(root: &Path, failures: &[(String, Verdict)]) -> Result<P
         std::fs::remove_dir_all(&dir)
             .with_context(|| format!("cannot clear the old report in {}", dir.display()))?;
     }
-    viewray_compare::write_report(&dir, &entries)
+    let report = Report {
+        title: "viewray golden images: the failures",
+        summary,
+        rules: Rules::Golden(Thresholds::GOLDEN),
+        entries: &entries,
+    };
+    viewray_compare::write_report(&dir, &report)
         .with_context(|| format!("cannot write the report in {}", dir.display()))
 }
 
