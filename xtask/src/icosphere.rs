@@ -10,19 +10,13 @@ use viewray_geometry::MeshData;
 /// The benchmark's subdivision level: 20 * 4^8 = 1,310,720 triangles.
 const SUBDIVISIONS: u32 = 8;
 
-/// `cargo xtask icosphere [--out DIR]`.
-#[derive(Debug, Default)]
-pub(crate) struct IcosphereArgs {
-    /// Where to write `icosphere.obj` and `icosphere.ron`; `target/icosphere/` by default.
-    pub(crate) out: Option<PathBuf>,
-}
-
-impl IcosphereArgs {
-    pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        Ok(Self {
-            out: crate::parse_out("icosphere", args)?,
-        })
-    }
+/// The command line of `cargo xtask icosphere`.
+#[derive(Debug, Default, clap::Args)]
+pub struct IcosphereArgs {
+    /// The folder to write icosphere.obj and icosphere.ron into [default:
+    /// target/icosphere/].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// The benchmark's view: 1024 x 1024 primary rays from eye (0, 0, 3) looking down -z,
@@ -45,7 +39,10 @@ const SCENE: &str = "\
 ";
 
 /// Writes `icosphere.obj` and `icosphere.ron` into the output folder, each atomically.
-pub(crate) fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
+///
+/// # Errors
+/// When a file cannot be written.
+pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
     let out = args
         .out
         .clone()
