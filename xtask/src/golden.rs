@@ -246,7 +246,7 @@ pub fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)
             source: Source::Scene(scene, LoadOptions::default()),
         });
     }
-    for figure in viewray_diagram::figures::all_figures() {
+    for figure in viewray_diagram::all_figures() {
         cases.push(Case {
             id: format!("figures/{}", figure.name),
             golden: root
@@ -331,9 +331,9 @@ fn make(case: &Case) -> Result<Made> {
             })
         }
         Source::Figure(name) => {
-            let figure = viewray_diagram::figures::figure_by_name(name)
+            let figure = viewray_diagram::figure_by_name(name)
                 .with_context(|| format!("no figure named {name}"))?;
-            let pixels = figure.figure().render_scaled(FIGURE_SCALE);
+            let pixels = viewray_draw::raster::render_scaled(&figure.figure(), FIGURE_SCALE);
             Ok(Made {
                 pixels: pixels.clone(),
                 output: Output::Figure(pixels),

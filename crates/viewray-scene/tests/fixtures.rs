@@ -145,3 +145,19 @@ fn the_readme_example_scene_loads() {
     assert_eq!(scene.world().objects().len(), 5);
     assert_eq!(scene.lights().len(), 3);
 }
+
+#[test]
+fn the_scene_format_examples_load() {
+    let doc = std::fs::read_to_string(fixtures().join("../docs/scene-format.md")).unwrap();
+    let blocks: Vec<&str> = doc
+        .split("```ron\n")
+        .skip(1)
+        .map(|rest| rest.split("```").next().unwrap())
+        .collect();
+    assert!(blocks.len() >= 2, "the scene format shows whole scenes");
+    for block in blocks {
+        let scene = Scene::parse(block, &fixtures().join("scene-format.ron"))
+            .unwrap_or_else(|e| panic!("{e}\n{block}"));
+        assert!(scene.camera().width() > 0);
+    }
+}

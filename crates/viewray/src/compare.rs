@@ -125,17 +125,11 @@ impl Tally {
 pub(crate) fn run(args: &CompareArgs) -> ExitCode {
     let pairs = match pairs(&args.expected, &args.actual) {
         Ok(pairs) => pairs,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            return ExitCode::from(EXIT_BAD_INPUT);
-        }
+        Err(error) => return crate::failure(&error),
     };
     match judge_all(args, &pairs) {
         Ok(tally) => tally.exit_code(),
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            ExitCode::from(EXIT_BAD_INPUT)
-        }
+        Err(error) => crate::failure(&error),
     }
 }
 
@@ -226,7 +220,8 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         .max()
         .unwrap_or(0)
         .max(4);
-    let mut out = BufWriter::new(std::io::stdout().lock());
+    // The table's verdicts are coloured on a terminal (see `style`); JSON never is.
+    let mut out = BufWriter::new(anstream::AutoStream::auto(std::io::stdout().lock()));
     if !args.json {
         writeln!(out, "{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")?;
         out.flush()?;
@@ -352,10 +347,15 @@ fn table_row(judged: &Judged, name_width: usize) -> String {
         }) => format!("{:.3}", m.peak_flip),
         _ => "-".to_owned(),
     };
+    let style = match verdict(judged) {
+        Verdict::Pass => crate::style::PASS,
+        Verdict::Fail => crate::style::FAIL,
+        Verdict::Error => crate::style::BROKEN,
+    };
     let row = format!(
-        "{:name_width$}  {:7}  {peak:9}  {}",
+        "{:name_width$}  {}  {peak:9}  {}",
         judged.name,
-        verdict(judged).label(),
+        crate::style::padded(style, verdict(judged).label(), 7),
         note(judged)
     );
     row.trim_end().to_owned()
