@@ -84,7 +84,7 @@ impl Movie {
     ) -> Result<Movie, MovieError> {
         let frames = check_frames(settings.frames.unwrap_or(animation.frames))?;
         let fps = check_fps(settings.fps.unwrap_or(animation.fps))?;
-        let (width, height) = (scene.camera.width(), scene.camera.height());
+        let (width, height) = (scene.camera().width(), scene.camera().height());
         let shots = (0..frames)
             .map(|k| {
                 let t = frame_time(animation.ease, k, frames);
@@ -114,7 +114,7 @@ impl Movie {
         let frames = check_frames(settings.frames.unwrap_or(demo.frames))?;
         let fps = check_fps(settings.fps.unwrap_or(demo.fps))?;
         let scene = demo.scene(options)?;
-        let (width, height) = (scene.camera.width(), scene.camera.height());
+        let (width, height) = (scene.camera().width(), scene.camera().height());
         // Check the frame's size before computing thousands of cameras for it.
         let panels = demo.shots(0, frames, width, height).len();
         check_frame_size(width, height, panels, settings.with_diagram)?;
@@ -130,7 +130,7 @@ impl Movie {
         fps: u32,
         with_diagram: bool,
     ) -> Result<Movie, MovieError> {
-        let picture = (scene.camera.width(), scene.camera.height());
+        let picture = (scene.camera().width(), scene.camera().height());
         let panels = shots.first().map_or(1, Vec::len);
         check_frame_size(picture.0, picture.1, panels, with_diagram)?;
         let diagram = with_diagram.then(|| {
@@ -233,9 +233,7 @@ impl Movie {
 
 /// `scene` looking through `camera` instead of its own camera.
 fn scene_with_camera(scene: &Scene, camera: Camera) -> Scene {
-    let mut scene = scene.clone();
-    scene.camera = camera;
-    scene
+    scene.clone().with_camera(camera)
 }
 
 fn rgba(rgb: &RgbImage) -> RgbaImage {

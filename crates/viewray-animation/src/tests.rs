@@ -73,8 +73,7 @@ fn the_dolly_zoom_keeps_the_card_within_a_pixel_of_its_size() {
 
 /// `camera`'s render of `scene`, as RGBA for the comparison.
 fn picture(scene: &Scene, camera: Camera) -> image::RgbaImage {
-    let mut scene = scene.clone();
-    scene.camera = camera;
+    let scene = scene.clone().with_camera(camera);
     let rendered = render(&scene, &RenderSettings::default(), |_, _| {}).unwrap();
     image::DynamicImage::ImageRgb8(rendered.image.to_rgb_image()).to_rgba8()
 }

@@ -51,7 +51,7 @@ impl SideWindow {
             .unwrap_or(DVec3::NEG_Z);
         let mut min = DVec2::splat(f64::INFINITY);
         let mut max = DVec2::splat(f64::NEG_INFINITY);
-        for object in scene.world.objects() {
+        for object in scene.world().objects() {
             if let Some(bounds) = object.bounds() {
                 for p in corners(bounds) {
                     let q = in_plane(forward, p);
@@ -141,7 +141,7 @@ pub fn side_view(scene: &Scene, camera: &Camera, window: &SideWindow, size: (u32
     let right = mapping.to_world(Vec2::new(size.0 as f32, 0.0)).x;
 
     // The ground planes, seen edge-on, and the objects.
-    for (index, object) in scene.world.objects().iter().enumerate() {
+    for (index, object) in scene.world().objects().iter().enumerate() {
         let color = object_color(scene, index);
         match object {
             Object::Plane(plane) if plane.normal.normalize().y.abs() > 0.999 => {
@@ -218,7 +218,7 @@ pub fn side_view(scene: &Scene, camera: &Camera, window: &SideWindow, size: (u32
         let length = far / ray.direction.length();
         #[allow(clippy::cast_possible_truncation)]
         let hit = scene
-            .world
+            .world()
             .closest_hit(&ray.as_ray(), f32::MIN_POSITIVE..length as f32)
             .map_or(length, |hit| f64::from(hit.t));
         if let Some((t0, t1)) = window.clip(ray.origin, ray.direction, (0.0, hit)) {
@@ -338,9 +338,9 @@ fn world_centre(window: &SideWindow) -> DVec3 {
 /// An object's colour as a figure draws it: its material's (one material for the whole
 /// object), light grey otherwise.
 fn object_color(scene: &Scene, index: usize) -> Color {
-    match scene.object_materials.get(index) {
+    match scene.object_materials().get(index) {
         Some(ObjectMaterial::Single(material)) => {
-            let c = scene.materials[*material as usize].color;
+            let c = scene.materials()[*material as usize].color;
             let srgb = LinearRgb(c.to_array()).to_srgb8().0;
             Color::rgba(srgb[0], srgb[1], srgb[2], 255)
         }

@@ -37,7 +37,7 @@ use std::time::{Duration, Instant};
 pub use animation::{Animation, CameraSpec, Ease, Key, MAX_FPS, MAX_FRAMES};
 pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
-pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
+pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
 
 /// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of
 /// the OBJ fuzz target. Returns the number of triangles kept, or the error message.

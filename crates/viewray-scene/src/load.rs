@@ -23,7 +23,7 @@ use crate::schema::{
 };
 use crate::{
     Animation, CameraSpec, Ease, Grid, Key, Light, Material, ObjectMaterial, Position, Scene,
-    SceneError, Shading,
+    SceneError, SceneParts, Shading,
 };
 
 /// The largest image side viewray renders.
@@ -269,7 +269,7 @@ pub(crate) fn parse(
     let world = World::new(objects).map_err(|e| SceneError::at(path, None, e.to_string()))?;
     let build_time = meshes.build_time + started.elapsed();
 
-    let scene = Scene {
+    let scene = Scene::new(SceneParts {
         camera,
         samples,
         background,
@@ -283,7 +283,8 @@ pub(crate) fn parse(
         lights,
         world,
         object_materials,
-    };
+    })
+    .map_err(|e| SceneError::at(path, None, e.to_string()))?;
     Ok((scene, animation, build_time))
 }
 

@@ -59,5 +59,5 @@ fn a_byte_order_mark_is_accepted() {
     let text =
         "\u{feff}(image: (width: 4, height: 2), camera: Front(target: (0.0, 0.0, 0.0), size: 2.0))";
     let scene = Scene::parse(text, Path::new("bom.ron")).unwrap();
-    assert_eq!((scene.camera.width(), scene.camera.height()), (4, 2));
+    assert_eq!((scene.camera().width(), scene.camera().height()), (4, 2));
 }

@@ -104,7 +104,7 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
                 )
             })?;
             if let Some(size) = args.size
-                && let Some(warning) = stretched_pixels(&scene.camera, size)
+                && let Some(warning) = stretched_pixels(scene.camera(), size)
             {
                 style::warning(warning);
             }

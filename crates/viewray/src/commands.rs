@@ -16,7 +16,7 @@ use crate::{json, style};
 /// `viewray frame`: the camera frame of a scene, or from eye, view (or look-at) and up.
 pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
     let frame = match &args.scene {
-        Some(scene) => *load_scene_file(scene)?.camera.frame(),
+        Some(scene) => *load_scene_file(scene)?.camera().frame(),
         None => frame_from_options(args)?,
     };
     let line = json!({
@@ -93,7 +93,7 @@ fn zero_based(index: i64, base: i64, size: u32) -> Option<u32> {
 
 /// `viewray rays`: the viewing rays of pixels, with their image-plane points.
 pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
-    let camera = load_scene_file(&args.scene)?.camera;
+    let camera = *load_scene_file(&args.scene)?.camera();
     let (width, height) = (camera.width(), camera.height());
     let base = i64::from(args.one_based);
     // Check every pixel before printing any, so that bad input prints nothing.
@@ -194,7 +194,7 @@ impl RayPrinter<'_> {
 
 /// `viewray project`: where points appear in the image.
 pub(crate) fn project(args: &ProjectArgs) -> Result<()> {
-    let camera = load_scene_file(&args.scene)?.camera;
+    let camera = *load_scene_file(&args.scene)?.camera();
     note_pixel_convention(args.one_based);
     let [row_key, col_key] = pixel_keys(args.one_based);
     let base = u64::from(args.one_based);

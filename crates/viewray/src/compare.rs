@@ -12,7 +12,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde_json::{Value, json};
 use viewray_compare::{
-    Comparison, InstructorThresholds, ReportEntry, RgbaImage, judge, load_png, write_report,
+    Comparison, InstructorThresholds, Report, ReportEntry, RgbaImage, Rules, Verdict, judge,
+    load_png, write_report,
 };
 
 use crate::EXIT_BAD_INPUT;
@@ -246,6 +247,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         });
     }
     let tally = Tally::of(&results);
+    let summary_line = format!("{} (threshold {})", tally.summary(), args.threshold);
     if args.json {
         let summary = json!({"summary": {
             "total": results.len(),
@@ -255,7 +257,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         }});
         crate::json::write_line(&mut out, &summary)?;
     } else {
-        writeln!(out, "{} (threshold {})", tally.summary(), args.threshold)?;
+        writeln!(out, "{summary_line}")?;
     }
     out.flush()?;
     if let Some(directory) = &args.report {
@@ -273,7 +275,18 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
                 }
             })
             .collect();
-        let page = write_report(directory, &entries)
+        let title = format!(
+            "viewray compare {} {}",
+            args.expected.display(),
+            args.actual.display()
+        );
+        let report = Report {
+            title: &title,
+            summary: &summary_line,
+            rules: Rules::Instructor(thresholds),
+            entries: &entries,
+        };
+        let page = write_report(directory, &report)
             .with_context(|| format!("cannot write the report into `{}`", directory.display()))?;
         eprintln!("report: {}", page.display());
     }
@@ -306,12 +319,13 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds) -> Judged {
     }
 }
 
-/// The verdict word: `pass`, `fail`, or `error` for a pair that could not be compared.
-fn verdict(judged: &Judged) -> &'static str {
+/// The verdict, as the report states it too: `error` for a pair that could not be
+/// compared.
+fn verdict(judged: &Judged) -> Verdict {
     match &judged.outcome {
-        Ok(c) if c.passed() => "pass",
-        Ok(_) => "fail",
-        Err(_) => "error",
+        Ok(c) if c.passed() => Verdict::Pass,
+        Ok(_) => Verdict::Fail,
+        Err(_) => Verdict::Error,
     }
 }
 
@@ -334,14 +348,14 @@ fn table_row(judged: &Judged, name_width: usize) -> String {
         _ => "-".to_owned(),
     };
     let style = match verdict(judged) {
-        "pass" => crate::style::PASS,
-        "fail" => crate::style::FAIL,
-        _ => crate::style::BROKEN,
+        Verdict::Pass => crate::style::PASS,
+        Verdict::Fail => crate::style::FAIL,
+        Verdict::Error => crate::style::BROKEN,
     };
     let row = format!(
         "{:name_width$}  {}  {peak:9}  {}",
         judged.name,
-        crate::style::padded(style, &verdict(judged).to_uppercase(), 7),
+        crate::style::padded(style, verdict(judged).label(), 7),
         note(judged)
     );
     row.trim_end().to_owned()
@@ -363,7 +377,7 @@ fn json_line(judged: &Judged, threshold: f32) -> Value {
     };
     json!({
         "name": judged.name,
-        "verdict": verdict(judged),
+        "verdict": verdict(judged).word(),
         "peak_flip": metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
         "mean_flip": metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
         "threshold": figure(threshold),

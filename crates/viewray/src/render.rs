@@ -102,11 +102,11 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     };
     let (scene, load_times) = crate::input::load_scene(args.scene.as_deref(), options)?;
     if let Some(size) = args.size
-        && let Some(warning) = stretched_pixels(&scene.camera, size)
+        && let Some(warning) = stretched_pixels(scene.camera(), size)
     {
         style::warning(warning);
     }
-    check_memory(scene.camera.width(), scene.camera.height(), format)?;
+    check_memory(scene.camera().width(), scene.camera().height(), format)?;
 
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
@@ -138,13 +138,13 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
             "wrote {written_to}: {} x {}, {} samples per pixel, rendered in {:.2} s",
             rendered.image.width(),
             rendered.image.height(),
-            scene.samples,
+            scene.samples(),
             render_time.as_secs_f64()
         );
     }
     if args.stats {
         let line = json!({
-            "triangles": scene.world.triangle_count(),
+            "triangles": scene.world().triangle_count(),
             "load_s": seconds(load_times.total.saturating_sub(load_times.build)),
             "build_s": seconds(load_times.build),
             "render_s": seconds(render_time),
