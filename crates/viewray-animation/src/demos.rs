@@ -12,7 +12,7 @@ use std::fmt;
 use std::path::Path;
 
 use glam::{DVec2, DVec3};
-use viewray_camera::{Camera, Frame, Perspective, Preset, Projection, ThinLens};
+use viewray_camera::{Camera, Frame, Oblique, Perspective, Projection, ThinLens};
 use viewray_scene::{Ease, LoadOptions, Scene, SceneError};
 
 /// One camera of a frame, with a caption of its numbers.
@@ -386,16 +386,27 @@ fn focus_pull(u: f64, width: u32, height: u32) -> Vec<Shot> {
     )]
 }
 
-/// The oblique angle: the cabinet preset (`L = 1/2`) of the cube, the view 5 units tall,
-/// the receding axis at `phi` from 0 to 360 degrees; the preset slides its image plane
-/// along the projectors so the cube stays centred.
+/// The oblique angle: a cabinet projection (`L = 1/2`) of the cube, looking down `-z`,
+/// the view 5 units tall, the receding axis at `phi` from 0 to 360 degrees. The image
+/// plane stands 4 units in front of the cube's centre, slid along the projectors so that
+/// the centre stays in the middle of the picture: a point `D` behind the plane appears
+/// moved by `L D` at angle `phi`, so
+///
+/// ```text
+/// e = target + D w + L D (cos phi u + sin phi v),   D = 4
+/// ```
 fn oblique_angle(u: f64, width: u32, height: u32) -> Vec<Shot> {
     let phi = 2.0 * PI * u;
-    let camera = Preset::Cabinet { angle: phi }
-        .camera(DVec3::new(0.0, 1.0, 0.0), 5.0, width, height)
-        .expect("the demos' cameras are valid");
+    let (ratio, depth) = (0.5, 4.0);
+    let target = DVec3::new(0.0, 1.0, 0.0);
+    let eye = target + DVec3::new(ratio * depth * phi.cos(), ratio * depth * phi.sin(), depth);
+    let projection = Projection::Oblique(Oblique {
+        viewport: DVec2::new(5.0 * aspect(width, height), 5.0),
+        ratio,
+        angle: phi,
+    });
     vec![shot(
-        camera,
+        camera(looking(eye, DVec3::NEG_Z), projection, width, height),
         format!("$L$ = 0.5,  $φ$ = {:.0}°", phi.to_degrees()),
     )]
 }

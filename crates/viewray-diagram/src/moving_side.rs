@@ -175,6 +175,14 @@ pub fn side_view(scene: &Scene, camera: &Camera, window: &SideWindow, size: (u32
                     stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN * k)),
                 });
             }
+            Object::Triangle(triangle) => {
+                let points = [triangle.a, triangle.b, triangle.c];
+                figure.push(Item::Polygon {
+                    points: convex_hull(points.iter().map(|p| to(p.as_dvec3())).collect()),
+                    fill: color,
+                    stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN * k)),
+                });
+            }
             _ => {
                 if let Some(bounds) = object.bounds() {
                     let points: Vec<Vec2> = corners(bounds).iter().map(|&p| to(p)).collect();
