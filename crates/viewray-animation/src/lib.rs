@@ -17,7 +17,9 @@
 //!   camera's numbers over each picture and, when asked, the side view of the camera
 //!   beside it (`viewray-diagram`).
 //!
-//! Writing the frames (GIF, animated PNG, numbered PNGs) is `viewray-output`'s.
+//! - [`write_gif`], [`write_apng`] and [`write_frames`] render a movie's frames in order
+//!   and hand them to `viewray-output`'s encoders (or to the caller, for numbered PNGs),
+//!   timing the rendering and the encoding apart; where the bytes go is the caller's.
 //!
 //! A frame's pixels depend only on the scene and its number: its cameras are fixed when
 //! the movie is made, renders are deterministic, and the side views share one window.
@@ -35,11 +37,13 @@
 //! ```
 
 mod demos;
+mod encode;
 mod movie;
 #[cfg(test)]
 mod tests;
 mod timing;
 
 pub use demos::{Demo, Shot, UnknownDemo, all_demos, demo_by_name, demo_names};
+pub use encode::{EncodeError, Timings, write_apng, write_frames, write_gif};
 pub use movie::{MAX_FRAME_PIXELS, Movie, MovieError, MovieSettings};
 pub use timing::{camera_at, eased, frame_time};

@@ -1,16 +1,16 @@
 //! `viewray animate`: a scene file's animation or a built-in demo, rendered frame by frame
 //! into a looping GIF, an animated PNG or a folder of numbered PNGs, atomically.
 
-use std::collections::HashMap;
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
-use image::RgbImage;
 use serde_json::json;
-use viewray_animation::{Movie, MovieSettings, all_demos, demo_by_name};
-use viewray_output::{ApngWriter, Compression, GifPalette, GifWriter, MAX_GIF_SIDE};
+use viewray_animation::{
+    Movie, MovieSettings, all_demos, demo_by_name, write_apng, write_frames, write_gif,
+};
+use viewray_output::{Compression, MAX_GIF_SIDE};
 use viewray_render::RenderSettings;
 use viewray_scene::{LoadOptions, Scene};
 
@@ -99,8 +99,8 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
             let animation = animation.ok_or_else(|| {
                 anyhow!(
                     "{name}: the scene has no `animation:` section: add one (keys of cameras \
-                     at times in [0, 1]; see the scene format's docs) or animate a built-in \
-                     demo (`viewray animate --list`)"
+                     at times in [0, 1], as docs/scene-format.md describes) or animate a \
+                     built-in demo (`viewray animate --list`)"
                 )
             })?;
             if let Some(size) = args.size
@@ -135,78 +135,33 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
     let interactive = std::io::stderr().is_terminal();
     let bar = progress_bar(interactive);
     bar.set_length(u64::from(movie.frames()));
-    let mut frames = Frames {
-        movie: &movie,
-        settings: RenderSettings::default(),
-        kept: HashMap::new(),
-        render_time: Duration::ZERO,
-        bar: &bar,
-    };
-    let mut encode_time = Duration::ZERO;
+    let settings = RenderSettings::default();
+    let on_frame = || bar.inc(1);
     let cannot = || format!("cannot write {}", args.output.display());
-    match format {
+    let timings = match format {
         Format::Gif => {
-            // One palette for every frame, learnt from the first, middle and last.
-            let n = movie.frames();
-            let mut samples = vec![0, n / 2, n - 1];
-            samples.dedup();
-            for &k in &samples {
-                frames.keep(k)?;
-            }
-            let started = Instant::now();
-            let sample_frames: Vec<&RgbImage> = samples.iter().map(|k| &frames.kept[k]).collect();
-            let palette = GifPalette::from_frames(&sample_frames);
             let out = BufWriter::new(output.writer());
-            let mut writer =
-                GifWriter::new(out, width, height, movie.fps(), palette).with_context(cannot)?;
-            encode_time += started.elapsed();
-            for k in 0..n {
-                let frame = frames.take(k)?;
-                let started = Instant::now();
-                writer.write_frame(&frame).with_context(cannot)?;
-                encode_time += started.elapsed();
-            }
-            let started = Instant::now();
-            writer
-                .finish()
-                .and_then(|mut out| out.flush())
-                .with_context(cannot)?;
-            output.commit(|_| false)?;
-            encode_time += started.elapsed();
+            let (_, timings) = write_gif(&movie, out, &settings, on_frame).with_context(cannot)?;
+            timings
         }
         Format::Apng => {
             let out = BufWriter::new(output.writer());
-            let mut writer = ApngWriter::new(out, width, height, movie.frames(), movie.fps())
-                .with_context(cannot)?;
-            for k in 0..movie.frames() {
-                let frame = frames.take(k)?;
-                let started = Instant::now();
-                writer.write_frame(&frame).with_context(cannot)?;
-                encode_time += started.elapsed();
-            }
-            let started = Instant::now();
-            writer.finish().with_context(cannot)?;
-            output.commit(|_| false)?;
-            encode_time += started.elapsed();
+            write_apng(&movie, out, &settings, on_frame).with_context(cannot)?
         }
         Format::Folder => {
             let folder = output.temporary_folder()?;
-            for k in 0..movie.frames() {
-                let frame = frames.take(k)?;
-                let started = Instant::now();
-                let png = viewray_output::encode_png(&frame, Compression::Balanced)
-                    .with_context(cannot)?;
-                viewray_output::write_atomically(folder.join(frame_name(k)), &png)
-                    .with_context(cannot)?;
-                encode_time += started.elapsed();
-            }
-            let started = Instant::now();
-            output.commit(is_frame_name)?;
-            encode_time += started.elapsed();
+            write_frames(&movie, &settings, on_frame, |k, frame| {
+                let png = viewray_output::encode_png(frame, Compression::Balanced)?;
+                viewray_output::write_atomically(folder.join(frame_name(k)), &png)?;
+                Ok(())
+            })
+            .with_context(cannot)?
         }
-    }
+    };
+    let started = Instant::now();
+    output.commit(is_frame_name)?;
+    let (render_time, encode_time) = (timings.render, timings.encode + started.elapsed());
     bar.finish_and_clear();
-    let render_time = frames.render_time;
 
     if interactive {
         eprintln!(
@@ -247,40 +202,6 @@ fn load_animated(
     }
     let (scene, animation) = Scene::load_animated(path, options)?;
     Ok((scene, animation, path.display().to_string()))
-}
-
-/// Frames rendered in the order they are asked for, a few kept ahead (the GIF palette's).
-struct Frames<'a> {
-    movie: &'a Movie,
-    settings: RenderSettings,
-    kept: HashMap<u32, RgbImage>,
-    render_time: Duration,
-    bar: &'a indicatif::ProgressBar,
-}
-
-impl Frames<'_> {
-    fn render(&mut self, k: u32) -> Result<RgbImage> {
-        let started = Instant::now();
-        let frame = self.movie.render_frame(k, &self.settings)?;
-        self.render_time += started.elapsed();
-        self.bar.inc(1);
-        Ok(frame)
-    }
-
-    /// Renders frame `k` now and keeps it for later.
-    fn keep(&mut self, k: u32) -> Result<()> {
-        let frame = self.render(k)?;
-        self.kept.insert(k, frame);
-        Ok(())
-    }
-
-    /// Frame `k`: the one kept, or rendered now.
-    fn take(&mut self, k: u32) -> Result<RgbImage> {
-        match self.kept.remove(&k) {
-            Some(frame) => Ok(frame),
-            None => self.render(k),
-        }
-    }
 }
 
 /// The file name of frame `k` in a folder: `frame_0000.png`.
