@@ -10,9 +10,10 @@
 //! - [`GifWriter`]: a GIF with one global palette of 256 colours for every frame,
 //!   computed by NeuQuant ([`GifPalette::from_frames`]) from frames that span the
 //!   animation, so a colour does not flicker from frame to frame as it would with a
-//!   palette per frame; each pixel takes the palette colour nearest to it after an
-//!   ordered (Bayer) dither, which breaks smooth shading's bands and, being tied to the
-//!   pixel, does not shimmer over a still background as error diffusion would. GIF counts delays in hundredths of a second:
+//!   palette per frame. A colour the palette holds (a flat background, a line) is kept;
+//!   any other takes the palette colour nearest to it after an ordered (Bayer) dither,
+//!   which breaks smooth shading's bands and, being tied to the pixel, does not shimmer
+//!   over a still background as error diffusion would. GIF counts delays in hundredths of a second:
 //!   frame `k` is shown `round(100 (k + 1) / fps) - round(100 k / fps)` of them (4 and 5
 //!   alternating at 24 fps, exact on average), at least 2, since browsers slow anything
 //!   shorter; so a GIF plays at most 50 frames per second.
@@ -82,8 +83,10 @@ impl GifPalette {
 pub struct GifWriter<W: Write> {
     encoder: gif::Encoder<W>,
     palette: GifPalette,
-    /// Palette indices already looked up, by colour: most of a frame's colours repeat.
+    /// Palette indices already looked up, by (dithered) colour: most colours repeat.
     indices: HashMap<[u8; 3], u8>,
+    /// For each colour met, its palette index when the palette holds it (no dither).
+    exact: HashMap<[u8; 3], Option<u8>>,
     width: u16,
     height: u16,
     fps: u32,
@@ -125,6 +128,7 @@ impl<W: Write> GifWriter<W> {
             encoder,
             palette,
             indices: HashMap::new(),
+            exact: HashMap::new(),
             width: w,
             height: h,
             fps,
@@ -155,14 +159,26 @@ impl<W: Write> GifWriter<W> {
             )));
         }
         let quantizer = &self.palette.quantizer;
+        let nearest = |rgb: [u8; 3]| {
+            let index = quantizer.index_of(&[rgb[0], rgb[1], rgb[2], 255]);
+            u8::try_from(index).expect("a palette of 256 colours")
+        };
         let indices: Vec<u8> = frame
             .enumerate_pixels()
             .map(|(x, y, p)| {
-                let offset = BAYER[(y % 4) as usize][(x % 4) as usize];
-                let rgb = p.0.map(|c| (i16::from(c) + offset).clamp(0, 255) as u8);
-                *self.indices.entry(rgb).or_insert_with(|| {
-                    let index = quantizer.index_of(&[rgb[0], rgb[1], rgb[2], 255]);
-                    u8::try_from(index).expect("a palette of 256 colours")
+                // A colour the palette holds (to within 2 steps), as flat backgrounds
+                // are, is kept as it is; others are dithered towards their neighbours.
+                let exact = *self.exact.entry(p.0).or_insert_with(|| {
+                    let index = nearest(p.0);
+                    let close = quantizer
+                        .lookup(usize::from(index))
+                        .is_some_and(|q| (0..3).all(|c| q[c].abs_diff(p.0[c]) <= 2));
+                    close.then_some(index)
+                });
+                exact.unwrap_or_else(|| {
+                    let offset = BAYER[(y % 4) as usize][(x % 4) as usize];
+                    let rgb = p.0.map(|c| (i16::from(c) + offset).clamp(0, 255) as u8);
+                    *self.indices.entry(rgb).or_insert_with(|| nearest(rgb))
                 })
             })
             .collect();
