@@ -82,11 +82,7 @@ impl GifPalette {
 /// for each frame in order, [`GifWriter::finish`].
 pub struct GifWriter<W: Write> {
     encoder: gif::Encoder<W>,
-    palette: GifPalette,
-    /// Palette indices already looked up, by (dithered) colour: most colours repeat.
-    indices: HashMap<[u8; 3], u8>,
-    /// For each colour met, its palette index when the palette holds it (no dither).
-    exact: HashMap<[u8; 3], Option<u8>>,
+    quantizer: Quantizer,
     width: u16,
     height: u16,
     fps: u32,
@@ -126,9 +122,11 @@ impl<W: Write> GifWriter<W> {
             .map_err(gif_error)?;
         Ok(GifWriter {
             encoder,
-            palette,
-            indices: HashMap::new(),
-            exact: HashMap::new(),
+            quantizer: Quantizer {
+                palette,
+                indices: HashMap::new(),
+                exact: HashMap::new(),
+            },
             width: w,
             height: h,
             fps,
@@ -158,30 +156,7 @@ impl<W: Write> GifWriter<W> {
                 self.height
             )));
         }
-        let quantizer = &self.palette.quantizer;
-        let nearest = |rgb: [u8; 3]| {
-            let index = quantizer.index_of(&[rgb[0], rgb[1], rgb[2], 255]);
-            u8::try_from(index).expect("a palette of 256 colours")
-        };
-        let indices: Vec<u8> = frame
-            .enumerate_pixels()
-            .map(|(x, y, p)| {
-                // A colour the palette holds (to within 2 steps), as flat backgrounds
-                // are, is kept as it is; others are dithered towards their neighbours.
-                let exact = *self.exact.entry(p.0).or_insert_with(|| {
-                    let index = nearest(p.0);
-                    let close = quantizer
-                        .lookup(usize::from(index))
-                        .is_some_and(|q| (0..3).all(|c| q[c].abs_diff(p.0[c]) <= 2));
-                    close.then_some(index)
-                });
-                exact.unwrap_or_else(|| {
-                    let offset = BAYER[(y % 4) as usize][(x % 4) as usize];
-                    let rgb = p.0.map(|c| (i16::from(c) + offset).clamp(0, 255) as u8);
-                    *self.indices.entry(rgb).or_insert_with(|| nearest(rgb))
-                })
-            })
-            .collect();
+        let indices = self.quantizer.indices(frame);
         let gif_frame = gif::Frame {
             delay: self.delay(self.written),
             width: self.width,
@@ -203,6 +178,46 @@ impl<W: Write> GifWriter<W> {
             return Err(invalid("a GIF needs at least one frame".to_owned()));
         }
         self.encoder.into_inner().map_err(gif_error)
+    }
+}
+
+/// Frames to palette indices. Not generic, so that it is compiled (and optimized) here
+/// whatever writer the caller's [`GifWriter`] holds.
+struct Quantizer {
+    palette: GifPalette,
+    /// Palette indices already looked up, by (dithered) colour: most colours repeat.
+    indices: HashMap<[u8; 3], u8>,
+    /// For each colour met, its palette index when the palette holds it (no dither).
+    exact: HashMap<[u8; 3], Option<u8>>,
+}
+
+impl Quantizer {
+    /// The palette index of each pixel of `frame`, row by row.
+    fn indices(&mut self, frame: &RgbImage) -> Vec<u8> {
+        let quantizer = &self.palette.quantizer;
+        let nearest = |rgb: [u8; 3]| {
+            let index = quantizer.index_of(&[rgb[0], rgb[1], rgb[2], 255]);
+            u8::try_from(index).expect("a palette of 256 colours")
+        };
+        frame
+            .enumerate_pixels()
+            .map(|(x, y, p)| {
+                // A colour the palette holds (to within 2 steps), as flat backgrounds
+                // are, is kept as it is; others are dithered towards their neighbours.
+                let exact = *self.exact.entry(p.0).or_insert_with(|| {
+                    let index = nearest(p.0);
+                    let close = quantizer
+                        .lookup(usize::from(index))
+                        .is_some_and(|q| (0..3).all(|c| q[c].abs_diff(p.0[c]) <= 2));
+                    close.then_some(index)
+                });
+                exact.unwrap_or_else(|| {
+                    let offset = BAYER[(y % 4) as usize][(x % 4) as usize];
+                    let rgb = p.0.map(|c| (i16::from(c) + offset).clamp(0, 255) as u8);
+                    *self.indices.entry(rgb).or_insert_with(|| nearest(rgb))
+                })
+            })
+            .collect()
     }
 }
 
