@@ -10,7 +10,8 @@ use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
 use ron::value::RawValue;
 use viewray_camera::{
-    Camera, Fisheye, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection, ThinLens,
+    Camera, Fisheye, FovAxis, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection,
+    SensorFit, ThinLens, aperture_from_f_number,
 };
 
 use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
@@ -18,7 +19,7 @@ use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
 use crate::mesh::MeshCache;
 use crate::schema::{
     ExplicitCamera, ImageDef, LightDef, MaterialDef, ObjectDef, PresetDef, ProjectionDef, Scale,
-    SceneFile, ShadingDef, Specular, TransformDef, V2, V3,
+    SceneFile, SensorFitDef, ShadingDef, Specular, TransformDef, V2, V3,
 };
 use crate::{Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, Shading};
 
@@ -538,27 +539,75 @@ fn explicit_camera(def: &ExplicitCamera, width: u32, height: u32) -> Result<Came
     Camera::new(frame, projection, width, height).map_err(|e| e.to_string())
 }
 
-/// The viewport of a perspective projection from exactly one of `viewport`, `fov_y` and
-/// `fov_x` (degrees).
-fn perspective_viewport(
+/// The fields that size a perspective viewport, as written in the file.
+struct PerspectiveExtent {
+    distance: Option<f64>,
     viewport: Option<V2>,
-    fov_y: Option<f64>,
-    fov_x: Option<f64>,
-    aspect: f64,
-) -> Result<DVec2, String> {
-    match (viewport, fov_y, fov_x) {
-        (Some(viewport), None, None) => Ok(v2(viewport)),
-        (None, Some(fov_y), None) => Perspective::from_fov_y(fov_y.to_radians(), aspect)
-            .map(|p| p.viewport)
-            .map_err(|e| e.to_string()),
-        (None, None, Some(fov_x)) => Perspective::from_fov_x(fov_x.to_radians(), aspect)
-            .map(|p| p.viewport)
-            .map_err(|e| e.to_string()),
-        (None, None, None) => {
-            Err("missing `viewport: (vw, vh)` (or `fov_y` or `fov_x` in degrees)".to_owned())
-        }
-        _ => Err("give only one of `viewport`, `fov_y` and `fov_x`".to_owned()),
+    fovs: [(FovAxis, Option<f64>); 5],
+    focal_length: Option<f64>,
+    sensor: Option<V2>,
+    fit: Option<SensorFitDef>,
+}
+
+/// Blender's default sensor, 36 x 24 mm, for a `focal_length` given without `sensor`.
+const DEFAULT_SENSOR: V2 = (36.0, 24.0);
+
+/// The perspective projection (distance and viewport) from exactly one of `viewport`,
+/// a field of view (`fov_x`, `fov_y`, `fov_diagonal`, `fov_smaller`, `fov_larger`, in
+/// degrees, scaled by `distance` when one is given) and a physical `focal_length` (mm,
+/// with `sensor` in mm and `fit`), the last two following the image's aspect ratio.
+fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Perspective, String> {
+    let fovs: Vec<(FovAxis, f64)> = extent
+        .fovs
+        .iter()
+        .filter_map(|&(axis, fov)| fov.map(|f| (axis, f)))
+        .collect();
+    let given = usize::from(extent.viewport.is_some())
+        + fovs.len()
+        + usize::from(extent.focal_length.is_some());
+    if given > 1 {
+        return Err("give only one of `viewport`, a field of view (`fov_x`, `fov_y`, \
+                    `fov_diagonal`, `fov_smaller`, `fov_larger`) and `focal_length`"
+            .to_owned());
     }
+    if extent.focal_length.is_none() && (extent.sensor.is_some() || extent.fit.is_some()) {
+        return Err("`sensor` and `fit` describe a physical camera: give `focal_length` \
+                    (mm) with them"
+            .to_owned());
+    }
+    let error = |e: viewray_camera::CameraError| e.to_string();
+    let mut projection = if let Some(viewport) = extent.viewport {
+        Perspective {
+            distance: extent.distance.unwrap_or(1.0),
+            viewport: v2(viewport),
+            shift: DVec2::ZERO,
+        }
+    } else if let Some(&(axis, degrees)) = fovs.first() {
+        let mut p = Perspective::from_fov(axis, degrees.to_radians(), aspect).map_err(error)?;
+        if let Some(distance) = extent.distance {
+            p.distance = distance;
+            p.viewport *= distance;
+        }
+        p
+    } else if let Some(focal_length) = extent.focal_length {
+        if extent.distance.is_some() {
+            return Err("`focal_length` sets the distance d (the focal length in metres): \
+                        give `distance` or `focal_length`, not both"
+                .to_owned());
+        }
+        let fit = match extent.fit.unwrap_or(SensorFitDef::Auto) {
+            SensorFitDef::Auto => SensorFit::Auto,
+            SensorFitDef::Horizontal => SensorFit::Horizontal,
+            SensorFitDef::Vertical => SensorFit::Vertical,
+        };
+        let sensor = v2(extent.sensor.unwrap_or(DEFAULT_SENSOR));
+        Perspective::from_focal_length(focal_length, sensor, fit, aspect).map_err(error)?
+    } else {
+        return Err("missing `viewport: (vw, vh)` (or a field of view such as `fov_y` in                     degrees, or `focal_length` in mm)"
+            .to_owned());
+    };
+    projection.shift = v2(shift);
+    Ok(projection)
 }
 
 /// The viewport of a parallel projection from exactly one of `viewport` and `height`.
@@ -577,34 +626,104 @@ fn parallel_viewport(
     }
 }
 
+/// The fields of view as written, each with the axis it spans.
+fn fovs(
+    x: Option<f64>,
+    y: Option<f64>,
+    diagonal: Option<f64>,
+    smaller: Option<f64>,
+    larger: Option<f64>,
+) -> [(FovAxis, Option<f64>); 5] {
+    [
+        (FovAxis::X, x),
+        (FovAxis::Y, y),
+        (FovAxis::Diagonal, diagonal),
+        (FovAxis::Smaller, smaller),
+        (FovAxis::Larger, larger),
+    ]
+}
+
 fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
     Ok(match *def {
         ProjectionDef::Perspective {
             distance,
             viewport,
-            fov_y,
             fov_x,
+            fov_y,
+            fov_diagonal,
+            fov_smaller,
+            fov_larger,
+            focal_length,
+            sensor,
+            fit,
             shift,
-        } => Projection::Perspective(Perspective {
-            distance,
-            viewport: perspective_viewport(viewport, fov_y, fov_x, aspect)?,
-            shift: v2(shift),
-        }),
+        } => {
+            let extent = PerspectiveExtent {
+                distance,
+                viewport,
+                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
+                focal_length,
+                sensor,
+                fit,
+            };
+            Projection::Perspective(perspective(&extent, shift, aspect)?)
+        }
         ProjectionDef::ThinLens {
             distance,
             viewport,
-            fov_y,
             fov_x,
+            fov_y,
+            fov_diagonal,
+            fov_smaller,
+            fov_larger,
+            focal_length,
+            sensor,
+            fit,
             shift,
             aperture,
+            f_number,
             focus,
-        } => Projection::ThinLens(ThinLens {
-            distance,
-            viewport: perspective_viewport(viewport, fov_y, fov_x, aspect)?,
-            shift: v2(shift),
-            aperture,
-            focus,
-        }),
+        } => {
+            let extent = PerspectiveExtent {
+                distance,
+                viewport,
+                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
+                focal_length,
+                sensor,
+                fit,
+            };
+            let pinhole = perspective(&extent, shift, aspect)?;
+            let aperture = match (aperture, f_number, focal_length) {
+                (Some(aperture), None, _) => aperture,
+                (None, Some(n), Some(f)) => {
+                    aperture_from_f_number(f, n).map_err(|e| e.to_string())?
+                }
+                (None, Some(_), None) => {
+                    return Err(
+                        "`f_number` needs a `focal_length` (mm): the lens radius is \
+                                focal_length / (2 f_number)"
+                            .to_owned(),
+                    );
+                }
+                (Some(_), Some(_), _) => {
+                    return Err("give either `aperture` (the lens radius) or `f_number`, \
+                                not both"
+                        .to_owned());
+                }
+                (None, None, _) => {
+                    return Err("missing `aperture` (the lens radius) or `f_number` (with \
+                                `focal_length`)"
+                        .to_owned());
+                }
+            };
+            Projection::ThinLens(ThinLens {
+                distance: pinhole.distance,
+                viewport: pinhole.viewport,
+                shift: pinhole.shift,
+                aperture,
+                focus,
+            })
+        }
         ProjectionDef::Orthographic {
             viewport,
             height,
