@@ -566,14 +566,18 @@ fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Per
         + fovs.len()
         + usize::from(extent.focal_length.is_some());
     if given > 1 {
-        return Err("give only one of `viewport`, a field of view (`fov_x`, `fov_y`, \
+        return Err(
+            "give only one of `viewport`, a field of view (`fov_x`, `fov_y`, \
                     `fov_diagonal`, `fov_smaller`, `fov_larger`) and `focal_length`"
-            .to_owned());
+                .to_owned(),
+        );
     }
     if extent.focal_length.is_none() && (extent.sensor.is_some() || extent.fit.is_some()) {
-        return Err("`sensor` and `fit` describe a physical camera: give `focal_length` \
+        return Err(
+            "`sensor` and `fit` describe a physical camera: give `focal_length` \
                     (mm) with them"
-            .to_owned());
+                .to_owned(),
+        );
     }
     let error = |e: viewray_camera::CameraError| e.to_string();
     let mut projection = if let Some(viewport) = extent.viewport {
@@ -591,9 +595,11 @@ fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Per
         p
     } else if let Some(focal_length) = extent.focal_length {
         if extent.distance.is_some() {
-            return Err("`focal_length` sets the distance d (the focal length in metres): \
+            return Err(
+                "`focal_length` sets the distance d (the focal length in metres): \
                         give `distance` or `focal_length`, not both"
-                .to_owned());
+                    .to_owned(),
+            );
         }
         let fit = match extent.fit.unwrap_or(SensorFitDef::Auto) {
             SensorFitDef::Auto => SensorFit::Auto,

@@ -83,8 +83,7 @@ fn physical_cameras_fit_their_sensor_to_the_image() {
 fn a_thin_lens_takes_an_f_number() {
     let text = "ThinLens(focal_length: 50.0, sensor: (36.0, 24.0), f_number: 2.8, focus: 5.0)";
     let pinhole =
-        Perspective::from_focal_length(50.0, DVec2::new(36.0, 24.0), SensorFit::Auto, 1.5)
-            .unwrap();
+        Perspective::from_focal_length(50.0, DVec2::new(36.0, 24.0), SensorFit::Auto, 1.5).unwrap();
     assert_eq!(
         projection(300, 200, text, None),
         Projection::ThinLens(ThinLens {
