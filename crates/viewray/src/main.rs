@@ -12,6 +12,7 @@ mod cli;
 mod commands;
 mod compare;
 mod figures;
+mod interop;
 mod json;
 mod render;
 
@@ -38,6 +39,8 @@ fn main() -> ExitCode {
         Command::Compare(args) => return compare::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
+        Command::Export(args) => interop::export(&args),
+        Command::Import(args) => interop::import(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
