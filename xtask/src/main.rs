@@ -5,6 +5,7 @@
 mod figures;
 mod golden;
 mod icosphere;
+mod interop;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -26,6 +27,10 @@ commands:
                           remove those with no scene or figure (refused when CI is set)
   figures [--out DIR]     draw every lecture figure, pictures ray traced, as <name>.png
                           and <name>.svg into DIR (default target/figures/)
+  interop [FILTER]        install Mitsuba 3 and bpy (PyPI) and three.js (npm) under
+                          target/interop, export every fixture scene and camera case to
+                          each tool and check the tools' own rays and projections against
+                          viewray's, and each importer by round trips (1e-5 relative)
   icosphere [--out DIR]   write the geometry benchmark's mesh (1,310,720 triangles) and
                           camera as icosphere.obj and icosphere.ron into DIR (default
                           target/icosphere/), to time `viewray render --stats` on them
@@ -39,6 +44,8 @@ fn main() -> ExitCode {
             .and_then(|a| golden::golden(&workspace_root(), &a)),
         Some("figures") => figures::FiguresArgs::parse(&args[1..])
             .and_then(|a| figures::figures(&workspace_root(), &a)),
+        Some("interop") => interop::InteropArgs::parse(&args[1..])
+            .and_then(|a| interop::interop(&workspace_root(), &a)),
         Some("icosphere") => icosphere::IcosphereArgs::parse(&args[1..])
             .and_then(|a| icosphere::icosphere(&workspace_root(), &a)),
         Some("help" | "--help" | "-h") | None => {
