@@ -333,8 +333,10 @@ fn size_of(camera: &Camera) -> DVec2 {
 
 fn import_camera(file: &Path, format: Format) -> Result<Camera> {
     let bytes = std::fs::read(file)?;
-    let document =
+    let mut document =
         viewray_interop::import(&bytes, file, format).map_err(|e| anyhow::anyhow!("{e}"))?;
+    // Only the camera is compared: the objects would only cost time to load.
+    document.objects.clear();
     let scene = Scene::parse(&document.to_ron(), file).map_err(|e| anyhow::anyhow!("{e}"))?;
     Ok(scene.camera)
 }

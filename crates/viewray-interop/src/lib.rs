@@ -32,7 +32,7 @@ use std::path::{Path, PathBuf};
 use viewray_scene::{Scene, SceneDocument};
 
 /// A tool viewray exchanges scenes with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Format {
     /// Mitsuba 3 XML (`mitsuba.load_file`).
     Mitsuba,

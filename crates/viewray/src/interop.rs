@@ -127,9 +127,13 @@ pub(crate) fn import(args: &ImportArgs) -> Result<()> {
     };
     let document = viewray_interop::import(&bytes, path, format)?;
     let text = document.to_ron();
-    // The scene must load in viewray as it is printed: a camera out of viewray's range
-    // (a field of view of 180 degrees, say) is an error here, not a broken file later.
-    Scene::parse(&text, path).map_err(|e| {
+    // The camera must load in viewray as it is printed: one out of viewray's range (a
+    // field of view of 180 degrees, say) is an error here, not a broken file later.
+    let camera_only = viewray_scene::SceneDocument {
+        objects: Vec::new(),
+        ..document
+    };
+    Scene::parse(&camera_only.to_ron(), path).map_err(|e| {
         anyhow!(
             "{}: the imported scene is not valid in viewray: {}",
             path.display(),
