@@ -341,11 +341,15 @@ pub fn import(text: &str, path: &Path) -> Result<SceneDocument, ImportError> {
     };
     let document = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
         let pos = e.pos();
-        ImportError::new(
-            path,
-            Some((pos.row as usize, pos.col as usize)),
-            format!("not well-formed XML: {e}"),
-        )
+        ImportError::new(path, Some((pos.row as usize, pos.col as usize)), {
+            // roxmltree's message ends with the position, which the error already has.
+            let message = e.to_string();
+            let suffix = format!(" at {}:{}", pos.row, pos.col);
+            format!(
+                "not well-formed XML: {}",
+                message.strip_suffix(&suffix).unwrap_or(&message)
+            )
+        })
     })?;
     let root = document.root_element();
     let mut reader = Reader {
@@ -801,8 +805,12 @@ impl<'a, 'input> Reader<'a, 'input> {
                 (FovAxis::Diagonal, degrees)
             }
         };
-        let p = Perspective::from_fov(axis, degrees.to_radians(), aspect)
-            .map_err(|e| self.error(sensor, e.to_string()))?;
+        let p = Perspective::from_fov(axis, degrees.to_radians(), aspect).map_err(|e| {
+            self.error(
+                sensor,
+                format!("the sensor's field of view of {degrees} degrees: {e}"),
+            )
+        })?;
         Ok((
             PerspectiveSize::Fov {
                 axis,

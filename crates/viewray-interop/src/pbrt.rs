@@ -981,6 +981,12 @@ pub fn import(text: &str, path: &Path) -> Result<SceneDocument, ImportError> {
                     format!("{directive} \"{file}\" is not supported: merge the files into one"),
                 ));
             }
+            other if other.starts_with(|c: char| c.is_ascii_lowercase()) => {
+                return Err(parser.error(
+                    at,
+                    format!("unknown directive `{other}` (pbrt's directives are capitalized: is a quote missing before it?)"),
+                ));
+            }
             other => {
                 return Err(parser.error(at, format!("unknown directive `{other}`")));
             }
