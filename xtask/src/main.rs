@@ -17,7 +17,8 @@ usage: cargo xtask <command>
 
 commands:
   ci                      every check CI runs: cargo fmt --check, cargo clippy (warnings
-                          are errors), cargo test, then the golden check
+                          are errors), cargo test, the golden check, then the interop
+                          check
   golden [FILTER]         render every scene in fixtures/scenes (and the default scene)
                           and every lecture figure, and compare each with
                           golden/{scenes,figures}/<name>.png; a report of the failures
@@ -80,7 +81,11 @@ fn ci() -> Result<()> {
     ])?;
     cargo(&["test", "--workspace"])?;
     eprintln!("$ cargo xtask golden");
-    golden::golden(&workspace_root(), &golden::GoldenArgs::default())
+    golden::golden(&workspace_root(), &golden::GoldenArgs::default())?;
+    // The real tools: about a minute to install them the first time (PyPI and npm), half
+    // a minute to check every export and import against them.
+    eprintln!("$ cargo xtask interop");
+    interop::interop(&workspace_root(), &interop::InteropArgs::default())
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
