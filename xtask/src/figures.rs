@@ -1,14 +1,14 @@
 //! `cargo xtask figures`: every lecture figure as PNG and SVG, for slides and the README.
 //!
 //! The figures are drawn in-process with their pictures rendered by the ray tracer
-//! (`viewray_diagram::figures::NamedFigure::figure`), exactly as `viewray figures`
+//! (`viewray_diagram::NamedFigure::figure`), exactly as `viewray figures`
 //! draws them and as `golden/figures/` checks them.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use viewray_diagram::figures::all_figures;
+use viewray_diagram::all_figures;
 
 /// The command line of `cargo xtask figures`.
 #[derive(Debug, Default)]
@@ -39,12 +39,9 @@ pub(crate) fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
         let figure = named.figure();
         let png = out.join(format!("{}.png", named.name));
         let svg = out.join(format!("{}.svg", named.name));
-        figure
-            .write_png(&png)
-            .with_context(|| format!("cannot write {}", png.display()))?;
-        figure
-            .write_svg(&svg)
-            .with_context(|| format!("cannot write {}", svg.display()))?;
+        // The errors name the file.
+        viewray_draw::write_png(&figure, &png)?;
+        viewray_draw::write_svg(&figure, &svg)?;
         eprintln!(
             "  {:<28} {} x {} {:>6} ms",
             named.name,

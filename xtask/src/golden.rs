@@ -20,6 +20,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use viewray_compare::{Comparison, ReportEntry, RgbaImage, Thresholds};
+use viewray_output::Compression;
 use viewray_render::RenderSettings;
 use viewray_scene::{LoadOptions, Scene};
 
@@ -87,26 +88,15 @@ enum Output {
 }
 
 impl Output {
-    /// The PNG file, with the producer's fixed encoder settings and no metadata.
+    /// The PNG file, by viewray's one encoder: a scene as `viewray render` writes it, a
+    /// figure as opaque RGB compressed hard, to keep goldens small.
     fn png(&self) -> Result<Vec<u8>> {
         let mut png = Vec::new();
         match self {
             Output::Render(image) => image.write_png(&mut png)?,
             Output::Figure(pixels) => {
-                // Figures are opaque: store RGB, compressed hard, to keep goldens small.
-                use image::ImageEncoder as _;
                 let rgb = image::DynamicImage::ImageRgba8(pixels.clone()).to_rgb8();
-                image::codecs::png::PngEncoder::new_with_quality(
-                    &mut png,
-                    image::codecs::png::CompressionType::Best,
-                    image::codecs::png::FilterType::Adaptive,
-                )
-                .write_image(
-                    rgb.as_raw(),
-                    rgb.width(),
-                    rgb.height(),
-                    image::ExtendedColorType::Rgb8,
-                )?;
+                viewray_output::write_png(&mut png, &rgb, Compression::Smallest)?;
             }
         }
         Ok(png)
@@ -233,7 +223,7 @@ fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
             source: Source::Scene(scene, LoadOptions::default()),
         });
     }
-    for figure in viewray_diagram::figures::all_figures() {
+    for figure in viewray_diagram::all_figures() {
         cases.push(Case {
             id: format!("figures/{}", figure.name),
             golden: root
@@ -312,17 +302,15 @@ fn make(case: &Case) -> Result<Made> {
             let scene = Scene::load_with(path, *options)?;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
-            let rgb = image::RgbImage::from_raw(image.width(), image.height(), image.to_rgb8())
-                .context("the render's pixel buffer does not match its size")?;
             Ok(Made {
-                pixels: image::DynamicImage::ImageRgb8(rgb).to_rgba8(),
+                pixels: image::DynamicImage::ImageRgb8(image.to_rgb_image()).to_rgba8(),
                 output: Output::Render(image),
             })
         }
         Source::Figure(name) => {
-            let figure = viewray_diagram::figures::figure_by_name(name)
+            let figure = viewray_diagram::figure_by_name(name)
                 .with_context(|| format!("no figure named {name}"))?;
-            let pixels = figure.figure().render_scaled(FIGURE_SCALE);
+            let pixels = viewray_draw::raster::render_scaled(&figure.figure(), FIGURE_SCALE);
             Ok(Made {
                 pixels: pixels.clone(),
                 output: Output::Figure(pixels),

@@ -125,26 +125,11 @@ pub(crate) fn parse_out(command: &str, args: &[String]) -> Result<Option<PathBuf
     Ok(out)
 }
 
-/// Writes `bytes` to `path` (creating its folder) through a temporary file beside it,
-/// renamed into place when complete, so `path` is never left half-written.
+/// Writes `bytes` to `path` atomically (viewray-output's writer), creating its folder.
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = path.parent().context("an output lives in a folder")?;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".xtask-").suffix(".tmp");
-    // The temporary file is private (0600) by default; the outputs are ordinary files.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
-    }
-    let mut file = builder
-        .tempfile_in(dir)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    std::io::Write::write_all(&mut file, bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    file.persist(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    viewray_output::write_atomically(path, bytes)?;
     Ok(())
 }
 

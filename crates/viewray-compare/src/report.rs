@@ -3,10 +3,11 @@
 
 use std::collections::HashSet;
 use std::fmt::Write as _;
-use std::io::{self, Write as _};
+use std::io;
 use std::path::{Path, PathBuf};
 
-use image::{ExtendedColorType, ImageEncoder as _, RgbImage, RgbaImage};
+use image::RgbaImage;
+use viewray_output::{Compression, encode_png, write_atomically};
 
 use crate::comparison::Comparison;
 
@@ -95,12 +96,18 @@ pub fn write_report(
         let mut images = Vec::new();
         if let Some(expected) = entry.expected {
             let file = format!("{stem}.expected.png");
-            write_atomically(&directory.join(&file), &encode_rgba(expected)?)?;
+            write_atomically(
+                directory.join(&file),
+                &encode_png(expected, Compression::Balanced)?,
+            )?;
             images.push(("expected", file, expected.width()));
         }
         if let Some(actual) = entry.actual {
             let file = format!("{stem}.actual.png");
-            write_atomically(&directory.join(&file), &encode_rgba(actual)?)?;
+            write_atomically(
+                directory.join(&file),
+                &encode_png(actual, Compression::Balanced)?,
+            )?;
             images.push(("actual", file, actual.width()));
         }
         if let Outcome::Compared(Comparison {
@@ -109,7 +116,10 @@ pub fn write_report(
         }) = entry.outcome
         {
             let file = format!("{stem}.diff.png");
-            write_atomically(&directory.join(&file), &encode_rgb(heatmap)?)?;
+            write_atomically(
+                directory.join(&file),
+                &encode_png(heatmap, Compression::Balanced)?,
+            )?;
             images.push(("difference (FLIP)", file, heatmap.width()));
         }
         section(&mut sections, entry, &stem, &images);
@@ -293,55 +303,6 @@ figcaption { color: #666; font-size: 0.9em; text-align: center; }
 .ramp { display: inline-block; width: 8em; height: 0.8em; vertical-align: middle;
   background: linear-gradient(to right, #000004, #3b0f70, #8c2981, #de4968, #fe9f6d, #fcfdbf); }
 ";
-
-fn encode_rgba(image: &RgbaImage) -> io::Result<Vec<u8>> {
-    encode(
-        image.as_raw(),
-        image.width(),
-        image.height(),
-        ExtendedColorType::Rgba8,
-    )
-}
-
-fn encode_rgb(image: &RgbImage) -> io::Result<Vec<u8>> {
-    encode(
-        image.as_raw(),
-        image.width(),
-        image.height(),
-        ExtendedColorType::Rgb8,
-    )
-}
-
-/// Encodes pixels as a PNG with no ancillary chunks (no time, no text).
-fn encode(pixels: &[u8], width: u32, height: u32, color: ExtendedColorType) -> io::Result<Vec<u8>> {
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(pixels, width, height, color)
-        .map_err(io::Error::other)?;
-    Ok(bytes)
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same directory, renamed over
-/// `path` once complete.
-fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let directory = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".viewray-report-").suffix(".tmp");
-    // The temporary file is private (0600) by default; a report is an ordinary file.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut file = builder.tempfile_in(directory)?;
-    file.write_all(bytes)?;
-    file.as_file().sync_all()?;
-    file.persist(path).map_err(|e| e.error)?;
-    Ok(())
-}
 
 #[cfg(test)]
 mod tests {

@@ -5,9 +5,8 @@ use std::cell::OnceCell;
 use glam::{DVec2, Vec3};
 use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Hit, Object, ObjectHit, Ray};
+use viewray_output::linear_to_srgb;
 use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
-
-use crate::image::linear_to_srgb;
 
 /// Where primary rays start their search: `t > 0`, as the camera contract says.
 const T_MIN: f32 = f32::MIN_POSITIVE;

@@ -2,11 +2,12 @@
 //! Blender, three.js and glTF (viewray-interop does the work; this is the file I/O).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use viewray_interop::Format;
+use viewray_output::AtomicFile;
 use viewray_scene::Scene;
 
 /// The largest file `viewray import` reads: 256 MiB.
@@ -63,34 +64,20 @@ pub(crate) fn export(args: &ExportArgs) -> Result<()> {
     };
     // Every file is complete in a temporary file before any is moved into place.
     let mut files = Vec::with_capacity(export.extra_files.len() + 1);
-    for (name, bytes) in &export.extra_files {
-        files.push((folder.join(name), temporary(&folder.join(name), bytes)?));
+    let outputs = export
+        .extra_files
+        .iter()
+        .map(|(name, bytes)| (folder.join(name), bytes.as_slice()))
+        .chain([(args.output.clone(), export.main.as_slice())]);
+    for (path, bytes) in outputs {
+        let mut file = AtomicFile::create(&path)?;
+        file.write_all(bytes).map_err(|e| file.error(e))?;
+        files.push(file);
     }
-    files.push((args.output.clone(), temporary(&args.output, &export.main)?));
-    for (path, file) in files {
-        file.persist(&path)
-            .map_err(|e| anyhow!("cannot write {}: {}", path.display(), e.error))?;
+    for file in files {
+        file.commit()?;
     }
     Ok(())
-}
-
-fn temporary(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile> {
-    let cannot = || format!("cannot write {}", path.display());
-    let folder = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".viewray-").suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
-    }
-    let mut file = builder.tempfile_in(folder).with_context(cannot)?;
-    file.write_all(bytes).with_context(cannot)?;
-    file.as_file().sync_all().with_context(cannot)?;
-    Ok(file)
 }
 
 /// `viewray import`: another tool's file as a viewray scene, RON on stdout.

@@ -2,12 +2,13 @@
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use tempfile::NamedTempFile;
+use viewray_output::AtomicFile;
 use viewray_render::{ImageFormat, RenderSettings};
 use viewray_scene::{LoadOptions, Scene};
 
@@ -48,9 +49,8 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         )
     })?;
     // Open the output's temporary file first, so that an unwritable path fails before
-    // a long render rather than after it.
-    let mut output = OutputFile::create(&args.output)?;
-    remove_on_interrupt(output.temporary.path(), &args.output);
+    // a long render rather than after it (Ctrl-C deletes it from then on).
+    let output = OutputFile::create(&args.output)?;
 
     // Load the scene (this builds its BVHs too).
     let options = LoadOptions {
@@ -77,8 +77,7 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     bar.finish_and_clear();
 
     // Write the image beside the output and move it into place.
-    output.write(|out| rendered.image.write(out, format).map_err(Into::into))?;
-    output.persist()?;
+    output.write_and_commit(|out| rendered.image.write(out, format).map_err(Into::into))?;
 
     if interactive {
         eprintln!(
@@ -171,72 +170,104 @@ fn available_memory() -> Option<u64> {
     Some(kib * 1024)
 }
 
-/// On Ctrl-C, deletes the unfinished temporary file and exits with 130 (the shell's code
-/// for SIGINT): the output path keeps what it held, and no stray file is left beside it.
-fn remove_on_interrupt(temporary: &Path, output: &Path) {
-    let temporary = temporary.to_owned();
-    let output = output.to_owned();
-    // Only a second handler fails to install; the first one already does the job.
-    let _ = ctrlc::set_handler(move || {
-        let _ = std::fs::remove_file(&temporary);
-        eprintln!("interrupted: {} was not written", output.display());
-        std::process::exit(130);
-    });
-}
-
-/// An output file written atomically: into a temporary file beside it, renamed into
-/// place only when complete. Until then the path keeps what it held; a failure deletes
-/// the temporary file.
+/// The output file, written atomically (viewray-output's [`AtomicFile`]: a temporary file
+/// beside it, renamed into place only when complete), and what Ctrl-C does to it.
+///
+/// Until the rename the path keeps what it held. On Ctrl-C the temporary file is deleted
+/// and the command exits with 130 (the shell's code for SIGINT), saying so on stderr. The
+/// handler is installed before the temporary file is created, and the file is handed to
+/// it under the same lock it takes: once the temporary file exists, Ctrl-C removes it.
 struct OutputFile {
     path: PathBuf,
-    temporary: NamedTempFile,
+    state: Arc<Mutex<OutputState>>,
+}
+
+/// Where the output file stands, as the Ctrl-C handler sees it.
+enum OutputState {
+    /// The temporary file is being created.
+    Opening,
+    /// The temporary file exists and the render is under way.
+    Pending(AtomicFile),
+    /// Written, or given up after an error: nothing left to clean up.
+    Finished,
 }
 
 impl OutputFile {
-    /// Creates the temporary file in the folder of `path`.
+    /// Installs the Ctrl-C handler, then creates the temporary file in the folder of
+    /// `path`.
     fn create(path: &Path) -> Result<Self> {
-        let cannot = || format!("cannot write {}", path.display());
-        let folder = match path.parent() {
-            Some(parent) if !parent.as_os_str().is_empty() => parent,
-            _ => Path::new("."),
+        let state = Arc::new(Mutex::new(OutputState::Opening));
+        // Held until the file is in `state`: a Ctrl-C meanwhile waits for it.
+        let mut opening = lock(&state);
+        remove_on_interrupt(Arc::clone(&state), path);
+        *opening = match AtomicFile::create(path) {
+            Ok(file) => OutputState::Pending(file),
+            Err(error) => {
+                *opening = OutputState::Finished;
+                return Err(error.into());
+            }
         };
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(".viewray-").suffix(".tmp");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            // An image is an ordinary file (temporary files default to owner-only).
-            builder.permissions(std::fs::Permissions::from_mode(0o644));
-        }
-        let temporary = builder.tempfile_in(folder).with_context(cannot)?;
+        drop(opening);
         Ok(Self {
             path: path.to_owned(),
-            temporary,
+            state,
         })
     }
 
-    /// Writes the contents with `write`.
-    fn write(
-        &mut self,
-        write: impl FnOnce(&mut BufWriter<&mut std::fs::File>) -> Result<()>,
+    /// Writes the contents with `write` and moves the finished file into place. Ctrl-C
+    /// meanwhile waits until the file is in place (or given up).
+    fn write_and_commit(
+        self,
+        write: impl FnOnce(&mut BufWriter<&mut AtomicFile>) -> Result<()>,
     ) -> Result<()> {
         let cannot = || format!("cannot write {}", self.path.display());
-        let mut out = BufWriter::new(self.temporary.as_file_mut());
+        let mut state = lock(&self.state);
+        let OutputState::Pending(mut file) = std::mem::replace(&mut *state, OutputState::Finished)
+        else {
+            bail!(
+                "cannot write {}: the output was not open",
+                self.path.display()
+            );
+        };
+        let mut out = BufWriter::new(&mut file);
         write(&mut out).with_context(cannot)?;
         out.flush().with_context(cannot)?;
         drop(out);
-        self.temporary.as_file().sync_all().with_context(cannot)?;
+        file.commit()?;
         Ok(())
     }
+}
 
-    /// Moves the finished file into place.
-    fn persist(self) -> Result<()> {
-        let path = self.path;
-        self.temporary
-            .persist(&path)
-            .map_err(|error| anyhow!("cannot write {}: {}", path.display(), error.error))?;
-        Ok(())
+impl Drop for OutputFile {
+    /// An output dropped before it was written (a bad scene, a failed render) deletes its
+    /// temporary file: the Ctrl-C handler keeps the state alive, so this cannot wait for
+    /// the last reference.
+    fn drop(&mut self) {
+        let mut state = lock(&self.state);
+        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
+            let _ = file.discard();
+        }
     }
+}
+
+/// The state, even if a thread panicked while holding it (the handler must still run).
+fn lock(state: &Mutex<OutputState>) -> MutexGuard<'_, OutputState> {
+    state.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// On Ctrl-C, deletes the unfinished temporary file and exits with 130: the output path
+/// keeps what it held, and no stray file is left beside it.
+fn remove_on_interrupt(state: Arc<Mutex<OutputState>>, output: &Path) {
+    let output = output.to_owned();
+    // Only a second handler fails to install, and a process renders once.
+    let _ = ctrlc::set_handler(move || {
+        let mut state = lock(&state);
+        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
+            let _ = file.discard();
+            eprintln!("interrupted: {} was not written", output.display());
+        }
+        std::process::exit(130);
+    });
 }
 
 #[cfg(test)]
