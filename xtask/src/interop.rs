@@ -51,24 +51,10 @@ struct Paths {
 }
 
 /// The command line of `cargo xtask interop`.
-#[derive(Debug, Default)]
-pub(crate) struct InteropArgs {
-    /// Only the cases whose name contains this.
-    filter: Option<String>,
-}
-
-impl InteropArgs {
-    pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        let mut parsed = Self::default();
-        for arg in args {
-            match arg.as_str() {
-                flag if flag.starts_with('-') => bail!("unknown option `{flag}` for interop"),
-                filter if parsed.filter.is_none() => parsed.filter = Some(filter.to_owned()),
-                extra => bail!("interop takes one FILTER, found a second: `{extra}`"),
-            }
-        }
-        Ok(parsed)
-    }
+#[derive(Debug, Default, clap::Args)]
+pub struct InteropArgs {
+    /// Only the cases whose name contains FILTER.
+    pub filter: Option<String>,
 }
 
 /// A scene exported to the tools.
@@ -103,7 +89,12 @@ impl Worst {
     }
 }
 
-pub(crate) fn interop(root: &Path, args: &InteropArgs) -> Result<()> {
+/// Installs the tools (once), exports every case to them and compares their numbers
+/// with viewray's; prints a table of the largest errors and the refused exports.
+///
+/// # Errors
+/// When a tool cannot be installed or run, or any error is above 1e-5.
+pub fn interop(root: &Path, args: &InteropArgs) -> Result<()> {
     let started = Instant::now();
     let interop = root.join("target/interop");
     let paths = Paths {
@@ -338,7 +329,7 @@ fn import_camera(file: &Path, format: Format) -> Result<Camera> {
     // Only the camera is compared: the objects would only cost time to load.
     document.objects.clear();
     let scene = Scene::parse(&document.to_ron(), file).map_err(|e| anyhow::anyhow!("{e}"))?;
-    Ok(scene.camera)
+    Ok(*scene.camera())
 }
 
 type Check<'a> = dyn FnMut(&str, &Worst, &mut Vec<String>) + 'a;
@@ -355,7 +346,7 @@ fn mitsuba(
         let Some(file) = exported.get(&(case.name.clone(), Format::Mitsuba)) else {
             continue;
         };
-        let camera = &case.scene.camera;
+        let camera = case.scene.camera();
         let lens = matches!(camera.projection(), viewray_camera::Projection::ThinLens(_));
         job_cases.push(json!({
             "name": case.name, "file": file,
@@ -446,7 +437,7 @@ fn mitsuba(
         let Some(entry) = result["cases"].get(&case.name) else {
             continue;
         };
-        let camera = &case.scene.camera;
+        let camera = case.scene.camera();
         let imported = import_camera(
             &exported[&(case.name.clone(), Format::Mitsuba)],
             Format::Mitsuba,
@@ -516,7 +507,7 @@ fn mitsuba(
 /// hitting anything, not counting pixels on a silhouette (a neighbour differs in
 /// viewray's own mask): f32 against f64 ray setup may flip those.
 fn coverage_error(scene: &Scene, bits: &str) -> (f64, String) {
-    let camera = &scene.camera;
+    let camera = scene.camera();
     let (w, h) = (camera.width() as usize, camera.height() as usize);
     let ours: Vec<bool> = (0..h)
         .flat_map(|row| (0..w).map(move |col| (row, col)))
@@ -525,7 +516,7 @@ fn coverage_error(scene: &Scene, bits: &str) -> (f64, String) {
                 .generate_ray(row as u32, col as u32, viewray_camera::CameraSample::CENTER)
                 .is_some_and(|ray| {
                     scene
-                        .world
+                        .world()
                         .closest_hit(&ray.as_ray(), 0.0..f32::INFINITY)
                         .is_some()
                 })
@@ -574,7 +565,7 @@ fn blender(
     let mut job = Vec::new();
     for case in cases {
         let points: Vec<[f64; 3]> = case.points.iter().map(|(p, _)| p.to_array()).collect();
-        let camera = &case.scene.camera;
+        let camera = case.scene.camera();
         if let Some(script) = exported.get(&(case.name.clone(), Format::Blender)) {
             let panorama = camera.projection().viewport().is_none();
             // Blender's glTF can hold only what glTF can: round trips of those cameras.
@@ -619,7 +610,7 @@ fn blender(
         Worst::default(),
     );
     for case in cases {
-        let camera = &case.scene.camera;
+        let camera = case.scene.camera();
         let size = size_of(camera);
         if let Some(entry) = result.get(format!("{}/script", case.name)) {
             for (i, (p, image)) in case.points.iter().enumerate() {
@@ -774,7 +765,7 @@ fn three(
         let Some(entry) = result["cases"].get(&case.name) else {
             continue;
         };
-        let size = size_of(&case.scene.camera);
+        let size = size_of(case.scene.camera());
         let imported = import_camera(
             &paths
                 .work
@@ -850,7 +841,7 @@ fn pbrt(
             };
             let tool = json!([ray.origin.to_array(), ray.direction.to_array()]);
             worst.add(
-                ray_error(&case.scene.camera, p, DVec2::splat(0.5), &tool),
+                ray_error(case.scene.camera(), p, DVec2::splat(0.5), &tool),
                 || format!("{} pixel {p}", case.name),
             );
         }
@@ -1000,8 +991,8 @@ fn cases(root: &Path) -> Result<Vec<Case>> {
     Ok(scenes
         .into_iter()
         .map(|(name, scene, coverage)| {
-            let camera = scene.camera;
-            let size = size_of(&camera);
+            let camera = scene.camera();
+            let size = size_of(camera);
             let pixels = grid(size);
             let lens: Vec<DVec2> = (0..pixels.len())
                 .map(|i| {

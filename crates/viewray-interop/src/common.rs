@@ -62,7 +62,7 @@ pub(crate) struct TriangleMesh {
 impl<'a> Parts<'a> {
     pub(crate) fn of(scene: &'a Scene) -> Self {
         let mut shapes = Vec::new();
-        for (object, material) in scene.world.objects().iter().zip(&scene.object_materials) {
+        for (object, material) in scene.world().objects().iter().zip(scene.object_materials()) {
             let single = match material {
                 ObjectMaterial::Single(index) => Some(*index),
                 ObjectMaterial::PerTriangle(_) => None,
@@ -123,12 +123,12 @@ impl<'a> Parts<'a> {
             }
         }
         Parts {
-            camera: &scene.camera,
-            samples: scene.samples,
-            background: scene.background,
-            shading: scene.shading,
-            materials: &scene.materials,
-            lights: &scene.lights,
+            camera: scene.camera(),
+            samples: scene.samples(),
+            background: scene.background(),
+            shading: scene.shading(),
+            materials: scene.materials(),
+            lights: scene.lights(),
             shapes,
         }
     }

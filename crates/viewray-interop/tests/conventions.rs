@@ -44,7 +44,7 @@ fn close(a: f64, b: f64) {
 }
 
 fn perspective(scene: &Scene) -> viewray_camera::Perspective {
-    match scene.camera.projection() {
+    match scene.camera().projection() {
         Projection::Perspective(p) => *p,
         other => panic!("not perspective: {other:?}"),
     }
@@ -180,7 +180,11 @@ fn pbrt_plain_look_at_is_imported_mirrored_so_the_picture_is_pbrts() {
             .any(|c| c.contains("mirrored in x"))
     );
     let scene = Scene::parse(&document.to_ron(), Path::new("plain.pbrt")).unwrap();
-    let x = scene.camera.project(DVec3::new(-1.0, 0.0, 0.0)).unwrap().x;
+    let x = scene
+        .camera()
+        .project(DVec3::new(-1.0, 0.0, 0.0))
+        .unwrap()
+        .x;
     assert!(x < 50.0, "the sphere should be on the left, at x = {x}");
     match &document.objects[0] {
         viewray_scene::ObjectDocument::Sphere { center, .. } => assert_eq!(center.x, -1.0),
@@ -332,10 +336,13 @@ fn a_gltf_camera_without_an_image_size_gets_one_of_its_aspect_ratio() {
         "nodes": [{"camera": 0, "translation": [0, 1, 5]}],
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1}}]}"#;
     let scene = import(json, "bare.gltf", Format::Gltf);
-    assert_eq!((scene.camera.width(), scene.camera.height()), (720, 480));
+    assert_eq!(
+        (scene.camera().width(), scene.camera().height()),
+        (720, 480)
+    );
     let p = perspective(&scene);
     close(p.viewport.y, 2.0 * 0.4f64.tan());
-    close(scene.camera.frame().e.y, 1.0);
+    close(scene.camera().frame().e.y, 1.0);
 }
 
 // What each tool lacks --------------------------------------------------------------------

@@ -107,14 +107,14 @@ fn ray_difference(a: &Camera, b: &Camera) -> f64 {
 fn check_all_formats(scene: &Scene) -> Result<(), TestCaseError> {
     for format in Format::ALL {
         let export = viewray_interop::export(scene, format, file_name(format));
-        let expected = expressible(format, &scene.camera);
+        let expected = expressible(format, scene.camera());
         prop_assert_eq!(
             export.is_ok(),
             expected,
             "{:?}: {:?} for {:?}",
             format,
             export.as_ref().err(),
-            scene.camera
+            scene.camera()
         );
         let Ok(export) = export else { continue };
         if format == Format::Blender {
@@ -133,16 +133,16 @@ fn check_all_formats(scene: &Scene) -> Result<(), TestCaseError> {
         let back = Scene::parse(&text, path)
             .map_err(|e| TestCaseError::fail(format!("{format:?}: {e}\n{text}")))?;
         prop_assert_eq!(
-            (back.camera.width(), back.camera.height()),
-            (scene.camera.width(), scene.camera.height())
+            (back.camera().width(), back.camera().height()),
+            (scene.camera().width(), scene.camera().height())
         );
-        let difference = ray_difference(&scene.camera, &back.camera);
+        let difference = ray_difference(scene.camera(), back.camera());
         prop_assert!(
             difference < 1e-9,
             "{:?}: rays differ by {} for {:?}\n{}",
             format,
             difference,
-            scene.camera,
+            scene.camera(),
             text
         );
     }

@@ -68,16 +68,16 @@ fn check(projection: ProjectionDocument, expected: Projection) {
     let doc = document(projection);
     let text = doc.to_ron();
     let scene = Scene::parse(&text, Path::new("doc.ron")).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let camera = scene.camera;
+    let camera = scene.camera();
     assert_eq!(camera.projection(), &expected, "{text}");
     let frame = Frame::from_eye_view_up(doc.camera.eye, doc.camera.view, doc.camera.up).unwrap();
     assert_eq!(camera.frame(), &frame);
     assert_eq!(
-        (camera.width(), camera.height(), scene.samples),
+        (camera.width(), camera.height(), scene.samples()),
         (64, 48, 3)
     );
-    assert_eq!(scene.world.objects().len(), 4);
-    assert_eq!(scene.materials[0].color, Vec3::new(0.8, 0.1, 1.0 / 3.0));
+    assert_eq!(scene.world().objects().len(), 4);
+    assert_eq!(scene.materials()[0].color, Vec3::new(0.8, 0.1, 1.0 / 3.0));
     assert!(text.starts_with("// Written by a test.\n// Two lines.\n("));
 }
 

@@ -18,7 +18,7 @@ fn projection(width: u32, height: u32, projection: &str, size: Option<(u32, u32)
     };
     let scene = Scene::parse_with(&text, Path::new("test.ron"), options)
         .unwrap_or_else(|e| panic!("{projection}: {e}"));
-    *scene.camera.projection()
+    *scene.camera().projection()
 }
 
 #[track_caller]
