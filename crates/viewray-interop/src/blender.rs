@@ -65,7 +65,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         "# Written by `viewray export`: run `blender -b -P this.py`, or `python this.py` with\n\
          # the bpy module. The camera is viewray's exactly: its matrix_world has the columns\n\
          # U, V, W and e, and it looks down its local -z.\n\
-         import bpy\nfrom mathutils import Matrix\n\n\
+         import bpy\nfrom mathutils import Matrix, Vector\n\n\
          scene = bpy.context.scene\n\
          for obj in list(bpy.data.objects):\n    bpy.data.objects.remove(obj, do_unlink=True)\n\
          scene.render.engine = 'CYCLES'\n",
@@ -293,10 +293,6 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
             }
         }
     }
-    let out = out.replace(
-        "from mathutils import Matrix",
-        "from mathutils import Matrix, Vector",
-    );
     Ok(out.into_bytes())
 }
 
