@@ -58,28 +58,47 @@ impl Origin {
         }
     }
 
-    /// The origin of `part`, a slice of `text`, which starts at this origin.
-    fn of_slice(self, text: &str, part: &str) -> Origin {
-        let offset = (part.as_ptr() as usize).saturating_sub(text.as_ptr() as usize);
-        let before = &text[..offset.min(text.len())];
-        let position = match before.rfind('\n') {
-            Some(newline) => {
-                let line = 1 + before.matches('\n').count();
-                (line, before[newline + 1..].chars().count() + 1)
-            }
-            None => (1, before.chars().count() + 1),
-        };
-        let p = self.offset(position.0, position.1);
-        Origin {
-            line: p.line,
-            column: p.column,
-        }
-    }
-
     fn position(self) -> Position {
         Position {
             line: self.line,
             column: self.column,
+        }
+    }
+}
+
+/// Where each line of a file starts, so that the position of any slice of it is found
+/// in `O(log lines)`: a scene of many objects looks up one position per object, and
+/// counting lines from the start for each made loading quadratic.
+struct LineIndex<'a> {
+    text: &'a str,
+    /// The byte offset of each line's first character; the first line starts at 0.
+    starts: Vec<usize>,
+}
+
+impl<'a> LineIndex<'a> {
+    fn new(text: &'a str) -> Self {
+        let starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(newline, _)| newline + 1))
+            .collect();
+        Self { text, starts }
+    }
+
+    /// Where `part`, a slice of the indexed text, starts: its 1-based line, and its
+    /// column counted in characters.
+    fn origin_of(&self, part: &str) -> Origin {
+        let offset = (part.as_ptr() as usize)
+            .saturating_sub(self.text.as_ptr() as usize)
+            .min(self.text.len());
+        // The number of lines starting at or before `offset` is `offset`'s line.
+        let line = self.starts.partition_point(|&start| start <= offset);
+        let line_start = self.starts[line - 1];
+        let column = self
+            .text
+            .get(line_start..offset)
+            .map_or(0, |before| before.chars().count());
+        Origin {
+            line,
+            column: column + 1,
         }
     }
 }
@@ -116,7 +135,10 @@ pub(crate) fn parse(
     let file: SceneFile<'_> = ron_options()
         .from_str(text)
         .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;
-    let loader = Loader { text, path };
+    let loader = Loader {
+        lines: LineIndex::new(text),
+        path,
+    };
 
     let (mut image, image_origin) = match file.image {
         Some(raw) => loader.value::<ImageDef>(raw)?,
@@ -131,7 +153,7 @@ pub(crate) fn parse(
     }
     let (width, height, samples) = check_image(&image, path, image_origin)?;
 
-    let camera_origin = Origin::FILE.of_slice(text, file.camera.get_ron());
+    let camera_origin = loader.lines.origin_of(file.camera.get_ron());
     let camera = parse_camera(file.camera, camera_origin, path, width, height)?;
 
     let background = color(file.background)
@@ -285,7 +307,7 @@ pub(crate) fn parse(
 
 /// Parses the values kept as raw text, placing their errors in the file.
 struct Loader<'a> {
-    text: &'a str,
+    lines: LineIndex<'a>,
     path: &'a Path,
 }
 
@@ -295,7 +317,7 @@ impl Loader<'_> {
         &self,
         raw: &RawValue,
     ) -> Result<(T, Origin), SceneError> {
-        let origin = Origin::FILE.of_slice(self.text, raw.get_ron());
+        let origin = self.lines.origin_of(raw.get_ron());
         let value = ron_options()
             .from_str(raw.get_ron())
             .map_err(|e| ron_error(self.path, raw.get_ron(), origin, &e))?;
@@ -1003,5 +1025,28 @@ fn describe(code: &RonError) -> String {
                 None => text,
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_index_finds_lines_and_columns_in_characters() {
+        let text = "(\n  a: 1,\n  é: (2, 3),\n\nz)";
+        let index = LineIndex::new(text);
+        let at = |needle: &str| {
+            let start = text.find(needle).unwrap();
+            let origin = index.origin_of(&text[start..]);
+            (origin.line, origin.column)
+        };
+        assert_eq!(at("("), (1, 1));
+        assert_eq!(at("a:"), (2, 3));
+        // `é` is two bytes but one column: `(2` starts at column 6, not 7.
+        assert_eq!(at("(2"), (3, 6));
+        assert_eq!(at("3)"), (3, 10));
+        assert_eq!(at("z)"), (5, 1));
+        assert_eq!(at("\n\nz"), (3, 13));
     }
 }
