@@ -1,5 +1,6 @@
 //! viewray's automation, written in Rust so it runs wherever cargo does: the golden check,
-//! the lecture figures and the benchmark's icosphere scene.
+//! the lecture figures, the benchmark's icosphere scene and the interop check against
+//! the real tools.
 //!
 //! `main.rs` is the `cargo xtask` command (an alias in `.cargo/config.toml`); the golden
 //! check is also the `golden` test target (`tests/golden.rs`), so plain `cargo test` runs
@@ -9,6 +10,7 @@
 pub mod figures;
 pub mod golden;
 pub mod icosphere;
+pub mod interop;
 
 use std::path::{Path, PathBuf};
 

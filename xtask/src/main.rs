@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{figures, golden, icosphere, workspace_root};
+use xtask::{figures, golden, icosphere, interop, workspace_root};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -18,7 +18,8 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Task {
     /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
-    /// test (the golden check included, as the `golden` test target).
+    /// test (the golden check included, as the `golden` test target), then the interop
+    /// check against the real tools.
     Ci,
     /// Render every scene in fixtures/scenes (and the default scene), every lecture
     /// figure and the first, middle and last frames of every built-in animation, and
@@ -31,6 +32,11 @@ enum Task {
     /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
     /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.
     Icosphere(icosphere::IcosphereArgs),
+    /// Install Mitsuba 3 and bpy (PyPI) and three.js (npm) under target/interop, export
+    /// every fixture scene and camera case to each tool, and check the tools' own rays
+    /// and projections against viewray's, and each importer by round trips (1e-5
+    /// relative).
+    Interop(interop::InteropArgs),
 }
 
 fn main() -> ExitCode {
@@ -45,6 +51,7 @@ fn main() -> ExitCode {
         Some(Task::Golden(args)) => golden::golden(&root, &args),
         Some(Task::Figures(args)) => figures::figures(&root, &args),
         Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
+        Some(Task::Interop(args)) => interop::interop(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -71,7 +78,11 @@ fn ci() -> Result<()> {
         "-D",
         "warnings",
     ])?;
-    cargo(&["test", "--workspace"])
+    cargo(&["test", "--workspace"])?;
+    // The real tools: about a minute to install them the first time (PyPI and npm), half
+    // a minute to check every export and import against them.
+    eprintln!("$ cargo xtask interop");
+    interop::interop(&workspace_root(), &interop::InteropArgs::default())
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
@@ -109,7 +120,7 @@ mod tests {
         assert!(parse(&[]).unwrap().command.is_none());
         let help = Cli::command().render_help().to_string();
         assert!(help.contains("Usage: cargo xtask [COMMAND]"), "{help}");
-        for command in ["ci", "golden", "figures", "icosphere"] {
+        for command in ["ci", "golden", "figures", "icosphere", "interop"] {
             assert!(
                 help.contains(&format!("\n  {command} ")),
                 "{command}: {help}"

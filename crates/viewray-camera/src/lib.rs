@@ -30,6 +30,11 @@
 //!   *not* normalized: they are exactly the lecture's, so `(u, v, -d)` for the canonical
 //!   camera, and a printed ray can be checked against a homework answer.
 //! - **Angles** are radians in this API and degrees in scene files.
+//! - **Fields of view** are full angles across one extent of the viewport ([`FovAxis`]:
+//!   x, y, diagonal, the smaller or the larger side); **physical cameras** give a focal
+//!   length and a sensor in millimetres, fitted as Blender's `sensor_fit` ([`SensorFit`]),
+//!   with scene units of metres: see [`Perspective::from_fov`] and
+//!   [`Perspective::from_focal_length`].
 //! - Everything is computed in `f64`; [`viewray_geometry::DRay::as_ray`] rounds a ray for
 //!   the tracer.
 //!
@@ -55,6 +60,7 @@
 mod camera;
 mod error;
 mod frame;
+mod lens;
 mod presets;
 mod projection;
 mod sampling;
@@ -63,6 +69,7 @@ pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
 pub use error::CameraError;
 pub use frame::Frame;
+pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
 pub use projection::{Fisheye, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens};
 pub use sampling::sample_unit_disk_concentric;

@@ -157,7 +157,8 @@ impl Perspective {
     };
 
     /// A perspective projection with `d = 1` and the vertical field of view `fov_y`
-    /// (radians), the width following from the aspect ratio `W / H`.
+    /// (radians), the width following from the aspect ratio `W / H`
+    /// ([`Perspective::from_fov`] with [`crate::FovAxis::Y`]).
     ///
     /// ```text
     /// vh = 2 tan(fov_y / 2),   vw = aspect * vh
@@ -167,18 +168,12 @@ impl Perspective {
     /// [`CameraError::OutOfRange`] unless `0 < fov_y < pi`; [`CameraError::NotPositive`]
     /// unless `aspect > 0`.
     pub fn from_fov_y(fov_y: f64, aspect: f64) -> Result<Self, CameraError> {
-        check_fov("fov_y", fov_y)?;
-        check_positive("aspect", aspect)?;
-        let vh = 2.0 * (fov_y / 2.0).tan();
-        Ok(Self {
-            distance: 1.0,
-            viewport: DVec2::new(aspect * vh, vh),
-            shift: DVec2::ZERO,
-        })
+        Self::from_fov(crate::FovAxis::Y, fov_y, aspect)
     }
 
     /// A perspective projection with `d = 1` and the horizontal field of view `fov_x`
-    /// (radians), the height following from the aspect ratio `W / H`.
+    /// (radians), the height following from the aspect ratio `W / H`
+    /// ([`Perspective::from_fov`] with [`crate::FovAxis::X`]).
     ///
     /// ```text
     /// vw = 2 tan(fov_x / 2),   vh = vw / aspect
@@ -188,14 +183,7 @@ impl Perspective {
     /// [`CameraError::OutOfRange`] unless `0 < fov_x < pi`; [`CameraError::NotPositive`]
     /// unless `aspect > 0`.
     pub fn from_fov_x(fov_x: f64, aspect: f64) -> Result<Self, CameraError> {
-        check_fov("fov_x", fov_x)?;
-        check_positive("aspect", aspect)?;
-        let vw = 2.0 * (fov_x / 2.0).tan();
-        Ok(Self {
-            distance: 1.0,
-            viewport: DVec2::new(vw, vw / aspect),
-            shift: DVec2::ZERO,
-        })
+        Self::from_fov(crate::FovAxis::X, fov_x, aspect)
     }
 
     /// The viewport shift that centres a point at elevation `theta` (radians above the
@@ -550,17 +538,4 @@ fn check_finite_vector2(name: &'static str, value: DVec2) -> Result<(), CameraEr
 fn check_viewport(viewport: DVec2) -> Result<(), CameraError> {
     check_positive("vw", viewport.x)?;
     check_positive("vh", viewport.y)
-}
-
-fn check_fov(name: &'static str, fov: f64) -> Result<(), CameraError> {
-    check_finite(name, fov)?;
-    if fov > 0.0 && fov < PI {
-        Ok(())
-    } else {
-        Err(CameraError::OutOfRange {
-            name,
-            expected: "between 0 and 180 degrees",
-            value: fov.to_degrees(),
-        })
-    }
 }

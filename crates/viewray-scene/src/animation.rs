@@ -79,7 +79,7 @@ pub struct CameraSpec(pub(crate) CameraDef);
 /// The two ways a scene file writes a camera.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum CameraDef {
-    Explicit(ExplicitCamera),
+    Explicit(Box<ExplicitCamera>),
     Preset(PresetDef),
 }
 
@@ -129,7 +129,7 @@ impl CameraSpec {
     pub fn mix(&self, other: &CameraSpec, s: f64) -> Result<CameraSpec, String> {
         Ok(CameraSpec(match (&self.0, &other.0) {
             (CameraDef::Explicit(a), CameraDef::Explicit(b)) => {
-                CameraDef::Explicit(mix_explicit(a, b, s)?)
+                CameraDef::Explicit(Box::new(mix_explicit(a, b, s)?))
             }
             (CameraDef::Preset(a), CameraDef::Preset(b)) => CameraDef::Preset(mix_preset(a, b, s)?),
             (CameraDef::Explicit(_), CameraDef::Preset(b)) => {
@@ -193,6 +193,22 @@ fn mix_option<T: Mix + Copy>(
     }
 }
 
+/// A field that cannot be mixed (a choice, such as `fit`): the same in both keys.
+fn same<T: PartialEq + Copy + std::fmt::Debug>(
+    name: &str,
+    a: Option<T>,
+    b: Option<T>,
+) -> Result<Option<T>, String> {
+    if a == b {
+        Ok(a)
+    } else {
+        Err(format!(
+            "the keys give different `{name}`: it is a choice, not a number, so every key of \
+             an animation gives the same"
+        ))
+    }
+}
+
 fn mix_explicit(a: &ExplicitCamera, b: &ExplicitCamera, s: f64) -> Result<ExplicitCamera, String> {
     Ok(ExplicitCamera {
         eye: a.eye.mix(&b.eye, s),
@@ -210,50 +226,89 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
             P::Perspective {
                 distance: d0,
                 viewport: vp0,
-                fov_y: fy0,
                 fov_x: fx0,
+                fov_y: fy0,
+                fov_diagonal: fd0,
+                fov_smaller: fs0,
+                fov_larger: fl0,
+                focal_length: fo0,
+                sensor: se0,
+                fit: fit0,
                 shift: s0,
             },
             P::Perspective {
                 distance: d1,
                 viewport: vp1,
-                fov_y: fy1,
                 fov_x: fx1,
+                fov_y: fy1,
+                fov_diagonal: fd1,
+                fov_smaller: fs1,
+                fov_larger: fl1,
+                focal_length: fo1,
+                sensor: se1,
+                fit: fit1,
                 shift: s1,
             },
         ) => P::Perspective {
-            distance: d0.mix(d1, s),
+            distance: mix_option("distance", *d0, *d1, s)?,
             viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
             fov_x: mix_option("fov_x", *fx0, *fx1, s)?,
+            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
+            fov_diagonal: mix_option("fov_diagonal", *fd0, *fd1, s)?,
+            fov_smaller: mix_option("fov_smaller", *fs0, *fs1, s)?,
+            fov_larger: mix_option("fov_larger", *fl0, *fl1, s)?,
+            focal_length: mix_option("focal_length", *fo0, *fo1, s)?,
+            sensor: mix_option("sensor", *se0, *se1, s)?,
+            fit: same("fit", *fit0, *fit1)?,
             shift: s0.mix(s1, s),
         },
         (
             P::ThinLens {
                 distance: d0,
                 viewport: vp0,
-                fov_y: fy0,
                 fov_x: fx0,
+                fov_y: fy0,
+                fov_diagonal: fd0,
+                fov_smaller: fs0,
+                fov_larger: fl0,
+                focal_length: fo0,
+                sensor: se0,
+                fit: fit0,
                 shift: s0,
                 aperture: a0,
+                f_number: n0,
                 focus: f0,
             },
             P::ThinLens {
                 distance: d1,
                 viewport: vp1,
-                fov_y: fy1,
                 fov_x: fx1,
+                fov_y: fy1,
+                fov_diagonal: fd1,
+                fov_smaller: fs1,
+                fov_larger: fl1,
+                focal_length: fo1,
+                sensor: se1,
+                fit: fit1,
                 shift: s1,
                 aperture: a1,
+                f_number: n1,
                 focus: f1,
             },
         ) => P::ThinLens {
-            distance: d0.mix(d1, s),
+            distance: mix_option("distance", *d0, *d1, s)?,
             viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
             fov_x: mix_option("fov_x", *fx0, *fx1, s)?,
+            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
+            fov_diagonal: mix_option("fov_diagonal", *fd0, *fd1, s)?,
+            fov_smaller: mix_option("fov_smaller", *fs0, *fs1, s)?,
+            fov_larger: mix_option("fov_larger", *fl0, *fl1, s)?,
+            focal_length: mix_option("focal_length", *fo0, *fo1, s)?,
+            sensor: mix_option("sensor", *se0, *se1, s)?,
+            fit: same("fit", *fit0, *fit1)?,
             shift: s0.mix(s1, s),
-            aperture: a0.mix(a1, s),
+            aperture: mix_option("aperture", *a0, *a1, s)?,
+            f_number: mix_option("f_number", *n0, *n1, s)?,
             focus: f0.mix(f1, s),
         },
         (

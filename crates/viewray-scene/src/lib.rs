@@ -21,9 +21,11 @@
 //! ```
 //!
 //! or with a taxonomy preset: `camera: Isometric(target: (0.0, 0.0, 0.0), size: 4.0)`.
+//! [`SceneDocument`] writes a scene file from plain values, for code that makes scenes.
 //! Angles are degrees in scene files.
 
 mod animation;
+mod document;
 mod error;
 mod load;
 mod mesh;
@@ -35,6 +37,9 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 pub use animation::{Animation, CameraSpec, Ease, Key, MAX_FPS, MAX_FRAMES};
+pub use document::{
+    Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
+};
 pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};

@@ -10,7 +10,8 @@ use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
 use ron::value::RawValue;
 use viewray_camera::{
-    Camera, Fisheye, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection, ThinLens,
+    Camera, Fisheye, FovAxis, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection,
+    SensorFit, ThinLens, aperture_from_f_number,
 };
 
 use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
@@ -19,7 +20,8 @@ use crate::animation::{CameraDef, MAX_FPS, MAX_FRAMES};
 use crate::mesh::MeshCache;
 use crate::schema::{
     AnimationDef, EaseDef, ExplicitCamera, ImageDef, KeyDef, LightDef, MaterialDef, ObjectDef,
-    PresetDef, ProjectionDef, Scale, SceneFile, ShadingDef, Specular, TransformDef, V2, V3,
+    PresetDef, ProjectionDef, Scale, SceneFile, SensorFitDef, ShadingDef, Specular, TransformDef,
+    V2, V3,
 };
 use crate::{
     Animation, CameraSpec, Ease, Grid, Key, Light, Material, ObjectMaterial, Position, Scene,
@@ -59,28 +61,47 @@ impl Origin {
         }
     }
 
-    /// The origin of `part`, a slice of `text`, which starts at this origin.
-    fn of_slice(self, text: &str, part: &str) -> Origin {
-        let offset = (part.as_ptr() as usize).saturating_sub(text.as_ptr() as usize);
-        let before = &text[..offset.min(text.len())];
-        let position = match before.rfind('\n') {
-            Some(newline) => {
-                let line = 1 + before.matches('\n').count();
-                (line, before[newline + 1..].chars().count() + 1)
-            }
-            None => (1, before.chars().count() + 1),
-        };
-        let p = self.offset(position.0, position.1);
-        Origin {
-            line: p.line,
-            column: p.column,
-        }
-    }
-
     fn position(self) -> Position {
         Position {
             line: self.line,
             column: self.column,
+        }
+    }
+}
+
+/// Where each line of a file starts, so that the position of any slice of it is found
+/// in `O(log lines)`: a scene of many objects looks up one position per object, and
+/// counting lines from the start for each made loading quadratic.
+struct LineIndex<'a> {
+    text: &'a str,
+    /// The byte offset of each line's first character; the first line starts at 0.
+    starts: Vec<usize>,
+}
+
+impl<'a> LineIndex<'a> {
+    fn new(text: &'a str) -> Self {
+        let starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(newline, _)| newline + 1))
+            .collect();
+        Self { text, starts }
+    }
+
+    /// Where `part`, a slice of the indexed text, starts: its 1-based line, and its
+    /// column counted in characters.
+    fn origin_of(&self, part: &str) -> Origin {
+        let offset = (part.as_ptr() as usize)
+            .saturating_sub(self.text.as_ptr() as usize)
+            .min(self.text.len());
+        // The number of lines starting at or before `offset` is `offset`'s line.
+        let line = self.starts.partition_point(|&start| start <= offset);
+        let line_start = self.starts[line - 1];
+        let column = self
+            .text
+            .get(line_start..offset)
+            .map_or(0, |before| before.chars().count());
+        Origin {
+            line,
+            column: column + 1,
         }
     }
 }
@@ -117,7 +138,10 @@ pub(crate) fn parse(
     let file: SceneFile<'_> = ron_options()
         .from_str(text)
         .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;
-    let loader = Loader { text, path };
+    let loader = Loader {
+        lines: LineIndex::new(text),
+        path,
+    };
 
     let (mut image, image_origin) = match file.image {
         Some(raw) => loader.value::<ImageDef>(raw)?,
@@ -132,10 +156,10 @@ pub(crate) fn parse(
     }
     let (width, height, samples) = check_image(&image, path, image_origin)?;
 
-    let camera_origin = Origin::FILE.of_slice(text, file.camera.get_ron());
+    let camera_origin = loader.lines.origin_of(file.camera.get_ron());
     let camera = parse_camera(file.camera, camera_origin, path, width, height)?;
     let animation = match file.animation {
-        Some(raw) => Some(parse_animation(raw, text, path, width, height)?),
+        Some(raw) => Some(parse_animation(raw, &loader.lines, path, width, height)?),
         None => None,
     };
 
@@ -290,7 +314,7 @@ pub(crate) fn parse(
 
 /// Parses the values kept as raw text, placing their errors in the file.
 struct Loader<'a> {
-    text: &'a str,
+    lines: LineIndex<'a>,
     path: &'a Path,
 }
 
@@ -300,7 +324,7 @@ impl Loader<'_> {
         &self,
         raw: &RawValue,
     ) -> Result<(T, Origin), SceneError> {
-        let origin = Origin::FILE.of_slice(self.text, raw.get_ron());
+        let origin = self.lines.origin_of(raw.get_ron());
         let value = ron_options()
             .from_str(raw.get_ron())
             .map_err(|e| ron_error(self.path, raw.get_ron(), origin, &e))?;
@@ -513,11 +537,11 @@ fn parse_camera_spec(
 ) -> Result<CameraSpec, SceneError> {
     let text = raw.get_ron();
     let def = if skip_whitespace_and_comments(text).starts_with('(') {
-        CameraDef::Explicit(
+        CameraDef::Explicit(Box::new(
             ron_options()
                 .from_str(text)
                 .map_err(|e| ron_error(path, text, origin, &e))?,
-        )
+        ))
     } else {
         CameraDef::Preset(
             ron_options()
@@ -528,18 +552,18 @@ fn parse_camera_spec(
     Ok(CameraSpec(def))
 }
 
-/// Parses and checks the `animation:` section (`raw`, a slice of the file `text`): the
+/// Parses and checks the `animation:` section (`raw`, a slice of the file `lines` index): the
 /// frame count and rate, the keys' times (in `[0, 1]`, strictly increasing), and their
 /// cameras, each valid for a `width x height` image and written like its neighbours so
 /// that the two can be mixed.
 fn parse_animation(
     raw: &RawValue,
-    text: &str,
+    lines: &LineIndex<'_>,
     path: &Path,
     width: u32,
     height: u32,
 ) -> Result<Animation, SceneError> {
-    let origin = Origin::FILE.of_slice(text, raw.get_ron());
+    let origin = lines.origin_of(raw.get_ron());
     let def: AnimationDef<'_> = ron_options()
         .from_str(raw.get_ron())
         .map_err(|e| ron_error(path, raw.get_ron(), origin, &e))?;
@@ -571,11 +595,11 @@ fn parse_animation(
     }
     let mut keys: Vec<Key> = Vec::with_capacity(def.keys.len());
     for (index, raw_key) in def.keys.iter().enumerate() {
-        let at = Origin::FILE.of_slice(text, raw_key.get_ron());
+        let at = lines.origin_of(raw_key.get_ron());
         let key: KeyDef<'_> = ron_options()
             .from_str(raw_key.get_ron())
             .map_err(|e| ron_error(path, raw_key.get_ron(), at, &e))?;
-        let camera_origin = Origin::FILE.of_slice(text, key.camera.get_ron());
+        let camera_origin = lines.origin_of(key.camera.get_ron());
         let number = index + 1;
         if !(0.0..=1.0).contains(&key.t) {
             return Err(error(
@@ -668,27 +692,81 @@ pub(crate) fn explicit_camera(
     Camera::new(frame, projection, width, height).map_err(|e| e.to_string())
 }
 
-/// The viewport of a perspective projection from exactly one of `viewport`, `fov_y` and
-/// `fov_x` (degrees).
-fn perspective_viewport(
+/// The fields that size a perspective viewport, as written in the file.
+struct PerspectiveExtent {
+    distance: Option<f64>,
     viewport: Option<V2>,
-    fov_y: Option<f64>,
-    fov_x: Option<f64>,
-    aspect: f64,
-) -> Result<DVec2, String> {
-    match (viewport, fov_y, fov_x) {
-        (Some(viewport), None, None) => Ok(v2(viewport)),
-        (None, Some(fov_y), None) => Perspective::from_fov_y(fov_y.to_radians(), aspect)
-            .map(|p| p.viewport)
-            .map_err(|e| e.to_string()),
-        (None, None, Some(fov_x)) => Perspective::from_fov_x(fov_x.to_radians(), aspect)
-            .map(|p| p.viewport)
-            .map_err(|e| e.to_string()),
-        (None, None, None) => {
-            Err("missing `viewport: (vw, vh)` (or `fov_y` or `fov_x` in degrees)".to_owned())
-        }
-        _ => Err("give only one of `viewport`, `fov_y` and `fov_x`".to_owned()),
+    fovs: [(FovAxis, Option<f64>); 5],
+    focal_length: Option<f64>,
+    sensor: Option<V2>,
+    fit: Option<SensorFitDef>,
+}
+
+/// Blender's default sensor, 36 x 24 mm, for a `focal_length` given without `sensor`.
+const DEFAULT_SENSOR: V2 = (36.0, 24.0);
+
+/// The perspective projection (distance and viewport) from exactly one of `viewport`,
+/// a field of view (`fov_x`, `fov_y`, `fov_diagonal`, `fov_smaller`, `fov_larger`, in
+/// degrees, scaled by `distance` when one is given) and a physical `focal_length` (mm,
+/// with `sensor` in mm and `fit`), the last two following the image's aspect ratio.
+fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Perspective, String> {
+    let fovs: Vec<(FovAxis, f64)> = extent
+        .fovs
+        .iter()
+        .filter_map(|&(axis, fov)| fov.map(|f| (axis, f)))
+        .collect();
+    let given = usize::from(extent.viewport.is_some())
+        + fovs.len()
+        + usize::from(extent.focal_length.is_some());
+    if given > 1 {
+        return Err(
+            "give only one of `viewport`, a field of view (`fov_x`, `fov_y`, \
+                    `fov_diagonal`, `fov_smaller`, `fov_larger`) and `focal_length`"
+                .to_owned(),
+        );
     }
+    if extent.focal_length.is_none() && (extent.sensor.is_some() || extent.fit.is_some()) {
+        return Err(
+            "`sensor` and `fit` describe a physical camera: give `focal_length` \
+                    (mm) with them"
+                .to_owned(),
+        );
+    }
+    let error = |e: viewray_camera::CameraError| e.to_string();
+    let mut projection = if let Some(viewport) = extent.viewport {
+        Perspective {
+            distance: extent.distance.unwrap_or(1.0),
+            viewport: v2(viewport),
+            shift: DVec2::ZERO,
+        }
+    } else if let Some(&(axis, degrees)) = fovs.first() {
+        let mut p = Perspective::from_fov(axis, degrees.to_radians(), aspect).map_err(error)?;
+        if let Some(distance) = extent.distance {
+            p.distance = distance;
+            p.viewport *= distance;
+        }
+        p
+    } else if let Some(focal_length) = extent.focal_length {
+        if extent.distance.is_some() {
+            return Err(
+                "`focal_length` sets the distance d (the focal length in metres): \
+                        give `distance` or `focal_length`, not both"
+                    .to_owned(),
+            );
+        }
+        let fit = match extent.fit.unwrap_or(SensorFitDef::Auto) {
+            SensorFitDef::Auto => SensorFit::Auto,
+            SensorFitDef::Horizontal => SensorFit::Horizontal,
+            SensorFitDef::Vertical => SensorFit::Vertical,
+        };
+        let sensor = v2(extent.sensor.unwrap_or(DEFAULT_SENSOR));
+        Perspective::from_focal_length(focal_length, sensor, fit, aspect).map_err(error)?
+    } else {
+        return Err("missing `viewport: (vw, vh)` (or a field of view such as `fov_y` in                     degrees, or `focal_length` in mm)"
+            .to_owned());
+    };
+    projection.shift = v2(shift);
+    Ok(projection)
 }
 
 /// The viewport of a parallel projection from exactly one of `viewport` and `height`.
@@ -707,34 +785,104 @@ fn parallel_viewport(
     }
 }
 
+/// The fields of view as written, each with the axis it spans.
+fn fovs(
+    x: Option<f64>,
+    y: Option<f64>,
+    diagonal: Option<f64>,
+    smaller: Option<f64>,
+    larger: Option<f64>,
+) -> [(FovAxis, Option<f64>); 5] {
+    [
+        (FovAxis::X, x),
+        (FovAxis::Y, y),
+        (FovAxis::Diagonal, diagonal),
+        (FovAxis::Smaller, smaller),
+        (FovAxis::Larger, larger),
+    ]
+}
+
 fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
     Ok(match *def {
         ProjectionDef::Perspective {
             distance,
             viewport,
-            fov_y,
             fov_x,
+            fov_y,
+            fov_diagonal,
+            fov_smaller,
+            fov_larger,
+            focal_length,
+            sensor,
+            fit,
             shift,
-        } => Projection::Perspective(Perspective {
-            distance,
-            viewport: perspective_viewport(viewport, fov_y, fov_x, aspect)?,
-            shift: v2(shift),
-        }),
+        } => {
+            let extent = PerspectiveExtent {
+                distance,
+                viewport,
+                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
+                focal_length,
+                sensor,
+                fit,
+            };
+            Projection::Perspective(perspective(&extent, shift, aspect)?)
+        }
         ProjectionDef::ThinLens {
             distance,
             viewport,
-            fov_y,
             fov_x,
+            fov_y,
+            fov_diagonal,
+            fov_smaller,
+            fov_larger,
+            focal_length,
+            sensor,
+            fit,
             shift,
             aperture,
+            f_number,
             focus,
-        } => Projection::ThinLens(ThinLens {
-            distance,
-            viewport: perspective_viewport(viewport, fov_y, fov_x, aspect)?,
-            shift: v2(shift),
-            aperture,
-            focus,
-        }),
+        } => {
+            let extent = PerspectiveExtent {
+                distance,
+                viewport,
+                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
+                focal_length,
+                sensor,
+                fit,
+            };
+            let pinhole = perspective(&extent, shift, aspect)?;
+            let aperture = match (aperture, f_number, focal_length) {
+                (Some(aperture), None, _) => aperture,
+                (None, Some(n), Some(f)) => {
+                    aperture_from_f_number(f, n).map_err(|e| e.to_string())?
+                }
+                (None, Some(_), None) => {
+                    return Err(
+                        "`f_number` needs a `focal_length` (mm): the lens radius is \
+                                focal_length / (2 f_number)"
+                            .to_owned(),
+                    );
+                }
+                (Some(_), Some(_), _) => {
+                    return Err("give either `aperture` (the lens radius) or `f_number`, \
+                                not both"
+                        .to_owned());
+                }
+                (None, None, _) => {
+                    return Err("missing `aperture` (the lens radius) or `f_number` (with \
+                                `focal_length`)"
+                        .to_owned());
+                }
+            };
+            Projection::ThinLens(ThinLens {
+                distance: pinhole.distance,
+                viewport: pinhole.viewport,
+                shift: pinhole.shift,
+                aperture,
+                focus,
+            })
+        }
         ProjectionDef::Orthographic {
             viewport,
             height,
@@ -999,5 +1147,28 @@ fn describe(code: &RonError) -> String {
                 None => text,
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_index_finds_lines_and_columns_in_characters() {
+        let text = "(\n  a: 1,\n  é: (2, 3),\n\nz)";
+        let index = LineIndex::new(text);
+        let at = |needle: &str| {
+            let start = text.find(needle).unwrap();
+            let origin = index.origin_of(&text[start..]);
+            (origin.line, origin.column)
+        };
+        assert_eq!(at("("), (1, 1));
+        assert_eq!(at("a:"), (2, 3));
+        // `é` is two bytes but one column: `(2` starts at column 6, not 7.
+        assert_eq!(at("(2"), (3, 6));
+        assert_eq!(at("3)"), (3, 10));
+        assert_eq!(at("z)"), (5, 1));
+        assert_eq!(at("\n\nz"), (3, 13));
     }
 }

@@ -237,8 +237,13 @@ fn default_up() -> V3 {
     (0.0, 1.0, 0.0)
 }
 
-fn default_distance() -> f64 {
-    1.0
+/// `fit: Auto | Horizontal | Vertical`, as Blender's sensor fit.
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
+#[serde(rename = "fit")]
+pub(crate) enum SensorFitDef {
+    Auto,
+    Horizontal,
+    Vertical,
 }
 
 /// `projection: Perspective(..) | ThinLens(..) | Orthographic(..) | Oblique(..) |
@@ -247,29 +252,56 @@ fn default_distance() -> f64 {
 #[serde(deny_unknown_fields, rename = "projection")]
 pub(crate) enum ProjectionDef {
     Perspective {
-        #[serde(default = "default_distance")]
-        distance: f64,
+        #[serde(default)]
+        distance: Option<f64>,
         #[serde(default)]
         viewport: Option<V2>,
         #[serde(default)]
+        fov_x: Option<f64>,
+        #[serde(default)]
         fov_y: Option<f64>,
         #[serde(default)]
-        fov_x: Option<f64>,
+        fov_diagonal: Option<f64>,
+        #[serde(default)]
+        fov_smaller: Option<f64>,
+        #[serde(default)]
+        fov_larger: Option<f64>,
+        #[serde(default)]
+        focal_length: Option<f64>,
+        #[serde(default)]
+        sensor: Option<V2>,
+        #[serde(default)]
+        fit: Option<SensorFitDef>,
         #[serde(default)]
         shift: V2,
     },
     ThinLens {
-        #[serde(default = "default_distance")]
-        distance: f64,
+        #[serde(default)]
+        distance: Option<f64>,
         #[serde(default)]
         viewport: Option<V2>,
         #[serde(default)]
-        fov_y: Option<f64>,
-        #[serde(default)]
         fov_x: Option<f64>,
         #[serde(default)]
+        fov_y: Option<f64>,
+        #[serde(default)]
+        fov_diagonal: Option<f64>,
+        #[serde(default)]
+        fov_smaller: Option<f64>,
+        #[serde(default)]
+        fov_larger: Option<f64>,
+        #[serde(default)]
+        focal_length: Option<f64>,
+        #[serde(default)]
+        sensor: Option<V2>,
+        #[serde(default)]
+        fit: Option<SensorFitDef>,
+        #[serde(default)]
         shift: V2,
-        aperture: f64,
+        #[serde(default)]
+        aperture: Option<f64>,
+        #[serde(default)]
+        f_number: Option<f64>,
         focus: f64,
     },
     Orthographic {

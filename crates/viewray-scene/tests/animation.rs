@@ -150,3 +150,45 @@ fn keys_written_differently_do_not_mix() {
         Projection::Perspective(wide)
     );
 }
+
+#[test]
+fn physical_cameras_mix_their_focal_length_and_keep_their_fit() {
+    let keyed = |fit_a: &str, fit_b: &str| {
+        format!(
+            "(camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                       projection: Perspective(focal_length: 24.0, fit: {fit_a})),
+              animation: (keys: [
+                  (t: 0.0, camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                                    projection: Perspective(focal_length: 24.0, fit: {fit_a}))),
+                  (t: 1.0, camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                                    projection: Perspective(focal_length: 85.0, fit: {fit_b}))),
+              ]))"
+        )
+    };
+    let (_, animation) = animated(&keyed("Horizontal", "Horizontal"));
+    let half = animation.keys[0]
+        .camera
+        .mix(&animation.keys[1].camera, 0.5)
+        .unwrap()
+        .camera(320, 240)
+        .unwrap();
+    // Half way: a 54.5 mm lens, as a scene file writes it.
+    let written = Scene::parse(
+        "(camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                   projection: Perspective(focal_length: 54.5, fit: Horizontal)))",
+        Path::new("s.ron"),
+    )
+    .unwrap();
+    assert_eq!(half, *written.camera());
+    let error = Scene::parse_animated(
+        &keyed("Horizontal", "Vertical"),
+        Path::new("fit.ron"),
+        LoadOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        error.message(),
+        "animation: key 2: the keys give different `fit`: it is a choice, not a number, so \
+         every key of an animation gives the same"
+    );
+}

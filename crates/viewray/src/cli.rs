@@ -176,6 +176,21 @@ pub(crate) enum Command {
     /// For example: `viewray man > ~/.local/share/man/man1/viewray.1` and `viewray man
     /// rays > ~/.local/share/man/man1/viewray-rays.1`, then `man viewray`.
     Man(ManArgs),
+    /// Write a scene for another tool: Mitsuba 3, pbrt-v4, Blender, three.js or glTF.
+    ///
+    /// The camera is carried exactly in the tool's own terms (its field-of-view axis, its
+    /// shift units, its orthographic scale). A camera the tool cannot express (an oblique
+    /// camera in Mitsuba, pbrt or glTF, a shift in glTF, a panorama where the tool has
+    /// none) is an error naming what it lacks, and nothing is written. Objects, diffuse
+    /// colours, lights, the image size and samples come along as far as the tool allows.
+    Export(crate::interop::ExportArgs),
+    /// Read another tool's camera and scene and print it as a viewray scene (RON).
+    ///
+    /// Reads Mitsuba 3 XML, pbrt-v4, three.js JSON (camera.toJSON() or scene.toJSON())
+    /// and glTF 2.0 (.gltf with embedded buffers, .glb). The camera comes across exactly;
+    /// what viewray cannot hold of the rest is named in comments at the top. A camera
+    /// with no image size (three.js, glTF) gets one of its aspect ratio.
+    Import(crate::interop::ImportArgs),
 }
 
 /// The file format of an image written to standard output, or one whose name has no

@@ -18,6 +18,7 @@ mod commands;
 mod compare;
 mod figures;
 mod input;
+mod interop;
 mod json;
 mod output;
 mod render;
@@ -53,6 +54,8 @@ fn main() -> ExitCode {
         Command::Compare(args) => return compare::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
+        Command::Export(args) => interop::export(&args),
+        Command::Import(args) => interop::import(&args),
         Command::Scene(args) => commands::scene(&args),
         Command::Completions(args) => commands::completions(&args),
         Command::Man(args) => commands::man(&args),

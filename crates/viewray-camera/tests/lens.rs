@@ -1,0 +1,137 @@
+//! Fields of view on every axis and physical cameras, checked against hand-worked values.
+
+use glam::DVec2;
+use viewray_camera::{CameraError, FovAxis, Perspective, SensorFit, aperture_from_f_number};
+
+/// Within a few units in the last place of numbers near 1.
+#[track_caller]
+fn close(actual: f64, expected: f64) {
+    assert!(
+        (actual - expected).abs() <= 1e-12 * expected.abs().max(1.0),
+        "{actual} != {expected}"
+    );
+}
+
+#[track_caller]
+fn check_fov(axis: FovAxis, degrees: f64, aspect: f64, (vw, vh): (f64, f64)) {
+    let p = Perspective::from_fov(axis, degrees.to_radians(), aspect).unwrap();
+    assert_eq!(p.distance, 1.0);
+    assert_eq!(p.shift, DVec2::ZERO);
+    close(p.viewport.x, vw);
+    close(p.viewport.y, vh);
+}
+
+#[test]
+fn a_field_of_view_spans_the_extent_it_names() {
+    // 90 degrees: 2 tan(45) = 2 across the named extent.
+    check_fov(FovAxis::X, 90.0, 2.0, (2.0, 1.0));
+    check_fov(FovAxis::Y, 90.0, 2.0, (4.0, 2.0));
+    // A 4:3 viewport with a diagonal of 2 is 1.6 x 1.2 (the 3-4-5 triangle).
+    check_fov(FovAxis::Diagonal, 90.0, 4.0 / 3.0, (1.6, 1.2));
+    // Landscape: the smaller side is the height, the larger the width.
+    check_fov(FovAxis::Smaller, 90.0, 2.0, (4.0, 2.0));
+    check_fov(FovAxis::Larger, 90.0, 2.0, (2.0, 1.0));
+    // Portrait (1:2): the other way round.
+    check_fov(FovAxis::Smaller, 90.0, 0.5, (2.0, 4.0));
+    check_fov(FovAxis::Larger, 90.0, 0.5, (1.0, 2.0));
+    // Square: every side-bound axis gives the same viewport.
+    for axis in [FovAxis::X, FovAxis::Y, FovAxis::Smaller, FovAxis::Larger] {
+        check_fov(axis, 90.0, 1.0, (2.0, 2.0));
+    }
+    // 60 degrees vertically on 16:9: vh = 2 tan(30) = 2 / sqrt 3.
+    let vh = 2.0 / 3f64.sqrt();
+    check_fov(FovAxis::Y, 60.0, 16.0 / 9.0, (16.0 / 9.0 * vh, vh));
+}
+
+#[test]
+fn fov_reads_back_the_angle_on_each_axis() {
+    let p = Perspective::from_fov(FovAxis::Diagonal, 1.0, 1.5).unwrap();
+    close(p.fov(FovAxis::Diagonal), 1.0);
+    let p = Perspective::from_fov(FovAxis::X, 0.7, 0.8).unwrap();
+    close(p.fov(FovAxis::X), 0.7);
+    close(p.fov(FovAxis::Larger), p.fov(FovAxis::Y));
+}
+
+#[test]
+fn mitsuba_35mm_equivalent_focal_length_is_a_diagonal_field_of_view() {
+    // Mitsuba 3 turns `focal_length="50mm"` into a diagonal field of view of a 36 x 24 mm
+    // frame, 2 atan(sqrt(36^2 + 24^2) / 100); on a 3:2 image that is the horizontal
+    // 2 atan(18 / 50) = 39.5977 degrees (Mitsuba's own test_sensor.py).
+    let diagonal = 2.0 * (36f64.hypot(24.0) / 100.0).atan();
+    let p = Perspective::from_fov(FovAxis::Diagonal, diagonal, 1.5).unwrap();
+    // Mitsuba computes it in single precision: 39.597713; in double it is 39.5977527.
+    assert!((p.fov(FovAxis::X).to_degrees() - 39.597_713).abs() < 1e-4);
+    close(p.fov(FovAxis::X), 2.0 * (0.36f64).atan());
+}
+
+#[track_caller]
+fn check_physical(sensor: (f64, f64), fit: SensorFit, aspect: f64, (vw, vh): (f64, f64)) {
+    let p = Perspective::from_focal_length(50.0, DVec2::from(sensor), fit, aspect).unwrap();
+    close(p.distance, 0.05);
+    close(p.viewport.x, vw);
+    close(p.viewport.y, vh);
+}
+
+#[test]
+fn a_physical_camera_puts_its_sensor_at_the_focal_length() {
+    // Blender's default: 50 mm on a 36 mm sensor, horizontally, sees 39.598 degrees.
+    let p =
+        Perspective::from_focal_length(50.0, DVec2::new(36.0, 24.0), SensorFit::Horizontal, 1.5)
+            .unwrap();
+    assert_eq!(p.distance, 0.05);
+    close(p.viewport.x, 0.036);
+    close(p.viewport.y, 0.024);
+    assert!((p.fov(FovAxis::X).to_degrees() - 39.598).abs() < 5e-4);
+    close(p.fov(FovAxis::X), 2.0 * (0.36f64).atan());
+    // 16:9 with horizontal fit: the sensor's width, 36 x 20.25 mm of it.
+    check_physical(
+        (36.0, 24.0),
+        SensorFit::Horizontal,
+        16.0 / 9.0,
+        (0.036, 0.020_25),
+    );
+    // Vertical fit: the sensor's height spans the image's height.
+    check_physical(
+        (36.0, 24.0),
+        SensorFit::Vertical,
+        16.0 / 9.0,
+        (0.024 * 16.0 / 9.0, 0.024),
+    );
+    // Auto: the sensor WIDTH spans the longer side, whichever it is (Blender's AUTO).
+    check_physical((36.0, 24.0), SensorFit::Auto, 1.5, (0.036, 0.024));
+    check_physical((36.0, 24.0), SensorFit::Auto, 0.5, (0.018, 0.036));
+    check_physical((36.0, 24.0), SensorFit::Auto, 1.0, (0.036, 0.036));
+}
+
+#[test]
+fn the_f_number_gives_the_lens_radius_in_metres() {
+    // 50 mm at f/2.8: a 17.86 mm wide opening, radius 8.93 mm.
+    close(aperture_from_f_number(50.0, 2.8).unwrap(), 0.05 / 5.6);
+    close(aperture_from_f_number(35.0, 1.0).unwrap(), 0.0175);
+}
+
+#[test]
+fn bad_values_are_errors() {
+    assert_eq!(
+        Perspective::from_fov(FovAxis::Diagonal, std::f64::consts::PI, 1.0),
+        Err(CameraError::OutOfRange {
+            name: "fov_diagonal",
+            expected: "between 0 and 180 degrees",
+            value: 180.0
+        })
+    );
+    assert_eq!(
+        Perspective::from_focal_length(0.0, DVec2::new(36.0, 24.0), SensorFit::Auto, 1.0),
+        Err(CameraError::NotPositive {
+            name: "focal_length",
+            value: 0.0
+        })
+    );
+    assert_eq!(
+        aperture_from_f_number(50.0, -1.0),
+        Err(CameraError::NotPositive {
+            name: "f_number",
+            value: -1.0
+        })
+    );
+}
