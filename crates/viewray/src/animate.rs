@@ -134,6 +134,11 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
     };
     let interactive = std::io::stderr().is_terminal();
     let bar = progress_bar(interactive);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "animating {wide_bar} frame {pos}/{len} {elapsed} (eta {eta})",
+    ) {
+        bar.set_style(style);
+    }
     bar.set_length(u64::from(movie.frames()));
     let settings = RenderSettings::default();
     let on_frame = || bar.inc(1);
@@ -165,8 +170,8 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
 
     if interactive {
         eprintln!(
-            "wrote {}: {} frames of {width} x {height} at {} fps, rendered in {:.2} s, \
-             encoded in {:.2} s",
+            "wrote {}: {} frames, {width} x {height}, {} fps; rendered in {:.1} s, encoded in \
+             {:.1} s",
             args.output.display(),
             movie.frames(),
             movie.fps(),
