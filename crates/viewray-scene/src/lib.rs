@@ -46,6 +46,36 @@ pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
     mesh::parse_obj(bytes, no_mtl, &mut materials, &mut build_time).map(|m| m.mesh.triangle_count())
 }
 
+/// Parses `text` as the `camera:` value of a scene file, on its own, for an image of
+/// `width x height` pixels: an explicit camera `(eye: .., look_at: .., projection: ..)`
+/// or a taxonomy preset `Isometric(target: .., size: ..)`, exactly as a scene file
+/// writes it. Fields of view and presets follow the image's aspect ratio, as they do
+/// when a scene is loaded with [`LoadOptions::size`].
+///
+/// Error positions count from the start of `text` (line 1, column 1), and `name` names
+/// it (for example `camera`): `camera:1:9: unknown field ..`.
+///
+/// # Errors
+/// A [`SceneError`] if `text` is not a valid camera or the size is not one a scene
+/// file may have.
+pub fn parse_camera(
+    text: &str,
+    name: &Path,
+    width: u32,
+    height: u32,
+) -> Result<viewray_camera::Camera, SceneError> {
+    load::parse_camera_text(text, name, width, height)
+}
+
+/// The `camera:` value of the scene file `text` as written there, without the
+/// surrounding whitespace: what [`parse_camera`] reads back.
+///
+/// # Errors
+/// A [`SceneError`] if `text` is not a scene file (it is not checked any further).
+pub fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
+    load::camera_text(text, path)
+}
+
 /// How long loading a scene took.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LoadTimes {
