@@ -31,6 +31,7 @@
 //! ```
 
 mod assumptions;
+mod camera_side;
 mod canonical;
 mod clip;
 mod distortions;
@@ -53,6 +54,7 @@ use std::fmt;
 use glam::{DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample};
 use viewray_draw::Figure;
+use viewray_scene::Scene;
 
 use crate::assumptions::{
     assumption_basis, assumption_distance, assumption_eye, assumption_viewport,
@@ -220,6 +222,22 @@ pub fn all_figures() -> Vec<NamedFigure> {
             draw: thin_lens,
         },
     ]
+}
+
+/// The side view of a scene's camera (slide, 1600 x 900), the lecture's side-view
+/// figures for any camera: the scene's objects seen from the camera's right (the plane
+/// of **v** and **w**, world up kept up), the eye **e** with **v** and **w**, the image
+/// plane edge-on, the frustum's edges, and the viewing rays of five pixels of the middle
+/// column, each drawn up to the first object it hits (traced in `scene`'s world); for
+/// a thin lens, the lens and the focus plane. A caption names the projection and its
+/// parameters.
+///
+/// `camera` need not be the scene's own (a live viewer draws the camera being edited);
+/// `pixel`, a 0-based (row, col) of its image, adds that pixel's viewing ray,
+/// highlighted and labelled with the lecture's (i, j). Every ray drawn is one `camera`
+/// generates.
+pub fn camera_side_view(scene: &Scene, camera: &Camera, pixel: Option<(u32, u32)>) -> Figure {
+    camera_side::camera_side_view(scene, camera, pixel).figure
 }
 
 /// The figure called `name`, if there is one; see [`figure_names`] for the names and
