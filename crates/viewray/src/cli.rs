@@ -88,6 +88,15 @@ pub(crate) enum Command {
     Figure(crate::figures::FigureArgs),
     /// Draw every lecture figure into a folder, as NAME.png and NAME.svg.
     Figures(crate::figures::FiguresArgs),
+    /// Draw the side view of a scene's camera to a PNG or SVG.
+    ///
+    /// The scene seen from the camera's right (the plane of v and w, world up kept up):
+    /// its objects, the eye e with v and w, the image plane edge-on, the frustum's top
+    /// and bottom edges, and the viewing rays of five pixels of the middle column, each
+    /// drawn to the first object it hits; for a thin lens, the lens and the focus plane.
+    /// Every ray drawn is one the camera generates. Writes a .png or an .svg as OUT's
+    /// extension says, atomically.
+    Diagram(crate::diagram::DiagramArgs),
 }
 
 #[derive(Args, Debug)]
@@ -192,7 +201,7 @@ fn parse_vec2(text: &str) -> Result<DVec2, String> {
     parse_numbers::<2>(text, "0.5,0.5").map(DVec2::from)
 }
 
-fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
+pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
     let wrong = || "expected a pixel as two whole numbers ROW,COL, like 2,3".to_owned();
     let (row, col) = text.split_once(',').ok_or_else(wrong)?;
     let row = row.trim().parse().map_err(|_| wrong())?;

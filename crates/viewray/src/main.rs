@@ -11,6 +11,7 @@
 mod cli;
 mod commands;
 mod compare;
+mod diagram;
 mod figures;
 mod json;
 mod render;
@@ -38,6 +39,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => return compare::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
+        Command::Diagram(args) => diagram::diagram(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
