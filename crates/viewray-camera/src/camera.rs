@@ -5,16 +5,20 @@ use viewray_geometry::DRay;
 
 use crate::{CameraError, Frame, Projection, sample_unit_disk_concentric};
 
-/// Where in a pixel, and where on the lens, a viewing ray is taken (pbrt's
-/// `CameraSample`).
+/// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///
-/// Both are points of the unit square `[0, 1)^2`: `p_film = (sx, sy)` is the offset
-/// inside the pixel from its top-left corner, `p_lens` is mapped to the unit disk by
-/// [`sample_unit_disk_concentric`]. [`CameraSample::CENTER`] is the pixel centre and the
-/// lens centre, the lecture's sample.
+/// The names follow pbrt's `CameraSample`, but the film point differs: pbrt's `pFilm` is
+/// a position on the whole film in raster coordinates, while `p_film` here is only the
+/// offset `(ox, oy)` inside the pixel, from its top-left corner; [`Camera::generate_ray`]
+/// adds the pixel's `(col, row)`. Both fields are points of the unit square `[0, 1)^2`;
+/// `p_lens` is mapped to the unit disk by [`sample_unit_disk_concentric`].
+/// [`CameraSample::CENTER`] is the pixel centre and the lens centre, the lecture's
+/// sample. (The offset `(ox, oy)` is not the lens shift `(sx, sy)` of [`Perspective`].)
+///
+/// [`Perspective`]: crate::Perspective
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraSample {
-    /// The offset `(sx, sy)` inside the pixel; `(0.5, 0.5)` is its centre.
+    /// The offset `(ox, oy)` inside the pixel; `(0.5, 0.5)` is its centre.
     pub p_film: DVec2,
     /// The lens sample in the unit square; `(0.5, 0.5)` is the lens centre.
     pub p_lens: DVec2,
@@ -195,8 +199,8 @@ impl Camera {
     /// the left edge and `y` from the top, so pixel `(row, col)` spans
     /// `[col, col + 1) x [row, row + 1)`.
     ///
-    /// The inverse of ray generation: `project(ray(row, col, (sx, sy)).at(t)) ==
-    /// (col + sx, row + sy)` for every `t > 0` (through the lens centre for a thin lens).
+    /// The inverse of ray generation: `project(ray(row, col, (ox, oy)).at(t)) ==
+    /// (col + ox, row + oy)` for every `t > 0` (through the lens centre for a thin lens).
     /// `None` where the point is not visible: behind a perspective eye or behind a
     /// parallel camera's image plane, at a panoramic camera's eye, or outside a
     /// fisheye's field of view. Points beyond the image's edges still project (to
@@ -217,16 +221,17 @@ impl Camera {
     }
 }
 
-/// The point `(u, v)` on the image plane of pixel `(row, col)` at the film offset
-/// `p_film = (sx, sy)`, for an image of `W x H` pixels and a viewport of `vw x vh`.
+/// The point `(u, v)` on the image plane of pixel `(row, col)` at the offset in the pixel
+/// `p_film = (ox, oy)`, for an image of `W x H` pixels and a viewport of `vw x vh`.
 ///
 /// ```text
-/// u =  ((col + sx) / W - 1/2) * vw
-/// v = -((row + sy) / H - 1/2) * vh
+/// u =  ((col + ox) / W - 1/2) * vw
+/// v = -((row + oy) / H - 1/2) * vh
 /// ```
 ///
-/// Indices are 0-based, row 0 at the top, and `(sx, sy) = (0.5, 0.5)` is the pixel
-/// centre. With the lecture's 1-based indices `i = row + 1`, `j = col + 1` and the centre
+/// Indices are 0-based, row 0 at the top, and `(ox, oy) = (0.5, 0.5)` is the pixel
+/// centre. A lens shift `(sx, sy)` is not part of `(u, v)`: the perspective families add
+/// it to the direction. With the lecture's 1-based indices `i = row + 1`, `j = col + 1` and the centre
 /// sample this is exactly the lecture's
 ///
 /// ```text

@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, Projection};
 use viewray_draw::{Anchor, Baseline, Color, Item, Label, Rect, Stroke};
 use viewray_geometry::{DRay, Object};
-use viewray_scene::{ObjectMaterial, Scene};
+use viewray_scene::Scene;
 
 use crate::Diagram;
 use crate::pictures::srgb;
@@ -263,7 +263,7 @@ fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3) -> SideView
     if let Projection::ThinLens(p) = camera.projection() {
         points.push(frame.e - frame.w * p.focus);
     }
-    let bounds = scene.world.bounds();
+    let bounds = scene.world().bounds();
     if bounds.min.is_finite() && bounds.max.is_finite() && bounds.min.cmple(bounds.max).all() {
         for corner in 0..8 {
             let pick =
@@ -298,15 +298,10 @@ fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3) -> SideView
 /// The colour of object `object` of the scene: its material's (the first face's for a
 /// mesh with per-face materials), as the renderer stores it.
 fn object_color(scene: &Scene, object: usize) -> Color {
-    let index = match &scene.object_materials[object] {
-        ObjectMaterial::Single(index) => *index,
-        ObjectMaterial::PerTriangle(faces) => faces.first().copied().unwrap_or(0),
-    };
-    let color = scene
-        .materials
-        .get(index as usize)
-        .map_or(DVec3::splat(0.8), |m| m.color.as_dvec3());
-    srgb(color)
+    // Object indices come from the scene's own world, which holds fewer than 2^32.
+    #[allow(clippy::cast_possible_truncation)]
+    let material = scene.material_of(object as u32, 0);
+    srgb(material.color.as_dvec3())
 }
 
 /// Draws the scene's objects projected onto the side view, farthest from the viewer
@@ -314,7 +309,7 @@ fn object_color(scene: &Scene, object: usize) -> Color {
 fn draw_objects(sketch: &mut Sketch, view: &SideView, scene: &Scene) {
     let outline = Stroke::new(style::OBJECT, style::LINE_THIN);
     let towards_viewer = view.towards_viewer();
-    let objects = scene.world.objects();
+    let objects = scene.world().objects();
     // Planes first (they are the ground and walls), then the rest by depth.
     for (index, object) in objects.iter().enumerate() {
         if let Object::Plane(plane) = object {
@@ -539,7 +534,7 @@ fn draw_traced_ray(
 ) -> Option<Vec2> {
     let ray: DRay = camera.generate_ray(row, col, CameraSample::CENTER)?;
     let hit = scene
-        .world
+        .world()
         .closest_hit(&ray.as_ray(), f32::MIN_POSITIVE..f32::INFINITY)
         .map(|hit| f64::from(hit.t));
     let (t0, t1) = view.clip_ray(&ray, (0.0, hit.unwrap_or(f64::INFINITY)))?;

@@ -7,7 +7,7 @@ use glam::{DVec3, Vec3};
 use image::RgbaImage;
 use viewray_geometry::{Aabb, Instance, Mesh, MeshData, Object, Plane, Sphere, World};
 use viewray_render::{RenderSettings, render};
-use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
+use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
 
 use crate::pictures::{AXIS_COLOURS, GROUND, Paint, PictureRequest, Pictures, SKY, Shape};
 
@@ -187,7 +187,7 @@ pub(crate) fn picture_scene(request: &PictureRequest, samples: u32) -> Scene {
         }
     }
 
-    Scene {
+    Scene::new(SceneParts {
         camera,
         samples: samples.max(1),
         background: vec3(SKY),
@@ -196,7 +196,8 @@ pub(crate) fn picture_scene(request: &PictureRequest, samples: u32) -> Scene {
         lights: picture_lights(),
         world: World::new(objects).expect("the picture scenes' objects are valid"),
         object_materials,
-    }
+    })
+    .expect("a material for every object and face")
 }
 
 /// How far below the ground plane the earth begins: a box under the ground, so that a

@@ -92,8 +92,10 @@ const EMPTY_REF: u32 = u32::MAX;
 /// Each level then at least halves the largest range, so with fewer than 2^27 items
 /// the depth stays below `FORCE_MEDIAN_DEPTH + 27 = 67`.
 const FORCE_MEDIAN_DEPTH: u32 = 40;
-/// The traversal stack: a node pushes at most 3 entries more than it pops, and the
-/// tree is less than 67 nodes deep.
+/// The traversal stack: a node pushes at most `WIDTH - 1 = 7` entries more than it pops
+/// (the closest-hit walk pushes the hit children but the nearest; the any-hit walk
+/// pushes all `WIDTH` and pops one at once, hence the `+ 1`), and the tree is less than
+/// 67 nodes deep.
 pub(crate) const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
 /// Ranges at least this large are split with parallel binning and built in parallel.
 const PARALLEL_ITEMS: usize = 16 * 1024;

@@ -63,9 +63,9 @@ impl View {
     /// The scene's own view: its camera, samples and shading, as [`render`] uses.
     pub fn of(scene: &Scene) -> View {
         View {
-            camera: scene.camera,
-            samples: scene.samples,
-            shading: scene.shading,
+            camera: *scene.camera(),
+            samples: scene.samples(),
+            shading: scene.shading(),
         }
     }
 }

@@ -6,7 +6,7 @@ use glam::{DVec2, Vec3};
 use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Hit, Object, ObjectHit, Ray};
 use viewray_output::linear_to_srgb;
-use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
+use viewray_scene::{Grid, Light, Material, Scene, Shading};
 
 use crate::View;
 
@@ -180,8 +180,8 @@ impl<'a> Shader<'a> {
         depth_map: DepthMap,
     ) -> Self {
         let background = match view.shading {
-            Shading::Flat | Shading::Lit => scene.background,
-            Shading::Normals | Shading::Depth => scene.background.map(linear_to_srgb),
+            Shading::Flat | Shading::Lit => scene.background(),
+            Shading::Normals | Shading::Depth => scene.background().map(linear_to_srgb),
         };
         Self {
             scene,
@@ -203,7 +203,7 @@ impl<'a> Shader<'a> {
     #[inline]
     pub(crate) fn trace_primary(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
         self.scene
-            .world
+            .world()
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
     }
 
@@ -221,7 +221,7 @@ impl<'a> Shader<'a> {
         let Some(object_hit) = hit else {
             return self.background;
         };
-        let world = &self.scene.world;
+        let world = &self.scene.world();
         match self.shading {
             Shading::Flat => {
                 // A plain colour needs no surface details.
@@ -242,21 +242,16 @@ impl<'a> Shader<'a> {
         }
     }
 
-    /// The material of face `primitive` of object `object`, as
-    /// [`Scene::material`](viewray_scene::Scene::material) finds a hit's.
+    /// The material of face `primitive` of object `object`.
     #[inline]
     fn material(&self, object: u32, primitive: u32) -> &Material {
-        let index = match &self.scene.object_materials[object as usize] {
-            ObjectMaterial::Single(index) => *index,
-            ObjectMaterial::PerTriangle(faces) => faces[primitive as usize],
-        };
-        &self.scene.materials[index as usize]
+        self.scene.material_of(object, primitive)
     }
 
     /// The colour seen along a reflected ray at mirror bounce `depth`.
     fn secondary(&self, ray: &Ray, depth: u32, rays: &mut u64) -> Vec3 {
         *rays += 1;
-        match self.scene.world.closest_hit(ray, 0.0..f32::INFINITY) {
+        match self.scene.world().closest_hit(ray, 0.0..f32::INFINITY) {
             Some(hit) => self.lit(ray, &hit, None, depth, rays),
             None => self.background,
         }
@@ -276,18 +271,18 @@ impl<'a> Shader<'a> {
         let base = surface_color(material, hit, || {
             film.map_or(Footprint::Point, |f| self.footprint(f, ray, hit))
         });
-        let world = &self.scene.world;
+        let world = &self.scene.world();
         let view = -ray.direction.normalize_or_zero();
         let n = hit.shading_normal;
         let origin = offset_origin(hit, ray);
 
         let mut color = Vec3::ZERO;
-        if self.scene.lights.is_empty() {
+        if self.scene.lights().is_empty() {
             // Headlight: a light at the eye, so a scene without lights is still visible.
             color += base * HEADLIGHT_AMBIENT
                 + (1.0 - HEADLIGHT_AMBIENT) * blinn_phong(base, material, n, view, view);
         }
-        for light in &self.scene.lights {
+        for light in self.scene.lights() {
             match *light {
                 Light::Ambient { intensity } => color += base * intensity,
                 Light::Point {
@@ -389,7 +384,7 @@ impl<'a> Shader<'a> {
             range.near = range.near.min(z);
             range.far_any = range.far_any.max(z);
             let plane = matches!(
-                self.scene.world.objects()[hit.object as usize],
+                self.scene.world().objects()[hit.object as usize],
                 Object::Plane(_)
             );
             if !plane {

@@ -26,9 +26,9 @@ fn image(text: &str) -> Image {
 /// The pixel `(row, col)` that shows the world point `p`.
 #[track_caller]
 fn pixel_of(scene: &Scene, p: DVec3) -> (u32, u32) {
-    let xy = scene.camera.project(p).expect("the point is visible");
+    let xy = scene.camera().project(p).expect("the point is visible");
     scene
-        .camera
+        .camera()
         .pixel_at(xy)
         .expect("the point is inside the image")
 }
@@ -558,9 +558,9 @@ fn a_view_renders_the_loaded_scene_as_a_scene_loaded_with_its_camera() {
         );
         let reference = scene(&scene_with(camera, size, samples, shading));
         let view = View {
-            camera: reference.camera,
+            camera: *reference.camera(),
             samples,
-            shading: reference.shading,
+            shading: reference.shading(),
         };
         let got = render_view(&loaded, &view, &RenderSettings::default(), |_, _| {}).unwrap();
         assert_eq!(got, expected, "{camera}");

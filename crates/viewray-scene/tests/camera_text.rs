@@ -40,10 +40,10 @@ fn a_scene_files_camera_text_parses_to_the_camera_the_file_loads() {
                 },
             )
             .unwrap();
-            let (width, height) = (scene.camera.width(), scene.camera.height());
+            let (width, height) = (scene.camera().width(), scene.camera().height());
             let parsed = parse_camera(camera, Path::new("camera"), width, height)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            assert_eq!(parsed, scene.camera, "{} at {size:?}", path.display());
+            assert_eq!(&parsed, scene.camera(), "{} at {size:?}", path.display());
         }
     }
 }

@@ -3,15 +3,14 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
+use crate::figures::{Format, write};
+use crate::input::load_scene_file;
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
-use viewray_scene::Scene;
-
-use crate::figures::{Format, write};
 
 #[derive(Args, Debug)]
 pub(crate) struct DiagramArgs {
-    /// The scene file whose camera to draw.
+    /// The scene file whose camera to draw (`-`: standard input).
     pub(crate) scene: PathBuf,
     /// Where to write it: a .png (1600 x 900 pixels) or an .svg (text as glyph outlines).
     #[arg(short, long, value_name = "OUT.png|OUT.svg")]
@@ -38,8 +37,8 @@ pub(crate) fn diagram(args: &DiagramArgs) -> Result<()> {
             output.display()
         )
     })?;
-    let scene = Scene::load(&args.scene)?;
-    let camera = scene.camera;
+    let scene = load_scene_file(&args.scene)?;
+    let camera = *scene.camera();
     let pixel = match args.pixel {
         None => None,
         Some((row, col)) => {

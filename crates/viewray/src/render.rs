@@ -1,6 +1,7 @@
-//! `viewray render`: load a scene, render it, write the image atomically.
+//! `viewray render`: load a scene, render it, write the image atomically to a file or to
+//! standard output.
 
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{BufWriter, Cursor, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
@@ -8,19 +9,13 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
+use viewray_camera::{Camera, Projection};
 use viewray_output::AtomicFile;
-use viewray_render::{ImageFormat, RenderSettings};
-use viewray_scene::{LoadOptions, Scene};
+use viewray_render::{Image, ImageFormat, RenderSettings};
+use viewray_scene::LoadOptions;
 
-use crate::cli::RenderArgs;
-use crate::json;
-
-/// The scene rendered when no scene file is given. It uses only analytic shapes, so it
-/// needs no other file and works from any directory.
-const DEFAULT_SCENE: &str = include_str!("../../../fixtures/default.ron");
-
-/// The name the default scene goes by in error messages.
-const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
+use crate::cli::{RenderArgs, is_standard_stream, usage_error};
+use crate::{json, style};
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
 ///
@@ -38,30 +33,82 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
     }
 }
 
+/// Where the image goes: a file written atomically, or standard output.
+enum Destination {
+    File(OutputFile),
+    Stdout,
+}
+
+/// The image format: `--format`, else the output's extension; PNG on standard output.
+fn output_format(args: &RenderArgs) -> Result<ImageFormat> {
+    let asked = args.format.map(ImageFormat::from);
+    if is_standard_stream(&args.output) {
+        return Ok(asked.unwrap_or(ImageFormat::Png));
+    }
+    match (ImageFormat::from_path(&args.output), asked) {
+        (Some(by_name), Some(asked)) if by_name != asked => Err(usage_error(
+            "render",
+            format!(
+                "--format {} disagrees with the output's name {}",
+                format_name(asked),
+                args.output.display()
+            ),
+        )),
+        (Some(format), _) | (None, Some(format)) => Ok(format),
+        (None, None) => bail!(
+            "cannot write {}: the output must be a .png or .exr file (or say --format png or \
+             --format exr)",
+            args.output.display()
+        ),
+    }
+}
+
+fn format_name(format: ImageFormat) -> &'static str {
+    match format {
+        ImageFormat::Png => "png",
+        ImageFormat::Exr => "exr",
+    }
+}
+
 fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
-    if args.output.is_dir() {
+    let to_stdout = is_standard_stream(&args.output);
+    if !to_stdout && args.output.is_dir() {
         bail!("cannot write {}: it is a directory", args.output.display());
     }
-    let format = ImageFormat::from_path(&args.output).ok_or_else(|| {
-        anyhow!(
-            "cannot write {}: the output must be a .png or .exr file",
-            args.output.display()
-        )
-    })?;
-    // Open the output's temporary file first, so that an unwritable path fails before
-    // a long render rather than after it (Ctrl-C deletes it from then on).
-    let output = OutputFile::create(&args.output)?;
+    let format = output_format(args)?;
+    if to_stdout && args.stats {
+        return Err(usage_error(
+            "render",
+            "--stats prints on standard output, which -o - takes for the image: write the \
+             image to a file to see the statistics",
+        ));
+    }
+    let destination = if to_stdout {
+        if std::io::stdout().is_terminal() {
+            bail!(
+                "standard output is a terminal, not a place for a binary image: redirect it \
+                 (`-o - > picture.png`) or pipe it into a program"
+            );
+        }
+        Destination::Stdout
+    } else {
+        // Open the output's temporary file first, so that an unwritable path fails before
+        // a long render rather than after it (Ctrl-C deletes it from then on).
+        Destination::File(OutputFile::create(&args.output)?)
+    };
 
     // Load the scene (this builds its BVHs too).
     let options = LoadOptions {
         size: args.size,
         samples: args.samples,
     };
-    let (scene, load_times) = match &args.scene {
-        Some(path) => Scene::load_timed(path, options)?,
-        None => Scene::parse_timed(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
-    };
-    check_memory(scene.camera.width(), scene.camera.height(), format)?;
+    let (scene, load_times) = crate::input::load_scene(args.scene.as_deref(), options)?;
+    if let Some(size) = args.size
+        && let Some(warning) = stretched_pixels(scene.camera(), size)
+    {
+        style::warning(warning);
+    }
+    check_memory(scene.camera().width(), scene.camera().height(), format)?;
 
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
@@ -76,22 +123,30 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     let render_time = start.elapsed();
     bar.finish_and_clear();
 
-    // Write the image beside the output and move it into place.
-    output.write_and_commit(|out| rendered.image.write(out, format).map_err(Into::into))?;
+    let written_to = match destination {
+        // Write the image beside the output and move it into place.
+        Destination::File(output) => {
+            output.write_and_commit(|out| rendered.image.write(out, format).map_err(Into::into))?;
+            args.output.display().to_string()
+        }
+        Destination::Stdout => {
+            write_to_stdout(&rendered.image, format)?;
+            "standard output".to_owned()
+        }
+    };
 
     if interactive {
         eprintln!(
-            "wrote {}: {} x {}, {} samples per pixel, rendered in {:.2} s",
-            args.output.display(),
+            "wrote {written_to}: {} x {}, {} samples per pixel, rendered in {:.2} s",
             rendered.image.width(),
             rendered.image.height(),
-            scene.samples,
+            scene.samples(),
             render_time.as_secs_f64()
         );
     }
     if args.stats {
         let line = json!({
-            "triangles": scene.world.triangle_count(),
+            "triangles": scene.world().triangle_count(),
             "load_s": seconds(load_times.total.saturating_sub(load_times.build)),
             "build_s": seconds(load_times.build),
             "render_s": seconds(render_time),
@@ -102,6 +157,56 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         out.flush()?;
     }
     Ok(())
+}
+
+/// Encodes the image in memory (EXR needs to seek), then writes it to standard output.
+fn write_to_stdout(image: &Image, format: ImageFormat) -> Result<()> {
+    let mut encoded = Cursor::new(Vec::new());
+    image.write(&mut encoded, format)?;
+    let mut out = std::io::stdout().lock();
+    out.write_all(encoded.get_ref())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// The warning for `--size` making the pixels of an explicit viewport non-square (a
+/// field of view or a preset follows the new aspect ratio; a viewport stays as written,
+/// and the picture is stretched). `None` when the pixels are square.
+fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> Option<String> {
+    let viewport = camera.projection().viewport()?;
+    let image_aspect = f64::from(width) / f64::from(height);
+    let viewport_aspect = viewport.x / viewport.y;
+    if (image_aspect / viewport_aspect - 1.0).abs() <= 1e-3 {
+        return None;
+    }
+    // The size nearest the one asked for with the viewport's aspect ratio: the same
+    // width, or where that does not fit, the same height.
+    let same_width = (f64::from(width) / viewport_aspect).round();
+    let same_height = (f64::from(height) * viewport_aspect).round();
+    let side = f64::from(viewray_scene::MAX_IMAGE_SIDE);
+    let square = if (1.0..=side).contains(&same_width) {
+        Some(format!("{width}x{same_width}"))
+    } else if (1.0..=side).contains(&same_height) {
+        Some(format!("{same_height}x{height}"))
+    } else {
+        None
+    };
+    let instead = match camera.projection() {
+        Projection::Perspective(_) | Projection::ThinLens(_) => {
+            "a field of view (`fov_y` or `fov_x`) instead of `viewport`"
+        }
+        _ => "`height` instead of `viewport`",
+    };
+    let keep = match square {
+        Some(size) => format!("use --size {size} (the viewport's aspect ratio), or give {instead}"),
+        None => format!("give {instead}"),
+    };
+    Some(format!(
+        "--size {width}x{height} stretches the picture: the scene's viewport is {} x {} \
+         (aspect {viewport_aspect:.3}) but the image is {width} x {height} (aspect \
+         {image_aspect:.3}), so pixels are no longer square; to keep them square, {keep}",
+        viewport.x, viewport.y
+    ))
 }
 
 /// A duration in seconds, to the microsecond.

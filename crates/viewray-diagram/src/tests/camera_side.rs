@@ -60,7 +60,7 @@ fn scene(name: &str, text: &str) -> Scene {
 fn every_ray_drawn_is_one_the_camera_generates() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
-        let camera = scene.camera;
+        let camera = *scene.camera();
         let pixel = (camera.height() / 3, camera.width() / 4);
         let diagram = camera_side_view(&scene, &camera, Some(pixel));
         assert_drawn_rays_are_generated(name, &diagram);
@@ -92,7 +92,7 @@ fn every_ray_drawn_is_one_the_camera_generates() {
 fn rays_stop_at_the_first_thing_they_hit() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
-        let camera = scene.camera;
+        let camera = *scene.camera();
         let diagram = camera_side_view(&scene, &camera, None);
         let mut stopped = 0;
         for ray in diagram
@@ -102,7 +102,7 @@ fn rays_stop_at_the_first_thing_they_hit() {
         {
             let generated = camera.generate_ray(ray.row, ray.col, ray.sample).unwrap();
             let hit = scene
-                .world
+                .world()
                 .closest_hit(&generated.as_ray(), f32::MIN_POSITIVE..f32::INFINITY);
             match hit {
                 // Drawn up to the hit, unless the hit lies outside the view.
@@ -126,7 +126,7 @@ fn rays_stop_at_the_first_thing_they_hit() {
 fn the_view_is_the_plane_of_v_and_w_with_world_up_up() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
-        let camera = scene.camera;
+        let camera = *scene.camera();
         let diagram = camera_side_view(&scene, &camera, None);
         let FigureView::Side(view) = diagram.rays[0].view else {
             panic!("{name}: a side view")

@@ -24,11 +24,11 @@ fn fixture(name: &str) -> Scene {
 
 /// The materials an object uses.
 fn materials_of(scene: &Scene, object: usize) -> Vec<Material> {
-    let mut materials: Vec<Material> = match &scene.object_materials[object] {
-        ObjectMaterial::Single(index) => vec![scene.materials[*index as usize]],
+    let mut materials: Vec<Material> = match &scene.object_materials()[object] {
+        ObjectMaterial::Single(index) => vec![scene.materials()[*index as usize]],
         ObjectMaterial::PerTriangle(faces) => faces
             .iter()
-            .map(|&index| scene.materials[index as usize])
+            .map(|&index| scene.materials()[index as usize])
             .collect(),
     };
     materials.sort_by(|a, b| a.color.to_array().partial_cmp(&b.color.to_array()).unwrap());
@@ -71,17 +71,20 @@ fn picture_scenes_are_lit_and_coloured_as_the_fixtures() {
     let fixture_scene = fixture("axonometric_isometric.ron");
     let camera = taxonomy_camera(&Preset::Isometric);
     let picture = picture_scene(&request(PictureScene::AxisCube, camera, (24, 18)), 4);
-    assert_eq!(picture.background, fixture_scene.background);
-    assert_lights_close(&picture.lights, &fixture_scene.lights);
-    assert_lights_close(&picture_lights(), &fixture_scene.lights);
+    assert_eq!(picture.background(), fixture_scene.background());
+    assert_lights_close(picture.lights(), fixture_scene.lights());
+    assert_lights_close(&picture_lights(), fixture_scene.lights());
     assert_eq!(materials_of(&picture, 0), materials_of(&fixture_scene, 0));
     // The cube: object 2 of the picture (after the ground and the earth), 1 of the
     // fixture; three face materials, the fixture's MTL colours.
     let cube = materials_of(&picture, 2);
     assert_eq!(cube.len(), 3);
     assert_eq!(cube, materials_of(&fixture_scene, 1));
-    assert_eq!((picture.camera.width(), picture.camera.height()), (24, 18));
-    assert_eq!(picture.samples, 4);
+    assert_eq!(
+        (picture.camera().width(), picture.camera().height()),
+        (24, 18)
+    );
+    assert_eq!(picture.samples(), 4);
 
     // The spheres of depth of field wear the fixtures' glossy red, green and blue.
     let fixture_scene = fixture("thin_lens_small_aperture.ron");
