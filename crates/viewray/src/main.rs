@@ -18,7 +18,6 @@ mod compare;
 mod diagram;
 mod figures;
 mod input;
-mod json;
 mod render;
 mod style;
 
