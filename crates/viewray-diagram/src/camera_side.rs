@@ -20,11 +20,37 @@ const RAY_COUNT: u32 = 5;
 /// Meshes with more triangles than this are drawn as the outline of their bounds.
 const MAX_DRAWN_TRIANGLES: usize = 4000;
 
-/// Where the drawing goes on the slide: below the title, above the caption.
-const DRAWING: Rect = Rect {
-    min: Vec2::new(40.0, 100.0),
-    max: Vec2::new(1560.0, 800.0),
-};
+/// The canvases a side view is drawn on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SideViewCanvas {
+    /// A slide, 1600 x 900, with a title: for `viewray diagram`.
+    #[default]
+    Slide,
+    /// A panel beside a render, 1000 x 600, without a title: the same labels read
+    /// larger when the panel is shown at half a screen's width (the live playground).
+    Panel,
+}
+
+impl SideViewCanvas {
+    /// The canvas size, where the drawing goes, where the caption's baseline starts,
+    /// and whether there is a title.
+    fn layout(self) -> ((u32, u32), Rect, Vec2, bool) {
+        match self {
+            SideViewCanvas::Slide => (
+                (1600, 900),
+                Rect::from_corners(Vec2::new(40.0, 100.0), Vec2::new(1560.0, 800.0)),
+                Vec2::new(56.0, 858.0),
+                true,
+            ),
+            SideViewCanvas::Panel => (
+                (1000, 600),
+                Rect::from_corners(Vec2::new(50.0, 50.0), Vec2::new(950.0, 490.0)),
+                Vec2::new(24.0, 540.0),
+                false,
+            ),
+        }
+    }
+}
 
 /// The side view of `camera` looking at `scene` (slide, 1600 x 900): the vertical plane
 /// through the camera's **v** and **w** seen from its right, so **u** points at the
@@ -39,15 +65,34 @@ pub(crate) fn camera_side_view(
     scene: &Scene,
     camera: &Camera,
     pixel: Option<(u32, u32)>,
+    canvas: SideViewCanvas,
 ) -> Diagram {
-    let mut sketch = Sketch::slide();
-    sketch.title("Side view of the camera");
-    sketch.text_lines(
-        Vec2::new(56.0, 858.0),
-        &[(&caption(camera), style::TEXT, style::SMALL_LABEL_SIZE)],
-    );
+    let ((width, height), drawing, caption_at, title) = canvas.layout();
+    let mut sketch = Sketch::sized(width, height);
+    if title {
+        sketch.title("Side view of the camera");
+    }
+    // The caption: one line on a slide, two on a panel.
+    let (parameters, more) = caption(camera);
+    match canvas {
+        SideViewCanvas::Slide => sketch.text_lines(
+            caption_at,
+            &[(
+                &format!("{parameters};  {more}"),
+                style::TEXT,
+                style::SMALL_LABEL_SIZE,
+            )],
+        ),
+        SideViewCanvas::Panel => sketch.text_lines(
+            caption_at,
+            &[
+                (&parameters, style::TEXT, style::SMALL_LABEL_SIZE),
+                (&more, style::TEXT, style::SMALL_LABEL_SIZE),
+            ],
+        ),
+    };
     let (right, up) = side_plane(camera);
-    let view = fit_view(scene, camera, right, up);
+    let view = fit_view(scene, camera, right, up, drawing);
     let figure_view = FigureView::Side(view);
 
     draw_objects(&mut sketch, &view, scene);
@@ -120,9 +165,9 @@ pub(crate) fn camera_side_view(
             style::RAY,
         );
     }
-    if let Some(pixel) = pixel {
+    let pixel_hit = pixel.and_then(|pixel| {
         let stroke = Stroke::new(style::HIGHLIGHT, style::LINE_THICK);
-        if let Some(hit) = draw_traced_ray(
+        draw_traced_ray(
             &mut sketch,
             &view,
             scene,
@@ -130,28 +175,9 @@ pub(crate) fn camera_side_view(
             pixel,
             &stroke,
             style::HIGHLIGHT,
-        ) {
-            let text = format!("$i$ = {}, $j$ = {}", pixel.0 + 1, pixel.1 + 1);
-            place_label(
-                &mut sketch,
-                &text,
-                &[
-                    (
-                        hit + Vec2::new(14.0, -14.0),
-                        (Anchor::Start, Baseline::Bottom),
-                    ),
-                    (
-                        hit + Vec2::new(-14.0, -14.0),
-                        (Anchor::End, Baseline::Bottom),
-                    ),
-                    (hit + Vec2::new(14.0, 14.0), (Anchor::Start, Baseline::Top)),
-                    (hit + Vec2::new(-14.0, 14.0), (Anchor::End, Baseline::Top)),
-                ],
-                style::HIGHLIGHT,
-                style::SMALL_LABEL_SIZE,
-            );
-        }
-    }
+        )
+        .map(|hit| (pixel, hit))
+    });
 
     // The image plane, the frame at the eye, the eye; the plane's label where it
     // overlaps no other.
@@ -160,15 +186,8 @@ pub(crate) fn camera_side_view(
         .viewport()
         .map(|_| draw_image_plane(&mut sketch, &view, camera, style::IMAGE_PLANE, 0.0));
     let axis_length = 0.09 * extent;
-    draw_side_frame(&mut sketch, &view, &frame, axis_length, true);
-    let e = view.to_figure(frame.e);
-    sketch.label_at(
-        "*e*",
-        e + Vec2::new(-22.0, 22.0),
-        (Anchor::End, Baseline::Top),
-        style::EYE,
-        style::LABEL_SIZE,
-    );
+    draw_side_frame(&mut sketch, &view, &frame, axis_length, false);
+    draw_frame_labels(&mut sketch, &view, &frame, axis_length);
     if let Some((top, bottom)) = plane_ends {
         let label = match camera.projection() {
             Projection::Perspective(p) => format!("image plane, $d$ = {}", number(p.distance)),
@@ -226,7 +245,93 @@ pub(crate) fn camera_side_view(
         );
     }
 
+    if let Some((pixel, hit)) = pixel_hit {
+        let text = format!("$i$ = {}, $j$ = {}", pixel.0 + 1, pixel.1 + 1);
+        let candidates = [
+            (
+                hit + Vec2::new(14.0, -14.0),
+                (Anchor::Start, Baseline::Bottom),
+            ),
+            (
+                hit + Vec2::new(-14.0, -14.0),
+                (Anchor::End, Baseline::Bottom),
+            ),
+            (hit + Vec2::new(14.0, 14.0), (Anchor::Start, Baseline::Top)),
+            (hit + Vec2::new(-14.0, 14.0), (Anchor::End, Baseline::Top)),
+            (
+                hit + Vec2::new(0.0, -50.0),
+                (Anchor::Middle, Baseline::Bottom),
+            ),
+            (hit + Vec2::new(0.0, 50.0), (Anchor::Middle, Baseline::Top)),
+        ];
+        place_label(
+            &mut sketch,
+            &text,
+            &candidates,
+            style::HIGHLIGHT,
+            style::SMALL_LABEL_SIZE,
+        );
+    }
     sketch.finish()
+}
+
+/// Names e, v, w and u at the eye, each where it overlaps no other label: v and w past
+/// their arrows' tips, u (out of the page) and e beside the eye.
+fn draw_frame_labels(
+    sketch: &mut Sketch,
+    view: &SideView,
+    frame: &viewray_camera::Frame,
+    length: f64,
+) {
+    let e = view.to_figure(frame.e);
+    let around = |at: Vec2, gap: f32| {
+        [
+            (at + Vec2::new(-gap, gap), (Anchor::End, Baseline::Top)),
+            (at + Vec2::new(gap, gap), (Anchor::Start, Baseline::Top)),
+            (at + Vec2::new(-gap, -gap), (Anchor::End, Baseline::Bottom)),
+            (at + Vec2::new(gap, -gap), (Anchor::Start, Baseline::Bottom)),
+            (
+                at + Vec2::new(0.0, 1.6 * gap),
+                (Anchor::Middle, Baseline::Top),
+            ),
+            (
+                at + Vec2::new(0.0, -1.6 * gap),
+                (Anchor::Middle, Baseline::Bottom),
+            ),
+            (
+                at + Vec2::new(-1.6 * gap, 0.0),
+                (Anchor::End, Baseline::Middle),
+            ),
+            (
+                at + Vec2::new(1.6 * gap, 0.0),
+                (Anchor::Start, Baseline::Middle),
+            ),
+        ]
+    };
+    for (axis, color, name) in [
+        (frame.v, style::V_AXIS, "*v*"),
+        (frame.w, style::W_AXIS, "*w*"),
+    ] {
+        let tip = view.to_figure(frame.e + axis * length);
+        let out = (tip - e).normalize_or_zero();
+        let mut candidates = vec![(tip + out * 26.0, (Anchor::Middle, Baseline::Middle))];
+        candidates.extend(around(tip, 16.0));
+        place_label(sketch, name, &candidates, color, style::LABEL_SIZE);
+    }
+    place_label(
+        sketch,
+        "*e*",
+        &around(e, 22.0),
+        style::EYE,
+        style::LABEL_SIZE,
+    );
+    place_label(
+        sketch,
+        "*u*",
+        &around(e, 30.0),
+        style::U_AXIS,
+        style::LABEL_SIZE,
+    );
 }
 
 /// The side view's axes `(right, up)`: the plane of the camera's **v** and **w** (which
@@ -253,7 +358,7 @@ fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
 
 /// A side view fitted to the eye, the image plane, the focus point and the bounded
 /// objects of the scene, with a margin.
-fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3) -> SideView {
+fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3, drawing: Rect) -> SideView {
     let frame = camera.frame();
     let mut points = vec![frame.e];
     if camera.projection().viewport().is_some() {
@@ -291,7 +396,7 @@ fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3) -> SideView
         up,
         (min.x - margin, max.x + margin),
         (min.y - margin, max.y + margin),
-        DRAWING,
+        drawing,
     )
 }
 
@@ -484,8 +589,15 @@ fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus
         Projection::ThinLens(p) => p.viewport.y / 2.0 * focus / p.distance,
         _ => camera.projection().viewport().map_or(1.0, |v| v.y / 2.0),
     };
-    let top = view.to_figure(centre + frame.v * half * 1.15);
-    let bottom = view.to_figure(centre - frame.v * half * 1.15);
+    // The segment across the frustum, a little longer, clipped to the view.
+    let across = DRay {
+        origin: centre - frame.v * half * 1.15,
+        direction: frame.v * half * 2.3,
+    };
+    let Some((t0, t1)) = view.clip_ray(&across, (0.0, 1.0)) else {
+        return;
+    };
+    let (bottom, top) = (view.to_figure(across.at(t0)), view.to_figure(across.at(t1)));
     sketch.line(
         top,
         bottom,
@@ -583,11 +695,28 @@ fn place_label(
                 _ => false,
             })
     };
+    // The first free place; else the first on the canvas; else the first, moved onto it.
     let chosen = candidates
         .iter()
         .map(make)
         .find(|label| free(label))
-        .or_else(|| candidates.first().map(make));
+        .or_else(|| {
+            candidates
+                .iter()
+                .map(make)
+                .find(|label| canvas.contains_rect(&label.bounds()))
+        })
+        .or_else(|| {
+            candidates.first().map(|first| {
+                let label = make(first);
+                let bounds = label.bounds();
+                let shift = Vec2::new(
+                    (canvas.min.x - bounds.min.x).max(0.0) + (canvas.max.x - bounds.max.x).min(0.0),
+                    (canvas.min.y - bounds.min.y).max(0.0) + (canvas.max.y - bounds.max.y).min(0.0),
+                );
+                make(&(first.0 + shift, first.1))
+            })
+        });
     if let Some(label) = chosen {
         // A light backing keeps the label legible over rays and objects.
         let backing = label.bounds().expand(4.0);
@@ -606,7 +735,7 @@ fn place_label(
 }
 
 /// One line naming the projection and its parameters in the lecture's notation.
-fn caption(camera: &Camera) -> String {
+fn caption(camera: &Camera) -> (String, String) {
     let size = format!("image {} × {}", camera.width(), camera.height());
     let viewport = |v: DVec2| format!("$vw$ × $vh$ = {} × {}", number(v.x), number(v.y));
     let shift = |s: DVec2| {
@@ -616,38 +745,50 @@ fn caption(camera: &Camera) -> String {
             format!(",  shift ({}, {})", number(s.x), number(s.y))
         }
     };
-    let parameters = match camera.projection() {
-        Projection::Perspective(p) => format!(
-            "perspective:  $d$ = {},  {}{}",
-            number(p.distance),
-            viewport(p.viewport),
-            shift(p.shift)
-        ),
-        Projection::ThinLens(p) => format!(
-            "thin lens:  $d$ = {},  {}{},  aperture $r$ = {},  focus $f$ = {}",
-            number(p.distance),
-            viewport(p.viewport),
-            shift(p.shift),
-            number(p.aperture),
-            number(p.focus)
-        ),
-        Projection::Orthographic(o) => match o.lens {
-            None => format!("orthographic:  {}", viewport(o.viewport)),
-            Some(lens) => format!(
-                "orthographic:  {},  aperture $r$ = {},  focus $f$ = {}",
-                viewport(o.viewport),
-                number(lens.aperture),
-                number(lens.focus)
-            ),
-        },
-        Projection::Oblique(o) => format!(
-            "oblique:  {},  $L$ = {},  $φ$ = {}°",
-            viewport(o.viewport),
-            number(o.ratio),
-            number(o.angle.to_degrees())
-        ),
-        Projection::Equirectangular => "equirectangular: 360° × 180°".to_owned(),
-        Projection::Fisheye(f) => format!("fisheye: field of view {}°", number(f.fov.to_degrees())),
+    let lens = |aperture: f64, focus: f64| {
+        format!(
+            "aperture $r$ = {},  focus $f$ = {};  ",
+            number(aperture),
+            number(focus)
+        )
     };
-    format!("{parameters};  {size}")
+    let (parameters, more) = match camera.projection() {
+        Projection::Perspective(p) => (
+            format!(
+                "perspective:  $d$ = {},  {}{}",
+                number(p.distance),
+                viewport(p.viewport),
+                shift(p.shift)
+            ),
+            String::new(),
+        ),
+        Projection::ThinLens(p) => (
+            format!(
+                "thin lens:  $d$ = {},  {}{}",
+                number(p.distance),
+                viewport(p.viewport),
+                shift(p.shift)
+            ),
+            lens(p.aperture, p.focus),
+        ),
+        Projection::Orthographic(o) => (
+            format!("orthographic:  {}", viewport(o.viewport)),
+            o.lens.map_or(String::new(), |l| lens(l.aperture, l.focus)),
+        ),
+        Projection::Oblique(o) => (
+            format!(
+                "oblique:  {},  $L$ = {},  $φ$ = {}°",
+                viewport(o.viewport),
+                number(o.ratio),
+                number(o.angle.to_degrees())
+            ),
+            String::new(),
+        ),
+        Projection::Equirectangular => ("equirectangular: 360° × 180°".to_owned(), String::new()),
+        Projection::Fisheye(f) => (
+            format!("fisheye: field of view {}°", number(f.fov.to_degrees())),
+            String::new(),
+        ),
+    };
+    (parameters, format!("{more}{size}"))
 }

@@ -59,6 +59,7 @@ use viewray_scene::Scene;
 use crate::assumptions::{
     assumption_basis, assumption_distance, assumption_eye, assumption_viewport,
 };
+pub use crate::camera_side::SideViewCanvas;
 use crate::canonical::{canonical_camera, canonical_camera_square};
 use crate::distortions::{distortion_foreshortening, distortion_verticals};
 use crate::frame::{camera_frame, camera_frame_square};
@@ -224,7 +225,8 @@ pub fn all_figures() -> Vec<NamedFigure> {
     ]
 }
 
-/// The side view of a scene's camera (slide, 1600 x 900), the lecture's side-view
+/// The side view of a scene's camera (a 1600 x 900 slide, or a 1000 x 600 panel: see
+/// [`SideViewCanvas`]), the lecture's side-view
 /// figures for any camera: the scene's objects seen from the camera's right (the plane
 /// of **v** and **w**, world up kept up), the eye **e** with **v** and **w**, the image
 /// plane edge-on, the frustum's edges, and the viewing rays of five pixels of the middle
@@ -236,8 +238,13 @@ pub fn all_figures() -> Vec<NamedFigure> {
 /// `pixel`, a 0-based (row, col) of its image, adds that pixel's viewing ray,
 /// highlighted and labelled with the lecture's (i, j). Every ray drawn is one `camera`
 /// generates.
-pub fn camera_side_view(scene: &Scene, camera: &Camera, pixel: Option<(u32, u32)>) -> Figure {
-    camera_side::camera_side_view(scene, camera, pixel).figure
+pub fn camera_side_view(
+    scene: &Scene,
+    camera: &Camera,
+    pixel: Option<(u32, u32)>,
+    canvas: SideViewCanvas,
+) -> Figure {
+    camera_side::camera_side_view(scene, camera, pixel, canvas).figure
 }
 
 /// The figure called `name`, if there is one; see [`figure_names`] for the names and

@@ -9,7 +9,7 @@ use viewray_draw::Item;
 use viewray_scene::{Scene, parse_camera};
 
 use super::figures::{assert_drawn_rays_are_generated, labels};
-use crate::camera_side::camera_side_view;
+use crate::camera_side::{SideViewCanvas, camera_side_view};
 use crate::style;
 use crate::view::FigureView;
 
@@ -62,8 +62,11 @@ fn every_ray_drawn_is_one_the_camera_generates() {
         let scene = scene(name, text);
         let camera = *scene.camera();
         let pixel = (camera.height() / 3, camera.width() / 4);
-        let diagram = camera_side_view(&scene, &camera, Some(pixel));
-        assert_drawn_rays_are_generated(name, &diagram);
+        for canvas in [SideViewCanvas::Slide, SideViewCanvas::Panel] {
+            let diagram = camera_side_view(&scene, &camera, Some(pixel), canvas);
+            assert_drawn_rays_are_generated(name, &diagram);
+        }
+        let diagram = camera_side_view(&scene, &camera, Some(pixel), SideViewCanvas::Slide);
         // The five rays of the middle column at least, and the highlighted pixel's.
         let middle = diagram
             .rays
@@ -93,7 +96,7 @@ fn rays_stop_at_the_first_thing_they_hit() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
         let camera = *scene.camera();
-        let diagram = camera_side_view(&scene, &camera, None);
+        let diagram = camera_side_view(&scene, &camera, None, SideViewCanvas::Slide);
         let mut stopped = 0;
         for ray in diagram
             .rays
@@ -127,7 +130,7 @@ fn the_view_is_the_plane_of_v_and_w_with_world_up_up() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
         let camera = *scene.camera();
-        let diagram = camera_side_view(&scene, &camera, None);
+        let diagram = camera_side_view(&scene, &camera, None, SideViewCanvas::Slide);
         let FigureView::Side(view) = diagram.rays[0].view else {
             panic!("{name}: a side view")
         };
@@ -159,23 +162,25 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
         "(eye: (0.0, 1.0, 6.0), look_at: (0.0, 1.0, 0.0), projection: ThinLens(fov_y: 40.0, aperture: 0.3, focus: 6.0))",
     ] {
         let camera = parse_camera(camera_text, Path::new("camera"), 160, 90).unwrap();
-        let diagram = camera_side_view(&scene, &camera, Some((45, 80)));
-        assert_drawn_rays_are_generated(camera_text, &diagram);
-        let figure = &diagram.figure;
-        let labels = labels(figure);
-        for (k, a) in labels.iter().enumerate() {
-            assert!(
-                figure.bounds().contains_rect(&a.bounds()),
-                "{camera_text}: {:?} leaves the canvas",
-                a.text
-            );
-            for b in &labels[k + 1..] {
+        for canvas in [SideViewCanvas::Slide, SideViewCanvas::Panel] {
+            let diagram = camera_side_view(&scene, &camera, Some((45, 80)), canvas);
+            assert_drawn_rays_are_generated(camera_text, &diagram);
+            let figure = &diagram.figure;
+            let labels = labels(figure);
+            for (k, a) in labels.iter().enumerate() {
                 assert!(
-                    !a.bounds().intersects(&b.bounds()),
-                    "{camera_text}: {:?} overlaps {:?}",
-                    a.text,
-                    b.text
+                    figure.bounds().contains_rect(&a.bounds()),
+                    "{camera_text}: {:?} leaves the canvas",
+                    a.text
                 );
+                for b in &labels[k + 1..] {
+                    assert!(
+                        !a.bounds().intersects(&b.bounds()),
+                        "{camera_text}: {:?} overlaps {:?}",
+                        a.text,
+                        b.text
+                    );
+                }
             }
         }
     }
