@@ -89,8 +89,14 @@ pub struct LoadTimes {
 /// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
 pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 
-/// Reads a scene file, refusing directories and files too large to be a scene.
-fn read_scene_file(path: &Path) -> Result<String, SceneError> {
+/// Reads the text of the scene file at `path` as loading it would, without parsing it:
+/// for a program that keeps the text beside the loaded scene (the live playground
+/// serves it).
+///
+/// # Errors
+/// A [`SceneError`] naming `path` for a missing file, a directory, a file that is not
+/// UTF-8 text, or one larger than [`MAX_SCENE_BYTES`].
+pub fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
     let file = std::fs::File::open(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => error("no such scene file".to_owned()),
@@ -105,9 +111,13 @@ fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     read_scene_text(file, path)
 }
 
-/// Reads scene text from `reader`, refusing text that is not UTF-8 or too large to be a
-/// scene; `path` names it in errors.
-fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
+/// Reads scene text from `reader` (standard input, say) as [`read_scene_file`] reads a
+/// file, refusing text that is not UTF-8 or too large to be a scene; `path` names it in
+/// errors.
+///
+/// # Errors
+/// A [`SceneError`] naming `path`.
+pub fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
     let mut text = String::new();
     let read = reader

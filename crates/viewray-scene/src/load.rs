@@ -507,6 +507,7 @@ pub(crate) fn parse_camera_text(
 /// The `camera:` value of the scene file `text`, as written there (comments inside it
 /// included).
 pub(crate) fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let file: SceneFile<'a> = ron_options()
         .from_str(text)
         .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;

@@ -155,6 +155,16 @@ pub(crate) enum Command {
     /// Every ray drawn is one the camera generates. Writes a .png or an .svg as OUT's
     /// extension says, atomically.
     Diagram(crate::diagram::DiagramArgs),
+    /// Serve the live playground: the scene's render, the side view of its camera and
+    /// the numbers, in a browser, live as the camera changes.
+    ///
+    /// Loads the scene once (without SCENE, the built-in default scene) and prints the
+    /// page's URL, http://HOST:PORT/, as the first line on standard output. The page
+    /// has a control for every projection family and parameter and every taxonomy
+    /// preset; its URL holds the camera, so a link reopens it exactly. Everything the
+    /// page needs is inside viewray: no network, no CDN. Listens on 127.0.0.1 (this
+    /// machine only) unless --host says otherwise; Ctrl-C stops it.
+    Serve(crate::serve::ServeArgs),
     /// Print a scene file to start from: the built-in default scene.
     ///
     /// `viewray scene --default > scene.ron` writes the scene `viewray render` renders

@@ -61,7 +61,12 @@ pub(crate) fn diagram(args: &DiagramArgs) -> Result<()> {
             }
         }
     };
-    let figure = viewray_diagram::camera_side_view(&scene, &camera, pixel);
+    let figure = viewray_diagram::camera_side_view(
+        &scene,
+        &camera,
+        pixel,
+        viewray_diagram::SideViewCanvas::Slide,
+    );
     write(&figure, output, format)?;
     if std::io::stderr().is_terminal() {
         eprintln!(

@@ -19,6 +19,7 @@ mod diagram;
 mod figures;
 mod input;
 mod render;
+mod serve;
 mod style;
 
 use std::process::ExitCode;
@@ -51,6 +52,7 @@ fn main() -> ExitCode {
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
         Command::Diagram(args) => diagram::diagram(&args),
+        Command::Serve(args) => serve::serve(&args),
         Command::Scene(args) => commands::scene(&args),
         Command::Completions(args) => commands::completions(&args),
         Command::Man(args) => commands::man(&args),

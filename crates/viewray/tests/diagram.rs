@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use tempfile::TempDir;
+use viewray_diagram::SideViewCanvas;
 use viewray_scene::Scene;
 
 mod support;
@@ -48,7 +49,8 @@ fn a_scenes_side_view_is_written_as_the_library_draws_it() {
 
     // The PNG is the library's figure, painted.
     let scene = Scene::load(&scene_path).unwrap();
-    let figure = viewray_diagram::camera_side_view(&scene, scene.camera(), None);
+    let figure =
+        viewray_diagram::camera_side_view(&scene, scene.camera(), None, SideViewCanvas::Slide);
     let expected = viewray_draw::raster::render(&figure);
     let written = image::open(dir.path().join("side.png")).unwrap().to_rgba8();
     assert_eq!((written.width(), written.height()), (1600, 900));
@@ -56,7 +58,12 @@ fn a_scenes_side_view_is_written_as_the_library_draws_it() {
 
     // The SVG is the library's figure with pixel (10, 20) highlighted, and --one-based
     // names the same pixel as (11, 21).
-    let figure = viewray_diagram::camera_side_view(&scene, scene.camera(), Some((10, 20)));
+    let figure = viewray_diagram::camera_side_view(
+        &scene,
+        scene.camera(),
+        Some((10, 20)),
+        SideViewCanvas::Slide,
+    );
     let svg = std::fs::read_to_string(dir.path().join("side.svg")).unwrap();
     assert_eq!(
         svg,
