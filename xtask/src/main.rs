@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{figures, golden, icosphere, workspace_root};
+use xtask::{browser, figures, golden, icosphere, workspace_root};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -18,7 +18,8 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Task {
     /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
-    /// test (the golden check included, as the `golden` test target).
+    /// test (the golden check included, as the `golden` test target), and the live
+    /// playground in headless Chromium (`browser`).
     Ci,
     /// Render every scene in fixtures/scenes (and the default scene) and every lecture
     /// figure, and compare each with golden/{scenes,figures}/<name>.png; a report of the
@@ -29,6 +30,11 @@ enum Task {
     /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
     /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.
     Icosphere(icosphere::IcosphereArgs),
+    /// Drive the live playground (`viewray serve`) in headless Chromium: it loads with no
+    /// console errors, renders, follows a slider, survives a reload, and shows a clicked
+    /// pixel's ray as `viewray rays` prints it; screenshots in target/browser/. Installs
+    /// Debian's chromium and playwright-core (into target/) when missing.
+    Browser(browser::BrowserArgs),
 }
 
 fn main() -> ExitCode {
@@ -43,6 +49,7 @@ fn main() -> ExitCode {
         Some(Task::Golden(args)) => golden::golden(&root, &args),
         Some(Task::Figures(args)) => figures::figures(&root, &args),
         Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
+        Some(Task::Browser(args)) => browser::browser(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -69,7 +76,9 @@ fn ci() -> Result<()> {
         "-D",
         "warnings",
     ])?;
-    cargo(&["test", "--workspace"])
+    cargo(&["test", "--workspace"])?;
+    eprintln!("$ cargo xtask browser");
+    browser::browser(&workspace_root(), &browser::BrowserArgs { out: None })
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
@@ -107,7 +116,7 @@ mod tests {
         assert!(parse(&[]).unwrap().command.is_none());
         let help = Cli::command().render_help().to_string();
         assert!(help.contains("Usage: cargo xtask [COMMAND]"), "{help}");
-        for command in ["ci", "golden", "figures", "icosphere"] {
+        for command in ["ci", "golden", "figures", "icosphere", "browser"] {
             assert!(
                 help.contains(&format!("\n  {command} ")),
                 "{command}: {help}"

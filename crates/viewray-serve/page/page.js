@@ -337,7 +337,8 @@ const frameChannel = new Channel((job, response, body) => {
 
 const rayChannel = new Channel((job, response, body, superseded) => {
   if (!response.ok) {
-    if (!superseded) showError(body.error, "pixel");
+    // Errors of the camera or the size are the render's to show.
+    if (!superseded && errorTarget(body.error, "camera") === "pixel") showError(body.error, "pixel");
     return;
   }
   const [row, col] = job.meta.pixel;
