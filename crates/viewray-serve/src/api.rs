@@ -7,6 +7,7 @@ use std::time::Instant;
 use serde_json::json;
 use viewray_camera::{Camera, CameraSample};
 use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
+use viewray_output::Compression;
 use viewray_render::{RenderSettings, View, render_view};
 use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, parse_camera};
 
@@ -164,7 +165,11 @@ pub(crate) fn render(served: &ServedScene, view: &View) -> Reply {
     };
     let rendered_at = Instant::now();
     let mut png = Vec::new();
-    if let Err(error) = rendered.image.write_png(&mut png) {
+    // The same pixels as `viewray render` writes, encoded for speed rather than size.
+    if let Err(error) = rendered
+        .image
+        .write_png_compressed(&mut png, Compression::Fast)
+    {
         return Reply::error(500, &format!("cannot encode the image: {error}"));
     }
     let ms = |from: Instant, to: Instant| (to - from).as_secs_f64() * 1e3;
