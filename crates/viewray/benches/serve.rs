@@ -8,7 +8,7 @@
 
 use std::time::{Duration, Instant};
 
-use criterion::{Criterion, criterion_group};
+use criterion::Criterion;
 
 #[path = "../tests/support/http.rs"]
 #[allow(dead_code)]
@@ -82,17 +82,12 @@ fn frame(c: &mut Criterion) {
     );
 }
 
-criterion_group! {
-    #[allow(missing_docs)]
-    name = benches;
-    config = Criterion::default()
+fn main() {
+    let mut criterion = Criterion::default()
         .sample_size(30)
         .measurement_time(Duration::from_secs(10))
-        .warm_up_time(Duration::from_secs(2));
-    targets = frame
-}
-
-fn main() {
-    benches();
-    Criterion::default().configure_from_args().final_summary();
+        .warm_up_time(Duration::from_secs(2))
+        .configure_from_args();
+    frame(&mut criterion);
+    criterion.final_summary();
 }
