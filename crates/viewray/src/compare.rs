@@ -230,7 +230,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
     for pair in pairs {
         let judged = judge_pair(pair, &thresholds);
         if args.json {
-            crate::json::write_line(&mut out, &json_line(&judged, args.threshold))?;
+            viewray_json::write_line(&mut out, &json_line(&judged, args.threshold))?;
         } else {
             writeln!(out, "{}", table_row(&judged, name_width))?;
         }
@@ -255,7 +255,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
             "failed": tally.failed,
             "errors": tally.errors,
         }});
-        crate::json::write_line(&mut out, &summary)?;
+        viewray_json::write_line(&mut out, &summary)?;
     } else {
         writeln!(out, "{summary_line}")?;
     }
