@@ -38,6 +38,7 @@
 
 mod comparison;
 mod diagnosis;
+mod estimate;
 mod flip;
 mod golden;
 mod instructor;
@@ -50,9 +51,9 @@ mod report;
 pub use image::{RgbImage, RgbaImage};
 
 pub use comparison::{Comparison, Failure, Metrics, Mode};
-pub use diagnosis::{Diagnosis, Significant};
+pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use golden::{Thresholds, compare};
-pub use instructor::{InstructorThresholds, judge};
+pub use instructor::{InstructorThresholds, judge, judge_with};
 pub use load::{LoadError, load_png};
 pub use report::{Outcome, ReportEntry, write_report};
 
