@@ -791,3 +791,39 @@ pub fn cases() -> Vec<Case> {
     );
     cases
 }
+
+/// Whether the diagnosis `got` says what `want` says: the same words, and the same
+/// numbers up to one unit of their last printed digit (or 2%, for the coordinates of a
+/// fixed point): the estimate is measured, the expectation computed.
+pub fn same_message(got: &str, want: &str) -> bool {
+    let split = |s: &str| -> Vec<String> {
+        let mut parts = Vec::new();
+        let mut current = String::new();
+        let mut numeric = false;
+        for ch in s.chars() {
+            let is_num = ch.is_ascii_digit() || (ch == '.' && numeric);
+            if is_num != numeric && !current.is_empty() {
+                parts.push(std::mem::take(&mut current));
+            }
+            numeric = is_num;
+            current.push(ch);
+        }
+        parts.push(current);
+        parts
+    };
+    let (a, b) = (split(got), split(want));
+    a.len() == b.len()
+        && a.iter().zip(&b).all(|(x, y)| {
+            if x == y {
+                return true;
+            }
+            match (x.parse::<f64>(), y.parse::<f64>()) {
+                (Ok(u), Ok(v)) => {
+                    let decimals = y.split('.').nth(1).map_or(0, str::len);
+                    let unit = 10f64.powi(-(decimals as i32));
+                    (u - v).abs() <= unit * 1.001 || (u - v).abs() <= 0.02 * v.abs()
+                }
+                _ => false,
+            }
+        })
+}
