@@ -201,13 +201,18 @@ pub(crate) struct Pyramid {
 const SEARCH_SIDE: usize = 16;
 
 impl Pyramid {
-    /// Builds the pyramids of two images of the same size, blurred by `blur_sigma` pixels.
-    pub(crate) fn new(expected: &FloatImage, actual: &FloatImage, blur_sigma: f32) -> Self {
+    /// Builds the pyramids of two images of the same size, blurred by `blur_sigma` pixels,
+    /// down to the search level or to at most `max_levels` levels.
+    pub(crate) fn new(
+        expected: &FloatImage,
+        actual: &FloatImage,
+        blur_sigma: f32,
+        max_levels: usize,
+    ) -> Self {
         let mut levels = Vec::new();
         let (mut e, mut a, mut factor) = (expected.clone(), actual.clone(), 1.0);
         loop {
             let (dx, dy) = e.gradients();
-            let next_side = e.width.min(e.height) / 2;
             let expected_fused = e
                 .pixels
                 .iter()
@@ -215,17 +220,22 @@ impl Pyramid {
                 .zip(&dy.pixels)
                 .map(|((v, x), y)| [v[0], v[1], v[2], x[0], x[1], x[2], y[0], y[1], y[2]])
                 .collect();
+            let next_side = e.width.min(e.height) / 2;
+            let last = next_side < SEARCH_SIDE || levels.len() + 1 >= max_levels;
+            let next = (!last).then(|| {
+                (
+                    e.gaussian_blur(1.0).downsample_2x(),
+                    a.gaussian_blur(1.0).downsample_2x(),
+                )
+            });
             levels.push(Level {
                 factor,
-                expected: e.clone(),
+                expected: e,
                 expected_fused,
-                actual: a.clone(),
+                actual: a,
             });
-            if next_side < SEARCH_SIDE {
-                break;
-            }
-            e = e.gaussian_blur(1.0).downsample_2x();
-            a = a.gaussian_blur(1.0).downsample_2x();
+            let Some((next_e, next_a)) = next else { break };
+            (e, a) = (next_e, next_a);
             factor *= 2.0;
         }
         Self {
@@ -960,6 +970,23 @@ pub(crate) fn textured(texture: [f64; 2]) -> bool {
     texture[0].min(texture[1]) >= MIN_TEXTURE
 }
 
+/// How many of the search's best candidates are ranked again by their coverage.
+const CANDIDATES: usize = 24;
+
+/// How much of the picture's edges a match covers, from 0 to 1: its overlap's share of
+/// the picture times the edges there along the poorer axis (see [`texture`]).
+fn coverage(texture: [f64; 2], overlap: f64) -> f64 {
+    (texture[0].min(texture[1]) * overlap).min(1.0)
+}
+
+/// The rank of a refined match (lower is better): its normalized residual (see
+/// [`Fit::normalized`]), plus a hundredth for what of the picture's edges it leaves
+/// uncovered. Two right answers differ in the residual; a right answer and a strip that
+/// matches itself slid sideways, in the coverage.
+fn rank(fit: &Fit, texture: [f64; 2], floor: f64) -> f64 {
+    fit.normalized(floor) + 0.01 * (1.0 - coverage(texture, fit.overlap()))
+}
+
 /// Two matches are as good as each other when the worse one's normalized residual is at
 /// most `AMBIGUITY` times the better one's plus `AMBIGUITY_FLOOR`: a repeat of a tiled
 /// wall leaves twice what the right move leaves (the sampling differs), a wrong repeat
@@ -968,7 +995,7 @@ const AMBIGUITY: f64 = 3.0;
 const AMBIGUITY_FLOOR: f64 = 0.0005;
 
 /// The pixels to evaluate at full resolution.
-const FINE_BUDGET: usize = 5_000;
+const FINE_BUDGET: usize = 6_000;
 
 /// How much lower the best mirrored candidate's normalized residual must be than the best
 /// unmirrored one's to be believed: a nearly symmetric picture looks much the same
@@ -986,15 +1013,28 @@ pub(crate) fn estimate_search(
     tolerances: &Tolerances,
 ) -> Estimate {
     let top = pyramid.top();
-    let candidates = search(pyramid);
+    let mut candidates = search(pyramid);
     let floor = contrast_floor(pyramid);
+    // The best by correlation, ranked again by how much of the picture's edges they
+    // match: a strip of sky and ground slid sideways correlates as well as the right
+    // move, but covers little.
+    candidates.truncate(CANDIDATES);
+    let mut ranked: Vec<(f64, Candidate)> = candidates
+        .into_iter()
+        .map(|c| {
+            let fit = evaluate(pyramid, top, &c.model, 1);
+            let cover = coverage(texture(pyramid, top, &c.model, 1), fit.overlap());
+            (c.score - 0.1 * (1.0 - cover), c)
+        })
+        .collect();
+    ranked.sort_by(|a, b| b.0.total_cmp(&a.0));
     // Refine the best few of each mirror class at the search level.
     let mut refined: Vec<(f64, Model)> = Vec::new();
     let mut taken = [0usize; 4];
     let class = |m: &Model| usize::from(m.mirror[0]) + 2 * usize::from(m.mirror[1]);
     let mut starts: Vec<Model> = vec![Model::identity(pyramid.centre())];
     starts.extend_from_slice(extra);
-    for candidate in &candidates {
+    for (_, candidate) in &ranked {
         let c = class(&candidate.model);
         let limit = if c == 0 { 4 } else { 1 };
         if taken[c] < limit && textured(texture(pyramid, top, &candidate.model, 1)) {
@@ -1005,23 +1045,33 @@ pub(crate) fn estimate_search(
     for start in starts {
         let model = refine(pyramid, top, start, Free::ALL, 1, 12);
         let fit = evaluate(pyramid, top, &model, 1);
-        if fit.overlap() >= MIN_OVERLAP && textured(texture(pyramid, top, &model, 1)) {
-            refined.push((fit.normalized(floor), model));
+        let texture = texture(pyramid, top, &model, 1);
+        if fit.overlap() >= MIN_OVERLAP && textured(texture) {
+            refined.push((rank(&fit, texture, floor), model));
         }
     }
     refined.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Carry the best two unmirrored and the best mirrored down the pyramid.
+    // Carry down the pyramid the best unmirrored start, the runner-up when it comes near
+    // (within twice the residual), and the best mirrored one when it could still win.
+    let plain: Vec<(f64, Model)> = refined
+        .iter()
+        .copied()
+        .filter(|(_, m)| class(m) == 0)
+        .collect();
+    let mirrored = refined.iter().copied().find(|(_, m)| class(m) != 0);
     let mut carried: Vec<Model> = Vec::new();
-    let mut unmirrored = 0;
-    let mut mirrored = false;
-    for &(_, model) in &refined {
-        if class(&model) == 0 && unmirrored < 2 {
-            unmirrored += 1;
-            carried.push(model);
-        } else if class(&model) != 0 && !mirrored {
-            mirrored = true;
+    if let Some(&(first, model)) = plain.first() {
+        carried.push(model);
+        if let Some(&(second, model)) = plain.get(1)
+            && second < 2.0 * first
+        {
             carried.push(model);
         }
+    }
+    if let Some((score, model)) = mirrored
+        && plain.first().is_none_or(|&(first, _)| score < first)
+    {
+        carried.push(model);
     }
     if carried.is_empty() {
         carried.push(Model::identity(pyramid.centre()));
@@ -1031,15 +1081,27 @@ pub(crate) fn estimate_search(
     for start in carried {
         let mut model = start;
         for level in (0..top).rev() {
-            let stride = pyramid.stride(level, FINE_BUDGET);
-            model = refine(pyramid, level, model, Free::ALL, stride, 6);
+            let budget = if level == 0 {
+                FINE_BUDGET
+            } else {
+                FINE_BUDGET / 2
+            };
+            model = refine(
+                pyramid,
+                level,
+                model,
+                Free::ALL,
+                pyramid.stride(level, budget),
+                5,
+            );
         }
         let stride = pyramid.stride(0, FINE_BUDGET);
         let fit = evaluate(pyramid, 0, &model, stride);
-        if fit.overlap() < MIN_OVERLAP || !textured(texture(pyramid, 0, &model, stride)) {
+        let texture = texture(pyramid, 0, &model, stride);
+        if fit.overlap() < MIN_OVERLAP || !textured(texture) {
             continue;
         }
-        let score = fit.normalized(floor);
+        let score = rank(&fit, texture, floor);
         let slot = if class(&model) == 0 {
             &mut best_plain
         } else {
@@ -1058,9 +1120,10 @@ pub(crate) fn estimate_search(
     // Another repeat of a repeating pattern may match better (take it) or as well (then
     // the move is not determined).
     let mut ambiguous = false;
-    if let Some((score, model)) = best
+    if let Some((_, model)) = best
         && let Some((other_score, other)) = other_move(pyramid, &model)
     {
+        let score = evaluate(pyramid, 0, &model, pyramid.stride(0, FINE_BUDGET)).normalized(floor);
         if other_score < 0.5 * score {
             let again = other_move(pyramid, &other);
             ambiguous = again.is_some_and(|(s, _)| s < AMBIGUITY * other_score + AMBIGUITY_FLOOR);
@@ -1120,13 +1183,19 @@ fn other_move(pyramid: &Pyramid, model: &Model) -> Option<(f64, Model)> {
             .collect();
         dips.sort_by(|a, b| a.1.total_cmp(&b.1));
         for &(k, _) in dips.iter().take(3) {
-            let mut other = moved(k);
-            for level in (0..=top).rev() {
+            // Refined at the search level first: only a repeat that still comes near is
+            // followed down to full resolution.
+            let mut other = refine(pyramid, top, moved(k), moves_only, 1, 6);
+            if evaluate(pyramid, top, &other, 1).normalized(floor) > 3.0 * here + 0.002 {
+                continue;
+            }
+            for level in (0..top).rev() {
                 let stride = pyramid.stride(level, FINE_BUDGET);
                 other = refine(pyramid, level, other, moves_only, stride, 6);
             }
             let apart = (other.shift[axis] - model.shift[axis]).abs() >= 2.0 * l.factor;
-            let fit = evaluate(pyramid, 0, &other, pyramid.stride(0, FINE_BUDGET));
+            let stride = pyramid.stride(0, FINE_BUDGET);
+            let fit = evaluate(pyramid, 0, &other, stride);
             if apart && fit.overlap() >= MIN_OVERLAP {
                 let score = fit.normalized(floor);
                 if best.is_none_or(|(b, _)| score < b) {
@@ -1207,8 +1276,9 @@ enum Scaling {
 /// Model selection: every reduction of `model` (the turn kept or dropped; the scale per
 /// axis, uniform or none; the move free or none about one of the `anchors`) is refitted,
 /// and the simplest whose residual on the overlap is not clearly worse than the full
-/// model's wins (the lowest residual among equally simple ones). Components below half
-/// their tolerance are dropped without a test.
+/// model's wins (the lowest residual among equally simple ones). Components within their
+/// tolerance are dropped without a test: they would not be named, and the others are
+/// refitted without them.
 pub(crate) fn select(
     pyramid: &Pyramid,
     model: Model,
@@ -1219,13 +1289,12 @@ pub(crate) fn select(
     let model = model.about_point(pyramid.centre());
     let full = cost(pyramid, 0, &model, stride);
     let [sx, sy] = model.scale();
-    let half = 0.5;
-    let turned = model.rotation.abs() >= half * tolerances.rotation;
-    let per_axis = (sx / sy - 1.0).abs() >= half * tolerances.scale;
-    let scaled = per_axis || (sx - 1.0).abs() >= half * tolerances.scale;
+    let turned = model.rotation.abs() >= tolerances.rotation;
+    let per_axis = (sx / sy - 1.0).abs() >= tolerances.scale;
+    let scaled = per_axis || (sx - 1.0).abs().max((sy - 1.0).abs()) >= tolerances.scale;
     let moved = |anchor: [f64; 2]| {
         let t = model.about_point(anchor).shift;
-        t[0].abs().max(t[1].abs()) >= half * tolerances.shift
+        t[0].abs().max(t[1].abs()) >= tolerances.shift
     };
     let mut moves: Vec<Move> = anchors.iter().map(|&a| Move::About(a)).collect();
     if anchors.iter().all(|&a| moved(a)) {

@@ -40,14 +40,16 @@ pub struct InstructorThresholds {
     pub max_shift: f64,
     /// A scale is a mistake when it differs from 1 by more than this along x or y.
     ///
-    /// Default 0.01 (1%): a tenth of the classic wrong field of view (1.1x, measured 1.097
-    /// to 1.099), and over three times the measurement noise (at most 0.26% on correct
-    /// renders).
+    /// Default 0.02 (2%): a fifth of the classic wrong field of view (1.1x, measured 1.099
+    /// to 1.101), and above what a one-sample render's aliasing fakes on a moved picture
+    /// (up to 1.2% where the far lines of a ground grid alias).
     pub max_scale_error: f64,
     /// A turn of the picture is a mistake when it exceeds this many degrees.
     ///
-    /// Default 0.25: a thirtieth of a rolled up vector of 8 degrees, and a move of under
-    /// a pixel at the corners of a 320 x 240 picture.
+    /// Default 0.5: a sixth of the smallest rolled up vector of the test matrix (3
+    /// degrees), a move of a pixel at the corners of a 320 x 240 picture, and twice what
+    /// the sampling of a one-sample render fakes on a correct or merely moved picture (up
+    /// to 0.3 degrees on the test scenes).
     pub max_rotation: f64,
     /// A transform is reported only when undoing it removes at least this fraction of the
     /// mean squared difference between the blurred images, on the part both show.
@@ -70,8 +72,8 @@ impl Default for InstructorThresholds {
             max_peak_flip: 0.3,
             blur_sigma: 2.0,
             max_shift: 0.25,
-            max_scale_error: 0.01,
-            max_rotation: 0.25,
+            max_scale_error: 0.02,
+            max_rotation: 0.5,
             min_explained: 0.5,
             max_unexplained: 0.1,
         }
@@ -222,7 +224,9 @@ fn find_mistake(
     if identical {
         return None;
     }
-    let pyramid = Pyramid::new(expected, actual, thresholds.blur_sigma);
+    // A pass is refined on the two finest levels alone.
+    let max_levels = if flip_failed { usize::MAX } else { 2 };
+    let pyramid = Pyramid::new(expected, actual, thresholds.blur_sigma, max_levels);
     let size = (expected.width as u32, expected.height as u32);
     let centre = pyramid.centre();
     let mut anchors = vec![centre];

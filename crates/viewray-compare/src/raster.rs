@@ -110,23 +110,44 @@ impl FloatImage {
         horizontal.convolve(&kernel, radius, false)
     }
 
-    /// Convolves rows (`along_rows`) or columns with a symmetric `kernel` of `radius`.
+    /// Convolves rows (`along_rows`) or columns with a symmetric `kernel` of `radius`,
+    /// edge pixels extended.
     fn convolve(&self, kernel: &[f32], radius: isize, along_rows: bool) -> Self {
-        let mut out = Self::new(self.width, self.height);
-        for row in 0..self.height as isize {
-            for col in 0..self.width as isize {
-                let mut sum = [0.0f32; 3];
+        let (w, h) = (self.width, self.height);
+        let mut out = Self::new(w, h);
+        let r = radius as usize;
+        if along_rows {
+            // Each row padded with its edge pixels, then a contiguous dot product.
+            let mut padded = vec![[0.0f32; 3]; w + 2 * r];
+            for row in 0..h {
+                let line = &self.pixels[row * w..(row + 1) * w];
+                for (i, slot) in padded.iter_mut().enumerate() {
+                    *slot = line[i.saturating_sub(r).min(w - 1)];
+                }
+                let out_line = &mut out.pixels[row * w..(row + 1) * w];
+                for (col, pixel) in out_line.iter_mut().enumerate() {
+                    let mut sum = [0.0f32; 3];
+                    for (p, weight) in padded[col..col + 2 * r + 1].iter().zip(kernel) {
+                        for c in 0..3 {
+                            sum[c] += weight * p[c];
+                        }
+                    }
+                    *pixel = sum;
+                }
+            }
+        } else {
+            // Each output row is the weighted sum of whole input rows.
+            for row in 0..h {
+                let out_line = &mut out.pixels[row * w..(row + 1) * w];
                 for (k, weight) in (-radius..=radius).zip(kernel) {
-                    let p = if along_rows {
-                        self.at_clamped(row, col + k)
-                    } else {
-                        self.at_clamped(row + k, col)
-                    };
-                    for c in 0..3 {
-                        sum[c] += weight * p[c];
+                    let source = (row as isize + k).clamp(0, h as isize - 1) as usize;
+                    let line = &self.pixels[source * w..(source + 1) * w];
+                    for (o, p) in out_line.iter_mut().zip(line) {
+                        for c in 0..3 {
+                            o[c] += weight * p[c];
+                        }
                     }
                 }
-                out.pixels[row as usize * self.width + col as usize] = sum;
             }
         }
         out
@@ -218,6 +239,29 @@ mod tests {
         // Outside, edge pixels extend.
         assert_eq!(image.sample_bilinear(-3.0, 7.0), [0.0; 3]);
         assert_eq!(image.sample_bilinear(9.0, -2.0), [1.0; 3]);
+    }
+
+    #[test]
+    fn blur_spreads_an_impulse_as_the_gaussian_and_extends_the_edges() {
+        let sigma = 1.0f32;
+        let g = |d: f32| (-d * d / (2.0 * sigma * sigma)).exp();
+        let norm: f32 = (-3..=3).map(|i| g(i as f32)).sum();
+        let mut image = FloatImage::new(9, 9);
+        image.pixels[4 * 9 + 4] = [1.0, 0.5, 0.0];
+        let blurred = image.gaussian_blur(sigma);
+        for (row, col) in [(4, 4), (4, 6), (2, 5), (7, 4)] {
+            let want = g(row as f32 - 4.0) * g(col as f32 - 4.0) / (norm * norm);
+            let got = blurred.at(row, col);
+            assert!((got[0] - want).abs() < 1e-6 && (got[1] - 0.5 * want).abs() < 1e-6);
+        }
+        // A bright left column, extended beyond the edge, stays as bright at the edge.
+        let mut edge = FloatImage::new(9, 3);
+        for row in 0..3 {
+            edge.pixels[row * 9] = [1.0; 3];
+        }
+        let blurred = edge.gaussian_blur(sigma);
+        let want: f32 = (-3..=0).map(|i| g(i as f32)).sum::<f32>() / norm;
+        assert!((blurred.at(1, 0)[0] - want).abs() < 1e-6);
     }
 
     #[test]

@@ -33,7 +33,7 @@ use viewray_scene::{LoadOptions, Scene};
 pub const REFERENCE_SAMPLES: u32 = 16;
 
 /// A reference scene the mistakes are planted in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Base {
     /// A lit ground grid with two boxes, viewport 1.2 x 0.9 with a lens shift of (0, 0.2):
     /// the scene of the issue that asked for these diagnoses (native 192 x 144).
@@ -418,12 +418,21 @@ impl Case {
     /// Renders the reference ([`REFERENCE_SAMPLES`] per pixel) and the student's image
     /// (`samples` per pixel, the mistake planted) at `size`.
     pub fn render(&self) -> (RgbaImage, RgbaImage) {
-        let reference = render_text(
+        (self.render_reference(), self.render_student())
+    }
+
+    /// The reference render: the same for every case of one base and size.
+    pub fn render_reference(&self) -> RgbaImage {
+        render_text(
             &self.reference_scene(),
             self.base.path(),
             self.size,
             REFERENCE_SAMPLES,
-        );
+        )
+    }
+
+    /// The student's render, the mistake planted (a mirror is applied to the image).
+    pub fn render_student(&self) -> RgbaImage {
         let mut student = render_text(
             &self.student_scene(),
             self.base.path(),
@@ -444,7 +453,7 @@ impl Case {
         if upside_down {
             image::imageops::flip_vertical_in_place(&mut student);
         }
-        (reference, student)
+        student
     }
 }
 
