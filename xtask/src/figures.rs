@@ -1,32 +1,28 @@
 //! `cargo xtask figures`: every lecture figure as PNG and SVG, for slides and the README.
 //!
 //! The figures are drawn in-process with their pictures rendered by the ray tracer
-//! (`viewray_diagram::figures::NamedFigure::figure`), exactly as `viewray figures`
+//! (`viewray_diagram::NamedFigure::figure`), exactly as `viewray figures`
 //! draws them and as `golden/figures/` checks them.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use viewray_diagram::figures::all_figures;
+use viewray_diagram::all_figures;
 
 /// The command line of `cargo xtask figures`.
-#[derive(Debug, Default)]
-pub(crate) struct FiguresArgs {
-    /// Where to write the figures; `target/figures/` under the workspace root by default.
-    pub(crate) out: Option<PathBuf>,
-}
-
-impl FiguresArgs {
-    pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        Ok(Self {
-            out: crate::parse_out("figures", args)?,
-        })
-    }
+#[derive(Debug, Default, clap::Args)]
+pub struct FiguresArgs {
+    /// The folder to write into [default: target/figures/].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// Writes every figure as `<name>.png` and `<name>.svg`, each atomically.
-pub(crate) fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
+///
+/// # Errors
+/// When the folder cannot be created or a file cannot be written.
+pub fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
     let out = args
         .out
         .clone()
@@ -39,12 +35,9 @@ pub(crate) fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
         let figure = named.figure();
         let png = out.join(format!("{}.png", named.name));
         let svg = out.join(format!("{}.svg", named.name));
-        figure
-            .write_png(&png)
-            .with_context(|| format!("cannot write {}", png.display()))?;
-        figure
-            .write_svg(&svg)
-            .with_context(|| format!("cannot write {}", svg.display()))?;
+        // The errors name the file.
+        viewray_draw::write_png(&figure, &png)?;
+        viewray_draw::write_svg(&figure, &svg)?;
         eprintln!(
             "  {:<28} {} x {} {:>6} ms",
             named.name,
@@ -65,32 +58,6 @@ pub(crate) fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn parse(args: &[&str]) -> Result<FiguresArgs> {
-        FiguresArgs::parse(&args.iter().map(|a| (*a).to_owned()).collect::<Vec<_>>())
-    }
-
-    #[test]
-    fn out_is_optional_and_takes_one_folder() {
-        assert_eq!(parse(&[]).unwrap().out, None);
-        assert_eq!(
-            parse(&["--out", "slides"]).unwrap().out,
-            Some(PathBuf::from("slides"))
-        );
-        assert_eq!(
-            parse(&["--out=a/b"]).unwrap().out,
-            Some(PathBuf::from("a/b"))
-        );
-        for (bad, message) in [
-            (&["--out"][..], "--out needs a folder"),
-            (&["--bless"][..], "unknown argument `--bless`"),
-            (&["slides"][..], "unknown argument `slides`"),
-            (&["--out", "a", "--out", "b"][..], "--out given twice"),
-        ] {
-            let error = parse(bad).unwrap_err().to_string();
-            assert!(error.contains(message), "{bad:?}: {error}");
-        }
-    }
 
     #[test]
     fn writes_a_png_and_an_svg_per_figure() {

@@ -19,44 +19,46 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use viewray_compare::{Comparison, ReportEntry, RgbaImage, Thresholds};
+use viewray_compare::{Comparison, Report, ReportEntry, RgbaImage, Rules, Thresholds};
+use viewray_output::Compression;
 use viewray_render::RenderSettings;
 use viewray_scene::{LoadOptions, Scene};
 
 /// The command line of `cargo xtask golden`.
-#[derive(Debug, Default)]
-pub(crate) struct GoldenArgs {
-    /// Only the images whose `kind/name` contains this.
-    pub(crate) filter: Option<String>,
-    /// Rewrite the goldens that changed instead of failing.
-    pub(crate) bless: bool,
+#[derive(Debug, Default, clap::Args)]
+pub struct GoldenArgs {
+    /// Only the images whose `scenes/<name>` or `figures/<name>` contains FILTER.
+    pub filter: Option<String>,
+    /// Rewrite the goldens whose pixels changed, add missing ones and remove those with
+    /// no scene or figure (refused when CI is set).
+    #[arg(long)]
+    pub bless: bool,
 }
 
 impl GoldenArgs {
-    pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        let mut parsed = Self::default();
-        for arg in args {
-            match arg.as_str() {
-                "--bless" => parsed.bless = true,
-                flag if flag.starts_with('-') => bail!("unknown option `{flag}` for golden"),
-                filter if parsed.filter.is_none() => parsed.filter = Some(filter.to_owned()),
-                extra => bail!("golden takes one FILTER, found a second: `{extra}`"),
-            }
-        }
-        Ok(parsed)
-    }
-
     fn selects(&self, id: &str) -> bool {
         self.filter.as_deref().is_none_or(|f| id.contains(f))
     }
 }
 
 /// One image the check covers: where its golden lives and how to make the actual one.
-struct Case {
-    /// `scenes/<name>`: the report's and the filter's name for it.
+pub struct Case {
     id: String,
     golden: PathBuf,
     source: Source,
+}
+
+impl Case {
+    /// `scenes/<name>` or `figures/<name>`: the report's, the console's and the filters'
+    /// name for it.
+    pub fn id(&self) -> &str {
+        &self.id
+    }
+
+    /// Makes the image and compares it with its golden.
+    pub fn check(&self) -> Verdict {
+        check(self)
+    }
 }
 
 enum Source {
@@ -76,7 +78,7 @@ const DEFAULT_SCENE: &str = "fixtures/default.ron";
 
 /// An image a case made, in the form its golden PNG stores and the form it is encoded
 /// from.
-struct Made {
+pub struct Made {
     pixels: RgbaImage,
     output: Output,
 }
@@ -87,26 +89,15 @@ enum Output {
 }
 
 impl Output {
-    /// The PNG file, with the producer's fixed encoder settings and no metadata.
+    /// The PNG file, by viewray's one encoder: a scene as `viewray render` writes it, a
+    /// figure as opaque RGB compressed hard, to keep goldens small.
     fn png(&self) -> Result<Vec<u8>> {
         let mut png = Vec::new();
         match self {
             Output::Render(image) => image.write_png(&mut png)?,
             Output::Figure(pixels) => {
-                // Figures are opaque: store RGB, compressed hard, to keep goldens small.
-                use image::ImageEncoder as _;
                 let rgb = image::DynamicImage::ImageRgba8(pixels.clone()).to_rgb8();
-                image::codecs::png::PngEncoder::new_with_quality(
-                    &mut png,
-                    image::codecs::png::CompressionType::Best,
-                    image::codecs::png::FilterType::Adaptive,
-                )
-                .write_image(
-                    rgb.as_raw(),
-                    rgb.width(),
-                    rgb.height(),
-                    image::ExtendedColorType::Rgb8,
-                )?;
+                viewray_output::write_png(&mut png, &rgb, Compression::Smallest)?;
             }
         }
         Ok(png)
@@ -114,21 +105,31 @@ impl Output {
 }
 
 /// What became of one case.
-enum Verdict {
+pub enum Verdict {
     /// Pixel for pixel the golden.
     Same,
     /// Within the tolerances, but not identical.
     Passed(Made, Comparison),
+    /// Beyond the tolerances, or nothing to compare (no golden yet, an image that could
+    /// not be made).
     Failed {
+        /// The image made, if it could be.
         made: Option<Made>,
+        /// The golden, if it could be read.
         expected: Option<RgbaImage>,
+        /// The comparison, if there were two images to compare.
         comparison: Option<Comparison>,
+        /// Why it failed, in one line.
         reason: String,
     },
 }
 
 /// Runs the golden check (or, with `--bless`, updates the goldens).
-pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
+///
+/// # Errors
+/// When an image differs from its golden (after writing the report), a golden has no
+/// scene, the filter selects nothing, or a file cannot be read or written.
+pub fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
     if args.bless && std::env::var_os("CI").is_some_and(|v| !v.is_empty() && v != "false") {
         bail!("--bless refuses to run under CI: goldens are blessed on purpose, by a person");
     }
@@ -151,6 +152,12 @@ pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
             Verdict::Passed(_, c) => {
                 eprintln!("  ok    {:<40} {} {ms:>6} ms", case.id, figures(c));
             }
+            // As the report says: ERROR when there was nothing to compare.
+            Verdict::Failed {
+                reason,
+                comparison: None,
+                ..
+            } => eprintln!("  ERROR {:<40} {reason}", case.id),
             Verdict::Failed { reason, .. } => eprintln!("  FAIL  {:<40} {reason}", case.id),
         }
         match verdict {
@@ -196,24 +203,30 @@ pub(crate) fn golden(root: &Path, args: &GoldenArgs) -> Result<()> {
         eprintln!("golden: all {total} images match their goldens ({elapsed:.1} s)");
         return Ok(());
     }
-    let report = write_failure_report(root, &failures)?;
+    let summary = failure_summary(failures.len(), orphans.len(), total);
+    let report = write_failure_report(root, &failures, &summary)?;
     let filter = args
         .filter
         .as_deref()
         .map(|f| format!(" {f}"))
         .unwrap_or_default();
     bail!(
-        "{} of {total} golden images differ and {} goldens have no scene ({elapsed:.1} s)\n  \
-         report: {}\n  if the change is intended, look at each image, then run: \
-         cargo xtask golden{filter} --bless",
-        failures.len(),
-        orphans.len(),
+        "{summary} ({elapsed:.1} s)\n  report: {}\n  if the change is intended, look at each \
+         image, then run: cargo xtask golden{filter} --bless",
         relative(root, &report),
     )
 }
 
-/// The cases the filter selects, and the goldens that no case produces.
-fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
+/// The line that sums up a failed check, on the console and atop the report.
+pub fn failure_summary(failed: usize, orphans: usize, total: usize) -> String {
+    format!("{failed} of {total} golden images differ and {orphans} goldens have no scene")
+}
+
+/// The cases the filter selects, and the goldens that no case produces (orphans).
+///
+/// # Errors
+/// When a folder of scenes or goldens cannot be listed.
+pub fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
     let mut cases = vec![Case {
         id: "scenes/default".to_owned(),
         golden: root.join("golden/scenes/default.png"),
@@ -233,7 +246,7 @@ fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)> {
             source: Source::Scene(scene, LoadOptions::default()),
         });
     }
-    for figure in viewray_diagram::figures::all_figures() {
+    for figure in viewray_diagram::all_figures() {
         cases.push(Case {
             id: format!("figures/{}", figure.name),
             golden: root
@@ -312,17 +325,15 @@ fn make(case: &Case) -> Result<Made> {
             let scene = Scene::load_with(path, *options)?;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
-            let rgb = image::RgbImage::from_raw(image.width(), image.height(), image.to_rgb8())
-                .context("the render's pixel buffer does not match its size")?;
             Ok(Made {
-                pixels: image::DynamicImage::ImageRgb8(rgb).to_rgba8(),
+                pixels: image::DynamicImage::ImageRgb8(image.to_rgb_image()).to_rgba8(),
                 output: Output::Render(image),
             })
         }
         Source::Figure(name) => {
-            let figure = viewray_diagram::figures::figure_by_name(name)
+            let figure = viewray_diagram::figure_by_name(name)
                 .with_context(|| format!("no figure named {name}"))?;
-            let pixels = figure.figure().render_scaled(FIGURE_SCALE);
+            let pixels = viewray_draw::raster::render_scaled(&figure.figure(), FIGURE_SCALE);
             Ok(Made {
                 pixels: pixels.clone(),
                 output: Output::Figure(pixels),
@@ -343,7 +354,16 @@ fn write_golden(root: &Path, golden: &Path, output: &Output) -> Result<()> {
     Ok(())
 }
 
-fn write_failure_report(root: &Path, failures: &[(String, Verdict)]) -> Result<PathBuf> {
+/// Writes the failures' report to `target/golden/index.html` (clearing the last one),
+/// headed by the same `summary` the console prints; returns the page's path.
+///
+/// # Errors
+/// When the report cannot be written.
+pub fn write_failure_report(
+    root: &Path,
+    failures: &[(String, Verdict)],
+    summary: &str,
+) -> Result<PathBuf> {
     let entries: Vec<ReportEntry<'_>> = failures
         .iter()
         .filter_map(|(id, verdict)| match verdict {
@@ -378,7 +398,13 @@ fn write_failure_report(root: &Path, failures: &[(String, Verdict)]) -> Result<P
         std::fs::remove_dir_all(&dir)
             .with_context(|| format!("cannot clear the old report in {}", dir.display()))?;
     }
-    viewray_compare::write_report(&dir, &entries)
+    let report = Report {
+        title: "viewray golden images: the failures",
+        summary,
+        rules: Rules::Golden(Thresholds::GOLDEN),
+        entries: &entries,
+    };
+    viewray_compare::write_report(&dir, &report)
         .with_context(|| format!("cannot write the report in {}", dir.display()))
 }
 
@@ -408,7 +434,8 @@ fn stem(path: &Path) -> String {
         .unwrap_or_default()
 }
 
-fn relative(root: &Path, path: &Path) -> String {
+/// `path` relative to `root`, for messages.
+pub fn relative(root: &Path, path: &Path) -> String {
     path.strip_prefix(root)
         .unwrap_or(path)
         .display()

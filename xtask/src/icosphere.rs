@@ -10,19 +10,13 @@ use viewray_geometry::MeshData;
 /// The benchmark's subdivision level: 20 * 4^8 = 1,310,720 triangles.
 const SUBDIVISIONS: u32 = 8;
 
-/// `cargo xtask icosphere [--out DIR]`.
-#[derive(Debug, Default)]
-pub(crate) struct IcosphereArgs {
-    /// Where to write `icosphere.obj` and `icosphere.ron`; `target/icosphere/` by default.
-    pub(crate) out: Option<PathBuf>,
-}
-
-impl IcosphereArgs {
-    pub(crate) fn parse(args: &[String]) -> Result<Self> {
-        Ok(Self {
-            out: crate::parse_out("icosphere", args)?,
-        })
-    }
+/// The command line of `cargo xtask icosphere`.
+#[derive(Debug, Default, clap::Args)]
+pub struct IcosphereArgs {
+    /// The folder to write icosphere.obj and icosphere.ron into [default:
+    /// target/icosphere/].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// The benchmark's view: 1024 x 1024 primary rays from eye (0, 0, 3) looking down -z,
@@ -45,7 +39,10 @@ const SCENE: &str = "\
 ";
 
 /// Writes `icosphere.obj` and `icosphere.ron` into the output folder, each atomically.
-pub(crate) fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
+///
+/// # Errors
+/// When a file cannot be written.
+pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
     let out = args
         .out
         .clone()
@@ -94,18 +91,21 @@ mod tests {
         std::fs::write(dir.path().join("icosphere.obj"), obj_text(&mesh)).expect("an OBJ");
         std::fs::write(dir.path().join("icosphere.ron"), SCENE).expect("a scene");
         let scene = Scene::load(&dir.path().join("icosphere.ron")).expect("a valid scene");
-        assert_eq!(scene.world.triangle_count(), 320);
-        assert_eq!(scene.world.triangle_count(), mesh.triangles.len());
-        assert_eq!((scene.camera.width(), scene.camera.height()), (1024, 1024));
-        assert_eq!(scene.samples, 1);
+        assert_eq!(scene.world().triangle_count(), 320);
+        assert_eq!(scene.world().triangle_count(), mesh.triangles.len());
+        assert_eq!(
+            (scene.camera().width(), scene.camera().height()),
+            (1024, 1024)
+        );
+        assert_eq!(scene.samples(), 1);
         // The eye at (0, 0, 3) looking down -z: the centre ray meets the sphere near
         // z = 1, a little below it, since the flat facets lie inside the sphere.
         let centre = scene
-            .camera
+            .camera()
             .generate_ray(512, 512, viewray_camera::CameraSample::CENTER)
             .expect("a ray");
         let hit = scene
-            .world
+            .world()
             .closest_hit(&centre.as_ray(), 0.0..f32::INFINITY)
             .expect("the sphere straight ahead");
         let z = hit.point.z;

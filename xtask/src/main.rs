@@ -1,51 +1,48 @@
-//! viewray's automation, written in Rust so it runs wherever cargo does.
-//!
-//! `cargo xtask` (an alias in `.cargo/config.toml`) with no argument lists the commands.
+//! `cargo xtask`: viewray's automation (see the library's docs). With no argument it lists
+//! its commands.
 
-mod figures;
-mod golden;
-mod icosphere;
-
-use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
+use clap::{CommandFactory as _, Parser, Subcommand};
+use xtask::{figures, golden, icosphere, workspace_root};
 
-const HELP: &str = "\
-usage: cargo xtask <command>
+/// viewray's automation.
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask", bin_name = "cargo xtask")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Task>,
+}
 
-commands:
-  ci                      every check CI runs: cargo fmt --check, cargo clippy (warnings
-                          are errors), cargo test, then the golden check
-  golden [FILTER]         render every scene in fixtures/scenes (and the default scene)
-                          and every lecture figure, and compare each with
-                          golden/{scenes,figures}/<name>.png; a report of the failures
-                          goes to target/golden/index.html. FILTER keeps the images
-                          whose `scenes/<name>` or `figures/<name>` contains it
-  golden [FILTER] --bless rewrite the goldens whose pixels changed, add missing ones and
-                          remove those with no scene or figure (refused when CI is set)
-  figures [--out DIR]     draw every lecture figure, pictures ray traced, as <name>.png
-                          and <name>.svg into DIR (default target/figures/)
-  icosphere [--out DIR]   write the geometry benchmark's mesh (1,310,720 triangles) and
-                          camera as icosphere.obj and icosphere.ron into DIR (default
-                          target/icosphere/), to time `viewray render --stats` on them
-";
+#[derive(Debug, Subcommand)]
+enum Task {
+    /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
+    /// test (the golden check included, as the `golden` test target).
+    Ci,
+    /// Render every scene in fixtures/scenes (and the default scene) and every lecture
+    /// figure, and compare each with golden/{scenes,figures}/<name>.png; a report of the
+    /// failures goes to target/golden/index.html.
+    Golden(golden::GoldenArgs),
+    /// Draw every lecture figure, pictures ray traced, as <name>.png and <name>.svg.
+    Figures(figures::FiguresArgs),
+    /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
+    /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.
+    Icosphere(icosphere::IcosphereArgs),
+}
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match args.first().map(String::as_str) {
-        Some("ci") => ci(),
-        Some("golden") => golden::GoldenArgs::parse(&args[1..])
-            .and_then(|a| golden::golden(&workspace_root(), &a)),
-        Some("figures") => figures::FiguresArgs::parse(&args[1..])
-            .and_then(|a| figures::figures(&workspace_root(), &a)),
-        Some("icosphere") => icosphere::IcosphereArgs::parse(&args[1..])
-            .and_then(|a| icosphere::icosphere(&workspace_root(), &a)),
-        Some("help" | "--help" | "-h") | None => {
-            print!("{HELP}");
-            Ok(())
+    let cli = Cli::parse();
+    let root = workspace_root();
+    let result = match cli.command {
+        None => {
+            // No command: list them, as `cargo xtask help` does.
+            Cli::command().print_help().context("cannot print the help")
         }
-        Some(other) => Err(anyhow::anyhow!("unknown command `{other}`\n\n{HELP}")),
+        Some(Task::Ci) => ci(),
+        Some(Task::Golden(args)) => golden::golden(&root, &args),
+        Some(Task::Figures(args)) => figures::figures(&root, &args),
+        Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -56,7 +53,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs every check CI runs, stopping at the first that fails.
+/// Runs every check CI runs, stopping at the first that fails. `cargo test` runs the
+/// golden check too (the `golden` test target), so it is not run a second time.
 fn ci() -> Result<()> {
     cargo(&["fmt", "--all", "--check"])?;
     // The benchmarks' harness and peers are behind features so `cargo test` does not build
@@ -71,9 +69,7 @@ fn ci() -> Result<()> {
         "-D",
         "warnings",
     ])?;
-    cargo(&["test", "--workspace"])?;
-    eprintln!("$ cargo xtask golden");
-    golden::golden(&workspace_root(), &golden::GoldenArgs::default())
+    cargo(&["test", "--workspace"])
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
@@ -91,82 +87,59 @@ fn cargo(args: &[&str]) -> Result<()> {
     Ok(())
 }
 
-/// The folder of a command whose only option is `--out DIR` (or `--out=DIR`).
-pub(crate) fn parse_out(command: &str, args: &[String]) -> Result<Option<PathBuf>> {
-    let mut out = None;
-    let mut args = args.iter();
-    while let Some(arg) = args.next() {
-        let dir = match arg.as_str() {
-            "--out" => match args.next() {
-                Some(dir) => dir.as_str(),
-                None => bail!("--out needs a folder: --out DIR"),
-            },
-            other => match other.strip_prefix("--out=") {
-                Some(dir) => dir,
-                None => bail!("unknown argument `{other}` for {command} (only --out DIR)"),
-            },
-        };
-        if out.replace(PathBuf::from(dir)).is_some() {
-            bail!("--out given twice");
-        }
-    }
-    Ok(out)
-}
-
-/// Writes `bytes` to `path` (creating its folder) through a temporary file beside it,
-/// renamed into place when complete, so `path` is never left half-written.
-pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path.parent().context("an output lives in a folder")?;
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".xtask-").suffix(".tmp");
-    // The temporary file is private (0600) by default; the outputs are ordinary files.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
-    }
-    let mut file = builder
-        .tempfile_in(dir)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    std::io::Write::write_all(&mut file, bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    file.persist(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
-}
-
-/// The workspace root: the parent of this crate's manifest directory.
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives one level below the workspace root")
-        .to_path_buf()
-}
-
 #[cfg(test)]
 mod tests {
+    use std::path::PathBuf;
+
     use super::*;
 
-    fn parse(args: &[&str]) -> Result<Option<PathBuf>> {
-        let args: Vec<String> = args.iter().map(|&a| a.to_owned()).collect();
-        parse_out("figures", &args)
+    fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+        Cli::try_parse_from(std::iter::once("cargo xtask").chain(args.iter().copied()))
     }
 
     #[test]
-    fn out_is_the_only_option() {
-        assert_eq!(parse(&[]).unwrap(), None);
-        assert_eq!(
-            parse(&["--out", "a/b"]).unwrap(),
-            Some(PathBuf::from("a/b"))
-        );
-        assert_eq!(parse(&["--out=c"]).unwrap(), Some(PathBuf::from("c")));
-        let error = |args: &[&str]| parse(args).unwrap_err().to_string();
-        assert_eq!(error(&["--out"]), "--out needs a folder: --out DIR");
-        assert_eq!(error(&["--out", "a", "--out=b"]), "--out given twice");
-        assert_eq!(
-            error(&["--bless"]),
-            "unknown argument `--bless` for figures (only --out DIR)"
-        );
+    fn the_command_line_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn no_argument_lists_every_command() {
+        assert!(parse(&[]).unwrap().command.is_none());
+        let help = Cli::command().render_help().to_string();
+        assert!(help.contains("Usage: cargo xtask [COMMAND]"), "{help}");
+        for command in ["ci", "golden", "figures", "icosphere"] {
+            assert!(
+                help.contains(&format!("\n  {command} ")),
+                "{command}: {help}"
+            );
+        }
+    }
+
+    #[test]
+    fn each_command_takes_its_own_options() {
+        let Some(Task::Golden(golden)) = parse(&["golden", "oblique", "--bless"]).unwrap().command
+        else {
+            panic!("golden");
+        };
+        assert_eq!(golden.filter.as_deref(), Some("oblique"));
+        assert!(golden.bless);
+        let Some(Task::Figures(figures)) = parse(&["figures", "--out=a/b"]).unwrap().command else {
+            panic!("figures");
+        };
+        assert_eq!(figures.out, Some(PathBuf::from("a/b")));
+        let Some(Task::Icosphere(icosphere)) = parse(&["icosphere"]).unwrap().command else {
+            panic!("icosphere");
+        };
+        assert_eq!(icosphere.out, None);
+        for bad in [
+            &["figures", "--bless"][..],
+            &["figures", "--out"],
+            &["golden", "a", "b"],
+            &["ci", "--out", "x"],
+            &["frobnicate"],
+        ] {
+            let error = parse(bad).unwrap_err();
+            assert_eq!(error.exit_code(), 2, "{bad:?}");
+        }
     }
 }

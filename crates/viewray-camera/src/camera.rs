@@ -5,16 +5,20 @@ use viewray_geometry::DRay;
 
 use crate::{CameraError, Frame, Projection, sample_unit_disk_concentric};
 
-/// Where in a pixel, and where on the lens, a viewing ray is taken (pbrt's
-/// `CameraSample`).
+/// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///
-/// Both are points of the unit square `[0, 1)^2`: `p_film = (sx, sy)` is the offset
-/// inside the pixel from its top-left corner, `p_lens` is mapped to the unit disk by
-/// [`sample_unit_disk_concentric`]. [`CameraSample::CENTER`] is the pixel centre and the
-/// lens centre, the lecture's sample.
+/// The names follow pbrt's `CameraSample`, but the film point differs: pbrt's `pFilm` is
+/// a position on the whole film in raster coordinates, while `p_film` here is only the
+/// offset `(ox, oy)` inside the pixel, from its top-left corner; [`Camera::generate_ray`]
+/// adds the pixel's `(col, row)`. Both fields are points of the unit square `[0, 1)^2`;
+/// `p_lens` is mapped to the unit disk by [`sample_unit_disk_concentric`].
+/// [`CameraSample::CENTER`] is the pixel centre and the lens centre, the lecture's
+/// sample. (The offset `(ox, oy)` is not the lens shift `(sx, sy)` of [`Perspective`].)
+///
+/// [`Perspective`]: crate::Perspective
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraSample {
-    /// The offset `(sx, sy)` inside the pixel; `(0.5, 0.5)` is its centre.
+    /// The offset `(ox, oy)` inside the pixel; `(0.5, 0.5)` is its centre.
     pub p_film: DVec2,
     /// The lens sample in the unit square; `(0.5, 0.5)` is the lens centre.
     pub p_lens: DVec2,
@@ -32,6 +36,21 @@ impl Default for CameraSample {
     fn default() -> Self {
         Self::CENTER
     }
+}
+
+/// A viewing ray with its neighbours: the rays through the image points one step to the
+/// right and one step down (pbrt's `RayDifferential`).
+///
+/// Their differences say how the ray changes across the film, which is what a renderer
+/// needs to filter textures and grid lines over a sample's footprint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayDifferential {
+    /// The ray through the image point itself.
+    pub ray: DRay,
+    /// The ray through the point `step` pixels to the right (`+x`).
+    pub rx: DRay,
+    /// The ray through the point `step` pixels down (`+y`).
+    pub ry: DRay,
 }
 
 /// A camera: where it is ([`Frame`]), how it projects ([`Projection`]) and the image it
@@ -147,12 +166,41 @@ impl Camera {
         ))
     }
 
+    /// The viewing ray through the continuous image point `image` and the lens sample
+    /// `p_lens`, with its neighbours through `image + (step, 0)` and `image + (0, step)`
+    /// and the same lens sample (pbrt's `GenerateRayDifferential`, with the step chosen
+    /// by the caller: one pixel, or the spacing of a pixel's samples).
+    ///
+    /// For the planar families the differences are constant across the image, e.g. for
+    /// a perspective camera
+    ///
+    /// ```text
+    /// rx.direction - ray.direction = step (vw / W) U,   ry.direction - ray.direction = -step (vh / H) V
+    /// ```
+    ///
+    /// and for a parallel camera the origins differ by the same amounts while the
+    /// directions agree. Returns `None` where any of the three rays does not exist
+    /// (outside a fisheye's image circle).
+    pub fn generate_ray_differential(
+        &self,
+        image: DVec2,
+        p_lens: DVec2,
+        step: f64,
+    ) -> Option<RayDifferential> {
+        let ray = |offset: DVec2| self.generate_ray_through(image + offset * step, p_lens);
+        Some(RayDifferential {
+            ray: ray(DVec2::ZERO)?,
+            rx: ray(DVec2::X)?,
+            ry: ray(DVec2::Y)?,
+        })
+    }
+
     /// Where the world point `p` appears: continuous image coordinates `(x, y)`, `x` from
     /// the left edge and `y` from the top, so pixel `(row, col)` spans
     /// `[col, col + 1) x [row, row + 1)`.
     ///
-    /// The inverse of ray generation: `project(ray(row, col, (sx, sy)).at(t)) ==
-    /// (col + sx, row + sy)` for every `t > 0` (through the lens centre for a thin lens).
+    /// The inverse of ray generation: `project(ray(row, col, (ox, oy)).at(t)) ==
+    /// (col + ox, row + oy)` for every `t > 0` (through the lens centre for a thin lens).
     /// `None` where the point is not visible: behind a perspective eye or behind a
     /// parallel camera's image plane, at a panoramic camera's eye, or outside a
     /// fisheye's field of view. Points beyond the image's edges still project (to
@@ -173,16 +221,17 @@ impl Camera {
     }
 }
 
-/// The point `(u, v)` on the image plane of pixel `(row, col)` at the film offset
-/// `p_film = (sx, sy)`, for an image of `W x H` pixels and a viewport of `vw x vh`.
+/// The point `(u, v)` on the image plane of pixel `(row, col)` at the offset in the pixel
+/// `p_film = (ox, oy)`, for an image of `W x H` pixels and a viewport of `vw x vh`.
 ///
 /// ```text
-/// u =  ((col + sx) / W - 1/2) * vw
-/// v = -((row + sy) / H - 1/2) * vh
+/// u =  ((col + ox) / W - 1/2) * vw
+/// v = -((row + oy) / H - 1/2) * vh
 /// ```
 ///
-/// Indices are 0-based, row 0 at the top, and `(sx, sy) = (0.5, 0.5)` is the pixel
-/// centre. With the lecture's 1-based indices `i = row + 1`, `j = col + 1` and the centre
+/// Indices are 0-based, row 0 at the top, and `(ox, oy) = (0.5, 0.5)` is the pixel
+/// centre. A lens shift `(sx, sy)` is not part of `(u, v)`: the perspective families add
+/// it to the direction. With the lecture's 1-based indices `i = row + 1`, `j = col + 1` and the centre
 /// sample this is exactly the lecture's
 ///
 /// ```text

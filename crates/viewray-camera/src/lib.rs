@@ -7,7 +7,8 @@
 //!
 //! # Conventions
 //!
-//! These hold everywhere in viewray; other docs link here.
+//! These hold everywhere in viewray; other docs link here. The repository's
+//! `docs/cameras.md` explains them for students, with worked examples.
 //!
 //! - **World space** is right-handed. Presets and the default scenes take `+y` as up.
 //! - **The camera frame** `(e; u, v, w)` is orthonormal and right-handed: `u` points right
@@ -19,8 +20,10 @@
 //!   `j = col + 1`.
 //! - **Continuous image coordinates** `(x, y)`: `x` from the left edge, `y` from the top,
 //!   in pixels. Pixel `(row, col)` covers `[col, col + 1) x [row, row + 1)` and its centre
-//!   is `(col + 1/2, row + 1/2)`. A film sample `(sx, sy)` in `[0, 1)^2` picks the point
-//!   `(col + sx, row + sy)`.
+//!   is `(col + 1/2, row + 1/2)`. An offset in the pixel `(ox, oy)` in `[0, 1)^2` (the
+//!   `p_film` of a [`CameraSample`]) picks the point `(col + ox, row + oy)`. Not to be
+//!   confused with the lens shift `(sx, sy)` of the table below, which moves the window
+//!   on the image plane.
 //! - **The image plane**: `u = (x / W - 1/2) vw`, `v = -(y / H - 1/2) vh` (see
 //!   [`pixel_to_image_plane`]).
 //! - **Viewing rays** are `origin + t direction` with `t > 0`, and their directions are
@@ -31,6 +34,11 @@
 //!   the tracer.
 //!
 //! # Families
+//!
+//! `(sx, sy)` is the lens shift of the perspective families (zero unless a scene sets
+//! one), `d` the distance to the image plane, `r` the lens radius, `f` the focus
+//! distance, `(lx, ly)` the lens sample in the unit disk, `L` and `phi` the oblique
+//! ratio and angle.
 //!
 //! | family | origin | direction |
 //! |---|---|---|
@@ -51,7 +59,7 @@ mod presets;
 mod projection;
 mod sampling;
 
-pub use camera::{Camera, CameraSample, pixel_to_image_plane};
+pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
 pub use error::CameraError;
 pub use frame::Frame;

@@ -89,7 +89,7 @@ fn unit_square() -> impl Strategy<Value = DVec2> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
-    /// project(ray(row, col, (sx, sy)).at(t)) == (col + sx, row + sy) for every t > 0.
+    /// project(ray(row, col, (ox, oy)).at(t)) == (col + ox, row + oy) for every t > 0.
     #[test]
     fn project_inverts_ray_generation(
         frame in frame(),

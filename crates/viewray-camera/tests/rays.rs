@@ -255,3 +255,72 @@ fn ray_tables_of_every_family() {
         insta::assert_snapshot!(name, table);
     }
 }
+
+#[test]
+fn ray_differentials_step_by_the_lecture_pixel_size() {
+    // With vw = 4, vh = 2, W = 8, H = 4 a pixel is vw / W = 0.5 wide and vh / H = 0.5
+    // tall on the image plane: a step of `s` pixels moves u by 0.5 s and v by -0.5 s
+    // (y runs down, v up), whatever the eye, d, shift or image point.
+    let viewport = DVec2::new(4.0, 2.0);
+    let frame = tilted_frame();
+    let (u, v) = (frame.u, frame.v);
+    let step = 0.25;
+    let (du, dv) = (0.5 * step * u, -0.5 * step * v);
+    let image = DVec2::new(1.3, 2.9);
+    let lens_centre = DVec2::splat(0.5);
+    let camera = |projection| Camera::new(frame, projection, 8, 4).unwrap();
+
+    // Perspective (d = 3, a shift): the directions differ by du and dv, origins agree;
+    // the thin lens scales the direction by f / d (the lens centre's ray).
+    let perspective = camera(Projection::Perspective(Perspective {
+        distance: 3.0,
+        viewport,
+        shift: DVec2::new(0.2, -0.1),
+    }));
+    let thin_lens = camera(Projection::ThinLens(ThinLens {
+        distance: 3.0,
+        viewport,
+        shift: DVec2::ZERO,
+        aperture: 0.2,
+        focus: 6.0,
+    }));
+    for (camera, scale) in [(perspective, 1.0), (thin_lens, 6.0 / 3.0)] {
+        let d = camera
+            .generate_ray_differential(image, lens_centre, step)
+            .unwrap();
+        assert!((d.rx.direction - d.ray.direction).abs_diff_eq(scale * du, 1e-12));
+        assert!((d.ry.direction - d.ray.direction).abs_diff_eq(scale * dv, 1e-12));
+        assert_eq!((d.rx.origin, d.ry.origin), (d.ray.origin, d.ray.origin));
+    }
+
+    // Parallel cameras: the origins move by du and dv, the directions agree.
+    let orthographic = camera(Projection::Orthographic(Orthographic {
+        viewport,
+        lens: None,
+    }));
+    let oblique = camera(Projection::Oblique(Oblique::cabinet(viewport, FRAC_PI_4)));
+    for camera in [orthographic, oblique] {
+        let d = camera
+            .generate_ray_differential(image, lens_centre, step)
+            .unwrap();
+        assert!((d.rx.origin - d.ray.origin).abs_diff_eq(du, 1e-12));
+        assert!((d.ry.origin - d.ray.origin).abs_diff_eq(dv, 1e-12));
+        assert!(d.rx.direction.abs_diff_eq(d.ray.direction, 1e-12));
+        assert!(d.ry.direction.abs_diff_eq(d.ray.direction, 1e-12));
+    }
+
+    // A fisheye has no neighbour outside its image circle: none for the whole set.
+    let fisheye = camera(Projection::Fisheye(Fisheye {
+        fov: 180f64.to_radians(),
+    }));
+    assert!(
+        fisheye
+            .generate_ray_differential(DVec2::new(4.0, 2.0), lens_centre, 1.0)
+            .is_some()
+    );
+    // The top-left corner lies outside the circle.
+    assert_eq!(
+        fisheye.generate_ray_differential(DVec2::new(0.1, 0.1), lens_centre, 1.0),
+        None
+    );
+}

@@ -3,8 +3,9 @@
 //!
 //! This crate owns deciding whether two images are "the same picture". It compares
 //! decoded pixels (never PNG bytes) and knows nothing about scenes, cameras or the
-//! renderer: it depends on no other viewray crate. Its only I/O is [`load_png`] and
-//! [`write_report`].
+//! renderer: it depends on no other viewray crate but the leaf `viewray-output` (the
+//! sRGB transfer function, the PNG encoder, atomic writes). Its only I/O is [`load_png`]
+//! and [`write_report`].
 //!
 //! Two modes share one result type, [`Comparison`]:
 //!
@@ -28,7 +29,7 @@
 //! and y down, so a diagnosis's move (-0.5, -0.5) is left and up.
 //!
 //! ```no_run
-//! use viewray_compare::{ReportEntry, Thresholds, compare, load_png, write_report};
+//! use viewray_compare::{Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report};
 //!
 //! let expected = load_png("golden/scenes/perspective.png")?;
 //! let actual = load_png("target/golden/perspective.png")?;
@@ -37,7 +38,13 @@
 //!     eprintln!("perspective: {}", comparison.reasons());
 //! }
 //! let entry = ReportEntry::compared("perspective", &expected, &actual, &comparison);
-//! let page = write_report("target/golden", &[entry])?;
+//! let report = Report {
+//!     title: "perspective against its golden image",
+//!     summary: comparison.verdict(),
+//!     rules: Rules::Golden(Thresholds::GOLDEN),
+//!     entries: &[entry],
+//! };
+//! let page = write_report("target/golden", &report)?;
 //! println!("report: {}", page.display());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -61,7 +68,7 @@ pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Signific
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, judge, judge_with};
 pub use load::{LoadError, load_png};
-pub use report::{Outcome, ReportEntry, write_report};
+pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, write_report};
 
 /// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
 /// target.

@@ -1,10 +1,12 @@
 //! Float RGB images and the few operations the comparisons need: sRGB decoding and
-//! encoding, Gaussian blur, 2x downsampling, bilinear sampling and gradients.
+//! encoding (viewray-output's transfer function), Gaussian blur, 2x downsampling, bilinear
+//! sampling and gradients.
 //!
 //! Pixel (row, col) covers [col, col + 1) x [row, row + 1) in continuous image coordinates,
 //! so its centre is (col + 0.5, row + 0.5), as in the camera crate's convention.
 
 use image::RgbaImage;
+use viewray_output::{linear_to_srgb, srgb_to_linear, unit_to_u8};
 
 /// An RGB image of `f32` channels, row by row from the top-left.
 #[derive(Clone, Debug)]
@@ -12,25 +14,6 @@ pub(crate) struct FloatImage {
     pub(crate) width: usize,
     pub(crate) height: usize,
     pub(crate) pixels: Vec<[f32; 3]>,
-}
-
-/// Decodes one sRGB-encoded channel value in [0, 1] to linear light.
-pub(crate) fn srgb_to_linear(encoded: f32) -> f32 {
-    if encoded <= 0.04045 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// Encodes one linear channel value in [0, 1] as sRGB.
-pub(crate) fn linear_to_srgb(linear: f32) -> f32 {
-    let linear = linear.clamp(0.0, 1.0);
-    if linear <= 0.003_130_8 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 impl FloatImage {
@@ -68,17 +51,18 @@ impl FloatImage {
         Self {
             width: self.width,
             height: self.height,
-            pixels: self.pixels.iter().map(|p| p.map(linear_to_srgb)).collect(),
+            pixels: self
+                .pixels
+                .iter()
+                .map(|p| p.map(|c| linear_to_srgb(c.clamp(0.0, 1.0))))
+                .collect(),
         }
     }
 
     /// The channels quantized to 8 bits, RGB interleaved (channels taken as already
     /// encoded).
     pub(crate) fn to_rgb8_bytes(&self) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
-            .collect()
+        self.pixels.iter().flat_map(|p| p.map(unit_to_u8)).collect()
     }
 
     /// The pixel at (`row`, `col`).
@@ -217,16 +201,6 @@ impl FloatImage {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn srgb_round_trips_and_matches_known_values() {
-        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-5);
-        for code in 0..=255u8 {
-            let encoded = f32::from(code) / 255.0;
-            let back = linear_to_srgb(srgb_to_linear(encoded));
-            assert!((back - encoded).abs() < 1e-5, "{code}");
-        }
-    }
 
     #[test]
     fn bilinear_sampling_reproduces_pixel_centres_and_interpolates_between() {

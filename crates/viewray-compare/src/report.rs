@@ -1,14 +1,44 @@
-//! The HTML report: per image, expected / actual / heatmap side by side with the figures
-//! and the verdict.
+//! The HTML report: per pair, expected / actual / heatmap side by side, the verdict the
+//! terminal printed, and every figure with what it means and the rule it was held to.
+//!
+//! The page is a maud template (which escapes every string it is given); it has no
+//! timestamp, so the same report gives the same bytes.
 
 use std::collections::HashSet;
-use std::fmt::Write as _;
-use std::io::{self, Write as _};
+use std::io;
 use std::path::{Path, PathBuf};
 
-use image::{ExtendedColorType, ImageEncoder as _, RgbImage, RgbaImage};
+use image::RgbaImage;
+use maud::{DOCTYPE, Markup, PreEscaped, html};
+use viewray_output::{Compression, encode_png, write_atomically};
 
-use crate::comparison::Comparison;
+use crate::comparison::{Comparison, Metrics};
+use crate::golden::Thresholds;
+use crate::instructor::InstructorThresholds;
+
+/// A report: what it is about, what the terminal said, the rules, and the pairs.
+#[derive(Clone, Copy, Debug)]
+pub struct Report<'a> {
+    /// The page's heading, e.g. `viewray compare reference/ submissions/alice/`.
+    pub title: &'a str,
+    /// The summary line the terminal printed, shown as is, so that the page and the
+    /// terminal say the same thing.
+    pub summary: &'a str,
+    /// The rules the pairs were judged by: the page states them, and holds each figure
+    /// against its threshold.
+    pub rules: Rules,
+    /// The pairs, in the order the terminal listed them.
+    pub entries: &'a [ReportEntry<'a>],
+}
+
+/// The rules a report's pairs were judged by.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rules {
+    /// [`crate::compare`] with these thresholds: the golden check.
+    Golden(Thresholds),
+    /// [`crate::judge`] with these thresholds: `viewray compare`.
+    Instructor(InstructorThresholds),
+}
 
 /// One image's row in a report.
 #[derive(Clone, Copy, Debug)]
@@ -29,8 +59,39 @@ pub enum Outcome<'a> {
     /// The images were compared.
     Compared(&'a Comparison),
     /// They could not be compared (a missing file, a PNG that does not decode): the
-    /// message says why. Counts as a failure.
+    /// message says why.
     Error(&'a str),
+}
+
+/// A pair's verdict, in the words the terminal prints: `PASS`, `FAIL` or `ERROR`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Verdict {
+    /// Compared, and judged the same picture.
+    Pass,
+    /// Compared, and judged different.
+    Fail,
+    /// Not compared: a side missing, unreadable or not a PNG.
+    Error,
+}
+
+impl Verdict {
+    /// `PASS`, `FAIL` or `ERROR`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Verdict::Pass => "PASS",
+            Verdict::Fail => "FAIL",
+            Verdict::Error => "ERROR",
+        }
+    }
+
+    /// `pass`, `fail` or `error`: the page's CSS class, and the JSON lines' word.
+    pub fn word(self) -> &'static str {
+        match self {
+            Verdict::Pass => "pass",
+            Verdict::Fail => "fail",
+            Verdict::Error => "error",
+        }
+    }
 }
 
 impl<'a> ReportEntry<'a> {
@@ -64,60 +125,108 @@ impl<'a> ReportEntry<'a> {
         }
     }
 
+    /// The verdict: [`Verdict::Error`] for a pair that could not be compared.
+    pub fn verdict(&self) -> Verdict {
+        match self.outcome {
+            Outcome::Compared(c) if c.passed() => Verdict::Pass,
+            Outcome::Compared(_) => Verdict::Fail,
+            Outcome::Error(_) => Verdict::Error,
+        }
+    }
+
     /// Whether this entry passed (an error never does).
     pub fn passed(&self) -> bool {
-        matches!(self.outcome, Outcome::Compared(c) if c.passed())
+        self.verdict() == Verdict::Pass
     }
 }
 
-/// Writes an HTML report of `entries` into `directory` (created if missing) and returns
-/// the path of its page, `directory/index.html`.
+/// Writes the HTML report into `directory` (created if missing) and returns the path of
+/// its page, `directory/index.html`.
 ///
 /// Beside the page, for each entry, go `NAME.expected.png`, `NAME.actual.png` and
 /// `NAME.diff.png` (the FLIP heatmap), for the images the entry has; NAME is the entry's
 /// name without a `.png` extension, with characters other than letters, digits, `-`, `_`
 /// and `.` replaced by `_` (and a number added when two entries would collide). Every
-/// file is written atomically (a temporary file renamed into place), so a reader never
-/// sees a partial file. The page has no timestamp: the same entries give the same bytes.
+/// file is written atomically (viewray-output), so a reader never sees a partial file.
+/// The page has no timestamp: the same report gives the same bytes.
 ///
 /// # Errors
-/// Any I/O error creating the directory or writing a file.
-pub fn write_report(
-    directory: impl AsRef<Path>,
-    entries: &[ReportEntry<'_>],
-) -> io::Result<PathBuf> {
+/// Any I/O error creating the directory or writing a file; a file's error names it.
+pub fn write_report(directory: impl AsRef<Path>, report: &Report<'_>) -> io::Result<PathBuf> {
     let directory = directory.as_ref();
     std::fs::create_dir_all(directory)?;
     let mut used = HashSet::new();
-    let mut sections = String::new();
-    for entry in entries {
+    let mut sections = Vec::new();
+    for entry in report.entries {
         let stem = unique_stem(entry.name, &mut used);
         let mut images = Vec::new();
+        let mut add = |role: Role, file: String, pixels: Vec<u8>, width: u32| {
+            write_atomically(directory.join(&file), &pixels)?;
+            images.push(Picture { role, file, width });
+            io::Result::Ok(())
+        };
         if let Some(expected) = entry.expected {
-            let file = format!("{stem}.expected.png");
-            write_atomically(&directory.join(&file), &encode_rgba(expected)?)?;
-            images.push(("expected", file, expected.width()));
+            let png = encode_png(expected, Compression::Balanced)?;
+            add(
+                Role::Expected,
+                format!("{stem}.expected.png"),
+                png,
+                expected.width(),
+            )?;
         }
         if let Some(actual) = entry.actual {
-            let file = format!("{stem}.actual.png");
-            write_atomically(&directory.join(&file), &encode_rgba(actual)?)?;
-            images.push(("actual", file, actual.width()));
+            let png = encode_png(actual, Compression::Balanced)?;
+            add(
+                Role::Actual,
+                format!("{stem}.actual.png"),
+                png,
+                actual.width(),
+            )?;
         }
         if let Outcome::Compared(Comparison {
             heatmap: Some(heatmap),
             ..
         }) = entry.outcome
         {
-            let file = format!("{stem}.diff.png");
-            write_atomically(&directory.join(&file), &encode_rgb(heatmap)?)?;
-            images.push(("difference (FLIP)", file, heatmap.width()));
+            let png = encode_png(heatmap, Compression::Balanced)?;
+            add(
+                Role::Difference,
+                format!("{stem}.diff.png"),
+                png,
+                heatmap.width(),
+            )?;
         }
-        section(&mut sections, entry, &stem, &images);
+        sections.push(Section {
+            entry,
+            stem,
+            images,
+        });
     }
-    let page = page(entries, &sections);
+    let page = page(report, &sections).into_string();
     let path = directory.join("index.html");
     write_atomically(&path, page.as_bytes())?;
     Ok(path)
+}
+
+/// One entry with the files written for it.
+struct Section<'a> {
+    entry: &'a ReportEntry<'a>,
+    stem: String,
+    images: Vec<Picture>,
+}
+
+/// An image written beside the page.
+struct Picture {
+    role: Role,
+    file: String,
+    width: u32,
+}
+
+#[derive(Clone, Copy)]
+enum Role {
+    Expected,
+    Actual,
+    Difference,
 }
 
 /// A file-name stem for `name`, distinct from those already `used`.
@@ -145,147 +254,333 @@ fn unique_stem(name: &str, used: &mut HashSet<String>) -> String {
     candidate
 }
 
-/// Escapes text for HTML.
-fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
+/// What each figure means: the legend's text and each figure's title (hover) text.
+mod meaning {
+    pub(super) const PEAK_FLIP: &str = "FLIP (NVIDIA's perceptual difference: 0 identical, \
+        1 black against white) averaged over the worst 3 x 3-pixel window: how bad the worst \
+        small region looks, while a lone stray pixel counts for a ninth.";
+    pub(super) const MEAN_FLIP: &str =
+        "FLIP averaged over the whole image: a change spread thin over every pixel.";
+    pub(super) const DIFFERING_PIXELS: &str = "Pixels where some channel (R, G, B or A) \
+        differs by more than the channel tolerance, counted on the images as stored.";
+    pub(super) const LARGEST_DIFFERENCE: &str =
+        "The largest difference of any channel of any pixel, in 8-bit codes.";
+    pub(super) const CAMERA: &str = "The systematic transform between the two pictures \
+        (a move, a scale about the centre, a mirror), estimated from the blurred images: a \
+        camera mistake moves the whole picture, where sampling noise does not.";
+    pub(super) const HEATMAP: &str = "The FLIP error of each pixel, from black (none) to \
+        pale yellow (the largest).";
 }
 
-/// Appends one entry's section: title and verdict, figures, images side by side.
-fn section(out: &mut String, entry: &ReportEntry<'_>, stem: &str, images: &[(&str, String, u32)]) {
-    let (verdict, class) = if entry.passed() {
-        ("PASS", "pass")
-    } else {
-        ("FAIL", "fail")
+/// The whole page.
+fn page(report: &Report<'_>, sections: &[Section<'_>]) -> Markup {
+    let listed = |verdict: Verdict| -> Vec<&Section<'_>> {
+        sections
+            .iter()
+            .filter(|s| s.entry.verdict() == verdict)
+            .collect()
     };
-    let _ = writeln!(
-        out,
-        "<section id=\"{}\" class=\"{class}\">\n<h2><span class=\"verdict\">{verdict}</span> {}</h2>",
-        escape(stem),
-        escape(entry.name)
-    );
-    out.push_str("<table class=\"figures\">\n");
-    match entry.outcome {
-        Outcome::Error(message) => {
-            let _ = writeln!(out, "<tr><th>error</th><td>{}</td></tr>", escape(message));
-        }
-        Outcome::Compared(comparison) => {
-            let _ = writeln!(
-                out,
-                "<tr><th>mode</th><td>{}</td></tr>",
-                comparison.mode.name()
-            );
-            if let Some(m) = comparison.metrics {
-                let _ = writeln!(
-                    out,
-                    "<tr><th>mean FLIP</th><td>{:.4}</td></tr>\n\
-                     <tr><th>peak FLIP (3&times;3)</th><td>{:.4}</td></tr>\n\
-                     <tr><th>bad pixels</th><td>{} of {} (largest channel difference {}/255)</td></tr>",
-                    m.mean_flip, m.peak_flip, m.bad_pixels, m.pixel_count, m.max_channel_difference
-                );
+    html! {
+        (DOCTYPE)
+        html lang="en" {
+            head {
+                meta charset="utf-8";
+                title { (report.title) }
+                style { (PreEscaped(STYLE)) }
             }
-            if let Some(diagnosis) = comparison.diagnosis {
-                for message in diagnosis.messages() {
-                    let _ = writeln!(
-                        out,
-                        "<tr><th>diagnosis</th><td class=\"diagnosis\">{}</td></tr>",
-                        escape(&message)
-                    );
+            body {
+                h1 { (report.title) }
+                p.summary { (report.summary) }
+                @for verdict in [Verdict::Fail, Verdict::Error] {
+                    @let names = listed(verdict);
+                    @if !names.is_empty() {
+                        p.index {
+                            span class={ "verdict " (verdict.word()) } { (verdict.label()) }
+                            @for section in names {
+                                " " a href={ "#" (section.stem) } { (section.entry.name) }
+                            }
+                        }
+                    }
+                }
+                (rules(report.rules))
+                @for section in sections {
+                    (entry_section(section, report.rules))
                 }
             }
-            for failure in &comparison.failures {
-                let _ = writeln!(
-                    out,
-                    "<tr><th>failed</th><td>{}</td></tr>",
-                    escape(&failure.to_string())
-                );
+        }
+    }
+}
+
+/// How the pairs were judged: the verdicts, the rule, and what each figure means.
+fn rules(rules: Rules) -> Markup {
+    html! {
+        section.rules {
+            h2 { "How to read this page" }
+            dl {
+                dt { span.verdict.pass { "PASS" } }
+                dd { (match rules {
+                    Rules::Instructor(_) => "The render shows the reference's picture: \
+                        antialiasing and the sample count are not errors.",
+                    Rules::Golden(_) => "The image matches its golden image up to \
+                        last-bit floating-point noise.",
+                }) }
+                dt { span.verdict.fail { "FAIL" } }
+                dd { "Compared, and judged different: the reasons are under the image." }
+                dt { span.verdict.error { "ERROR" } }
+                dd { (match rules {
+                    Rules::Instructor(_) => "Not compared: a file on one side only, \
+                        unreadable, or not a PNG.",
+                    Rules::Golden(_) => "Not compared: no golden image yet, an unreadable \
+                        one, or an image that could not be made.",
+                }) }
+            }
+            p { (rule_sentence(rules)) }
+            dl.legend {
+                dt { "peak FLIP" } dd { (meaning::PEAK_FLIP) }
+                dt { "mean FLIP" } dd { (meaning::MEAN_FLIP) }
+                dt { "pixels that differ" }
+                dd { (meaning::DIFFERING_PIXELS) " The tolerance: " (channel_tolerance(rules)) " of 255." }
+                dt { "largest difference" } dd { (meaning::LARGEST_DIFFERENCE) }
+                @if let Rules::Instructor(_) = rules {
+                    dt { "camera" } dd { (meaning::CAMERA) }
+                }
+                dt { "difference" }
+                dd { span.ramp {} " " (meaning::HEATMAP) }
             }
         }
     }
-    out.push_str("</table>\n<div class=\"images\">\n");
-    for &(caption, ref file, width) in images {
-        // Small renders are shown enlarged, pixel for pixel; large ones fit the column.
-        let shown = (width * (480 / width.max(1)).clamp(1, 4)).min(480);
-        let _ = writeln!(
-            out,
-            "<figure><a href=\"{file}\"><img src=\"{file}\" alt=\"{caption}\" style=\"width: {shown}px\"></a><figcaption>{caption}</figcaption></figure>",
-            file = escape(file),
-        );
-    }
-    out.push_str("</div>\n</section>\n");
 }
 
-/// The whole page around the sections.
-fn page(entries: &[ReportEntry<'_>], sections: &str) -> String {
-    let failed: Vec<&ReportEntry<'_>> = entries.iter().filter(|e| !e.passed()).collect();
-    let mut out = String::new();
-    out.push_str(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>viewray image comparison</title>\n<style>\n",
+/// The channel difference, in 8-bit codes, beyond which a pixel counts as differing.
+fn channel_tolerance(rules: Rules) -> u8 {
+    match rules {
+        Rules::Golden(t) => t.channel_tolerance,
+        Rules::Instructor(_) => Thresholds::GOLDEN.channel_tolerance,
+    }
+}
+
+/// The rule a pair must meet to pass, in one sentence.
+fn rule_sentence(rules: Rules) -> String {
+    match rules {
+        Rules::Instructor(t) => format!(
+            "Judged as an instructor would: both images are blurred by {} px in linear \
+             light, so that sampling noise cancels, and compared with FLIP. A pair passes \
+             when the peak FLIP of the blurred images is at most {} and the picture is not \
+             moved by more than {} px, scaled by more than {}% or mirrored (a camera \
+             mistake). The other figures are shown to explain, not judged.",
+            t.blur_sigma,
+            t.max_peak_flip,
+            t.max_shift,
+            t.max_scale_error * 100.0
+        ),
+        Rules::Golden(t) => format!(
+            "Golden check: an image passes when at most {}% of its pixels (and at least {}) \
+             differ by more than {}/255 in a channel, its mean FLIP is at most {} and its \
+             peak FLIP at most {}.",
+            t.bad_pixel_fraction * 100.0,
+            t.min_allowed_bad_pixels,
+            t.channel_tolerance,
+            t.max_mean_flip,
+            t.max_peak_flip
+        ),
+    }
+}
+
+/// One figure's row: its name (with its meaning as title text), its value, and the rule
+/// it is held to with whether it meets it (`None`: shown, not judged).
+struct Figure {
+    name: &'static str,
+    meaning: &'static str,
+    value: String,
+    rule: String,
+    meets: Option<bool>,
+}
+
+/// The figures of a comparison, in the order they matter under `rules`.
+fn figures(metrics: &Metrics, comparison: &Comparison, rules: Rules) -> Vec<Figure> {
+    let percent = 100.0 * metrics.bad_pixels as f64 / metrics.pixel_count.max(1) as f64;
+    let differing = format!(
+        "{} of {} ({percent:.1}%)",
+        metrics.bad_pixels, metrics.pixel_count
     );
-    out.push_str(STYLE);
-    out.push_str("</style>\n</head>\n<body>\n<h1>viewray image comparison</h1>\n");
-    let errors = entries
-        .iter()
-        .filter(|e| matches!(e.outcome, Outcome::Error(_)))
-        .count();
-    let not_compared = if errors > 0 {
-        format!(", {errors} could not be compared")
-    } else {
-        String::new()
+    let largest = format!("{} of 255", metrics.max_channel_difference);
+    let not_judged = |why: &str| why.to_owned();
+    match rules {
+        Rules::Instructor(t) => vec![
+            Figure {
+                name: "peak FLIP",
+                meaning: meaning::PEAK_FLIP,
+                value: format!("{:.3}", metrics.peak_flip),
+                rule: format!(
+                    "blurred by {} px; passes at most {}",
+                    t.blur_sigma, t.max_peak_flip
+                ),
+                meets: Some(metrics.peak_flip <= t.max_peak_flip),
+            },
+            Figure {
+                name: "camera",
+                meaning: meaning::CAMERA,
+                value: match comparison.diagnosis {
+                    Some(d) => d.messages().join("; "),
+                    None => "no move, scale or mirror found".to_owned(),
+                },
+                rule: format!(
+                    "a move over {} px, a scale over {}% or a mirror fails",
+                    t.max_shift,
+                    t.max_scale_error * 100.0
+                ),
+                meets: Some(comparison.diagnosis.is_none()),
+            },
+            Figure {
+                name: "mean FLIP",
+                meaning: meaning::MEAN_FLIP,
+                value: format!("{:.4}", metrics.mean_flip),
+                rule: not_judged("of the blurred images; not judged"),
+                meets: None,
+            },
+            Figure {
+                name: "pixels that differ",
+                meaning: meaning::DIFFERING_PIXELS,
+                value: differing,
+                rule: format!(
+                    "by more than {}/255; not judged: sampling alone changes edge pixels",
+                    channel_tolerance(rules)
+                ),
+                meets: None,
+            },
+            Figure {
+                name: "largest difference",
+                meaning: meaning::LARGEST_DIFFERENCE,
+                value: largest,
+                rule: not_judged("not judged"),
+                meets: None,
+            },
+        ],
+        Rules::Golden(t) => {
+            let allowed = t.max_bad_pixels(metrics.pixel_count);
+            vec![
+                Figure {
+                    name: "pixels that differ",
+                    meaning: meaning::DIFFERING_PIXELS,
+                    value: differing,
+                    rule: format!(
+                        "by more than {}/255; passes at most {allowed}",
+                        t.channel_tolerance
+                    ),
+                    meets: Some(metrics.bad_pixels <= allowed),
+                },
+                Figure {
+                    name: "mean FLIP",
+                    meaning: meaning::MEAN_FLIP,
+                    value: format!("{:.4}", metrics.mean_flip),
+                    rule: format!("passes at most {}", t.max_mean_flip),
+                    meets: Some(metrics.mean_flip <= t.max_mean_flip),
+                },
+                Figure {
+                    name: "peak FLIP",
+                    meaning: meaning::PEAK_FLIP,
+                    value: format!("{:.4}", metrics.peak_flip),
+                    rule: format!("passes at most {}", t.max_peak_flip),
+                    meets: Some(metrics.peak_flip <= t.max_peak_flip),
+                },
+                Figure {
+                    name: "largest difference",
+                    meaning: meaning::LARGEST_DIFFERENCE,
+                    value: largest,
+                    rule: not_judged("not judged"),
+                    meets: None,
+                },
+            ]
+        }
+    }
+}
+
+/// One entry's section: verdict and name, figures, images side by side.
+fn entry_section(section: &Section<'_>, rules: Rules) -> Markup {
+    let entry = section.entry;
+    let verdict = entry.verdict();
+    html! {
+        section id=(section.stem) class={ "entry " (verdict.word()) } {
+            h2 {
+                span class={ "verdict " (verdict.word()) } { (verdict.label()) }
+                " " (entry.name)
+            }
+            table.figures {
+                @match entry.outcome {
+                    Outcome::Error(message) => {
+                        tr.error { th { "not compared" } td colspan="2" { (message) } }
+                    }
+                    Outcome::Compared(comparison) => {
+                        @if let Some(metrics) = &comparison.metrics {
+                            @for figure in figures(metrics, comparison, rules) {
+                                tr class=(match figure.meets {
+                                    Some(true) => "meets",
+                                    Some(false) => "misses",
+                                    None => "shown",
+                                }) {
+                                    th title=(figure.meaning) { (figure.name) }
+                                    td.value { (figure.value) }
+                                    td.rule { (figure.rule) }
+                                }
+                            }
+                        }
+                        @for failure in &comparison.failures {
+                            tr.why { th { "why it failed" } td colspan="2" { (failure.to_string()) } }
+                        }
+                    }
+                }
+            }
+            div.images {
+                @for picture in &section.images {
+                    (figure_html(picture, rules))
+                }
+            }
+        }
+    }
+}
+
+/// An image beside its caption; small renders are shown enlarged, pixel for pixel.
+fn figure_html(picture: &Picture, rules: Rules) -> Markup {
+    let caption = match (picture.role, rules) {
+        (Role::Expected, _) => "expected",
+        (Role::Actual, _) => "actual",
+        (Role::Difference, Rules::Instructor(_)) => "difference (FLIP of the blurred images)",
+        (Role::Difference, Rules::Golden(_)) => "difference (FLIP)",
     };
-    let _ = writeln!(
-        out,
-        "<p class=\"summary\">{} passed, {} failed{not_compared}, of {}.</p>",
-        entries.len() - failed.len(),
-        failed.len() - errors,
-        entries.len()
-    );
-    if !failed.is_empty() {
-        out.push_str("<p>Failed:");
-        let mut used = HashSet::new();
-        for entry in entries {
-            let stem = unique_stem(entry.name, &mut used);
-            if !entry.passed() {
-                let _ = write!(
-                    out,
-                    " <a href=\"#{}\">{}</a>",
-                    escape(&stem),
-                    escape(entry.name)
-                );
+    let width = picture.width;
+    let shown = (width * (480 / width.max(1)).clamp(1, 4)).min(480);
+    html! {
+        figure {
+            a href=(picture.file) {
+                img src=(picture.file) alt=(caption) style={ "width: " (shown) "px" };
             }
+            figcaption { (caption) }
         }
-        out.push_str("</p>\n");
     }
-    out.push_str(
-        "<p class=\"legend\">Difference: FLIP error per pixel, <span class=\"ramp\"></span> \
-         from black (none) to pale yellow (largest).</p>\n",
-    );
-    out.push_str(sections);
-    out.push_str("</body>\n</html>\n");
-    out
 }
 
-const STYLE: &str = "\
-body { font-family: system-ui, sans-serif; margin: 2em; color: #222; background: #fafafa; }
+const STYLE: &str = "
+body { font-family: system-ui, sans-serif; margin: 2em; color: #222; background: #fafafa; max-width: 90em; }
 h1 { font-size: 1.5em; }
 h2 { font-size: 1.15em; margin: 0 0 0.5em; }
-section { background: #fff; border: 1px solid #ddd; border-left: 6px solid #2a2; padding: 1em; margin: 1em 0; }
-section.fail { border-left-color: #c22; }
-.verdict { display: inline-block; padding: 0 0.4em; border-radius: 3px; color: #fff; background: #2a2; }
-section.fail .verdict { background: #c22; }
-.figures th { text-align: left; padding-right: 1em; font-weight: normal; color: #666; vertical-align: top; }
-.diagnosis { font-weight: bold; }
+.summary { font-size: 1.1em; font-weight: bold; }
+section { background: #fff; border: 1px solid #ddd; padding: 1em; margin: 1em 0; }
+section.entry { border-left: 6px solid #2a2; }
+section.entry.fail { border-left-color: #c22; }
+section.entry.error { border-left-color: #888; }
+.verdict { display: inline-block; padding: 0 0.4em; border-radius: 3px; color: #fff; font-weight: bold; font-size: 0.9em; }
+.verdict.pass { background: #2a2; }
+.verdict.fail { background: #c22; }
+.verdict.error { background: #777; }
+.rules dl { display: grid; grid-template-columns: max-content auto; gap: 0.3em 1em; margin: 0.5em 0; }
+.rules dt { font-weight: bold; }
+.rules dd { margin: 0; }
+.figures th { white-space: nowrap; text-align: left; padding-right: 1em; font-weight: normal; color: #555; vertical-align: top; cursor: help; }
+.figures td { padding-right: 1.5em; vertical-align: top; }
+.figures td.rule { color: #666; }
+.figures tr.misses td.value { color: #c22; font-weight: bold; }
+.figures tr.meets td.value { color: #185; }
+.figures tr.why td, .figures tr.error td { font-weight: bold; }
 .images { display: flex; flex-wrap: wrap; gap: 1em; margin-top: 0.8em; }
 figure { margin: 0; }
 figure img { image-rendering: pixelated; border: 1px solid #ccc; display: block; }
@@ -293,55 +588,6 @@ figcaption { color: #666; font-size: 0.9em; text-align: center; }
 .ramp { display: inline-block; width: 8em; height: 0.8em; vertical-align: middle;
   background: linear-gradient(to right, #000004, #3b0f70, #8c2981, #de4968, #fe9f6d, #fcfdbf); }
 ";
-
-fn encode_rgba(image: &RgbaImage) -> io::Result<Vec<u8>> {
-    encode(
-        image.as_raw(),
-        image.width(),
-        image.height(),
-        ExtendedColorType::Rgba8,
-    )
-}
-
-fn encode_rgb(image: &RgbImage) -> io::Result<Vec<u8>> {
-    encode(
-        image.as_raw(),
-        image.width(),
-        image.height(),
-        ExtendedColorType::Rgb8,
-    )
-}
-
-/// Encodes pixels as a PNG with no ancillary chunks (no time, no text).
-fn encode(pixels: &[u8], width: u32, height: u32, color: ExtendedColorType) -> io::Result<Vec<u8>> {
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(pixels, width, height, color)
-        .map_err(io::Error::other)?;
-    Ok(bytes)
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same directory, renamed over
-/// `path` once complete.
-fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let directory = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".viewray-report-").suffix(".tmp");
-    // The temporary file is private (0600) by default; a report is an ordinary file.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut file = builder.tempfile_in(directory)?;
-    file.write_all(bytes)?;
-    file.as_file().sync_all()?;
-    file.persist(path).map_err(|e| e.error)?;
-    Ok(())
-}
 
 #[cfg(test)]
 mod tests {
@@ -355,13 +601,5 @@ mod tests {
         assert_eq!(unique_stem("a b/c<d>.png", &mut used), "a_b_c_d_");
         assert_eq!(unique_stem("../x", &mut used), "_.._x");
         assert_eq!(unique_stem("", &mut used), "_");
-    }
-
-    #[test]
-    fn html_special_characters_are_escaped() {
-        assert_eq!(
-            escape("<a href=\"x\">&'"),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;"
-        );
     }
 }

@@ -22,23 +22,23 @@ fn render(samples: u32, edit: impl Fn(&mut Perspective)) -> RgbaImage {
         size: Some((W, H)),
         samples: Some(samples),
     };
-    let mut scene = Scene::load_with(&path, options).unwrap();
-    let Projection::Perspective(mut perspective) = *scene.camera.projection() else {
+    let scene = Scene::load_with(&path, options).unwrap();
+    let Projection::Perspective(mut perspective) = *scene.camera().projection() else {
         panic!("the fixture is a perspective camera");
     };
     edit(&mut perspective);
-    scene.camera = Camera::new(
-        *scene.camera.frame(),
+    let camera = Camera::new(
+        *scene.camera().frame(),
         Projection::Perspective(perspective),
         W,
         H,
     )
     .unwrap();
+    let scene = scene.with_camera(camera);
     let image = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})
         .unwrap()
         .image;
-    let rgb = image::RgbImage::from_raw(W, H, image.to_rgb8()).unwrap();
-    image::DynamicImage::ImageRgb8(rgb).to_rgba8()
+    image::DynamicImage::ImageRgb8(image.to_rgb_image()).to_rgba8()
 }
 
 fn correct(_: &mut Perspective) {}

@@ -3,7 +3,34 @@
 mod scene;
 
 use scene::{Mistake, Pattern, Scene};
-use viewray_compare::{InstructorThresholds, ReportEntry, judge, load_png, write_report};
+use scraper::{ElementRef, Html, Selector};
+use viewray_compare::{
+    InstructorThresholds, Report, ReportEntry, Rules, Thresholds, compare, judge, load_png,
+    write_report,
+};
+
+/// The elements of `page` that `selector` selects.
+fn select<'a>(page: &'a Html, selector: &str) -> Vec<ElementRef<'a>> {
+    page.select(&Selector::parse(selector).unwrap()).collect()
+}
+
+/// The text of `element`, whitespace collapsed.
+fn text(element: &ElementRef<'_>) -> String {
+    element
+        .text()
+        .collect::<String>()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The texts of the elements under `element` that `selector` selects.
+fn texts_in(element: &ElementRef<'_>, selector: &str) -> Vec<String> {
+    element
+        .select(&Selector::parse(selector).unwrap())
+        .map(|e| text(&e))
+        .collect()
+}
 
 #[test]
 fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
@@ -35,7 +62,13 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
     ];
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("report");
-    let page_path = write_report(&out, &entries).unwrap();
+    let report = Report {
+        title: "viewray compare a/ b/",
+        summary: "3 images: 1 passed, 1 failed, 1 could not be compared (threshold 0.3)",
+        rules: Rules::Instructor(thresholds),
+        entries: &entries,
+    };
+    let page_path = write_report(&out, &report).unwrap();
     assert_eq!(page_path, out.join("index.html"));
 
     let mut files: Vec<String> = std::fs::read_dir(&out)
@@ -64,23 +97,236 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         (w, h)
     );
 
-    let page = std::fs::read_to_string(&page_path).unwrap();
-    assert!(
-        page.contains("1 passed, 1 failed, 1 could not be compared, of 3."),
-        "{page}"
+    let source = std::fs::read_to_string(&page_path).unwrap();
+    let page = Html::parse_document(&source);
+    assert!(page.errors.is_empty(), "{:?}", page.errors);
+    assert_eq!(
+        texts_in(&page.root_element(), "h1"),
+        ["viewray compare a/ b/"]
     );
-    assert!(page.contains("mirrored &lt;x&gt;.png"));
-    assert!(page.contains("mirrored left-right: check u = up x w"));
-    assert!(page.contains("lonely.png: only in EXPECTED"));
-    assert!(page.contains("<img src=\"correct.diff.png\""));
-    for section in ["correct", "mirrored__x_", "lonely"] {
-        assert!(
-            page.contains(&format!("<section id=\"{section}\"")),
-            "{section}"
-        );
-    }
+    // The summary is the terminal's line, word for word.
+    assert_eq!(
+        texts_in(&page.root_element(), "p.summary"),
+        [report.summary]
+    );
+    // The index lists the failed pairs and, apart, the ones that could not be compared.
+    assert_eq!(
+        texts_in(&page.root_element(), "p.index"),
+        ["FAIL mirrored <x>.png", "ERROR lonely.png"]
+    );
+    let links: Vec<&str> = select(&page, "p.index a")
+        .iter()
+        .map(|a| a.value().attr("href").unwrap())
+        .collect();
+    assert_eq!(links, ["#mirrored__x_", "#lonely"]);
 
-    // The same entries give the same bytes (no timestamps).
-    write_report(&out, &entries).unwrap();
-    assert_eq!(std::fs::read_to_string(&page_path).unwrap(), page);
+    // One section per pair, in order, with the terminal's verdict word.
+    let sections = select(&page, "section.entry");
+    let headings: Vec<String> = sections
+        .iter()
+        .map(|s| texts_in(s, "h2")[0].clone())
+        .collect();
+    assert_eq!(
+        headings,
+        [
+            "PASS correct.png",
+            "FAIL mirrored <x>.png",
+            "ERROR lonely.png"
+        ]
+    );
+    let ids: Vec<&str> = sections.iter().map(|s| s.value().id().unwrap()).collect();
+    assert_eq!(ids, ["correct", "mirrored__x_", "lonely"]);
+    let classes: Vec<Vec<&str>> = sections
+        .iter()
+        .map(|s| s.value().classes().collect())
+        .collect();
+    assert_eq!(
+        classes,
+        [["entry", "pass"], ["entry", "fail"], ["entry", "error"]]
+    );
+
+    // Every figure has its meaning as title text and the rule it is held to; the ones
+    // that do not decide the verdict say so.
+    let figure_names = |section: &ElementRef<'_>| texts_in(section, "tr th[title]");
+    for section in &sections[..2] {
+        assert_eq!(
+            figure_names(section),
+            [
+                "peak FLIP",
+                "camera",
+                "mean FLIP",
+                "pixels that differ",
+                "largest difference"
+            ]
+        );
+        for row in section.select(&Selector::parse("tr:has(th[title])").unwrap()) {
+            let title = row
+                .select(&Selector::parse("th").unwrap())
+                .next()
+                .unwrap()
+                .value()
+                .attr("title")
+                .unwrap();
+            assert!(title.len() > 40, "{title}");
+            let rule = texts_in(&row, "td.rule").concat();
+            let judged = row
+                .value()
+                .has_class("meets", scraper::CaseSensitivity::CaseSensitive)
+                || row
+                    .value()
+                    .has_class("misses", scraper::CaseSensitivity::CaseSensitive);
+            assert_eq!(rule.contains("not judged"), !judged, "{rule}");
+        }
+    }
+    // Each judged figure is marked as meeting its rule or not, as the verdict found.
+    let rows = |section: &ElementRef<'_>| -> Vec<(String, String, String)> {
+        section
+            .select(&Selector::parse("tr:has(th[title])").unwrap())
+            .map(|row| {
+                let class = row.value().classes().next().unwrap().to_owned();
+                (
+                    texts_in(&row, "th").concat(),
+                    texts_in(&row, "td.value").concat(),
+                    class,
+                )
+            })
+            .collect()
+    };
+    let correct_rows = rows(&sections[0]);
+    assert!(
+        correct_rows.iter().all(|(_, _, class)| class != "misses"),
+        "{correct_rows:?}"
+    );
+    let mirrored_rows = rows(&sections[1]);
+    let peak_misses = failed.metrics.unwrap().peak_flip > thresholds.max_peak_flip;
+    assert_eq!(
+        mirrored_rows[0],
+        (
+            "peak FLIP".to_owned(),
+            format!("{:.3}", failed.metrics.unwrap().peak_flip),
+            if peak_misses { "misses" } else { "meets" }.to_owned()
+        )
+    );
+    assert_eq!(
+        mirrored_rows[1],
+        (
+            "camera".to_owned(),
+            "mirrored left-right: check u = up x w".to_owned(),
+            "misses".to_owned()
+        )
+    );
+    assert_eq!(mirrored_rows[3].2, "shown");
+    assert!(
+        texts_in(&sections[1], "tr.why td")
+            .iter()
+            .any(|w| w.contains("camera mistake"))
+    );
+    assert_eq!(
+        texts_in(&sections[2], "tr.error td"),
+        ["lonely.png: only in EXPECTED"]
+    );
+    // The images, linked, with their captions.
+    let images: Vec<(String, String)> = sections
+        .iter()
+        .flat_map(|s| {
+            s.select(&Selector::parse("figure").unwrap())
+                .map(|f| {
+                    let img = f
+                        .select(&Selector::parse("a > img").unwrap())
+                        .next()
+                        .unwrap();
+                    (
+                        img.value().attr("src").unwrap().to_owned(),
+                        texts_in(&f, "figcaption").concat(),
+                    )
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert_eq!(
+        images[2],
+        (
+            "correct.diff.png".to_owned(),
+            "difference (FLIP of the blurred images)".to_owned()
+        )
+    );
+    assert_eq!(images.len(), 7);
+    // The legend explains each verdict and each figure.
+    assert_eq!(
+        texts_in(&page.root_element(), "section.rules dl:not(.legend) dt"),
+        ["PASS", "FAIL", "ERROR"]
+    );
+    assert_eq!(
+        texts_in(&page.root_element(), "dl.legend dt"),
+        [
+            "peak FLIP",
+            "mean FLIP",
+            "pixels that differ",
+            "largest difference",
+            "camera",
+            "difference"
+        ]
+    );
+
+    // The same report gives the same bytes (no timestamps).
+    write_report(&out, &report).unwrap();
+    assert_eq!(std::fs::read_to_string(&page_path).unwrap(), source);
+}
+
+#[test]
+fn a_golden_report_holds_each_figure_against_the_golden_gates() {
+    let (w, h) = (64, 48);
+    let reference = Scene::default().render(w, h, Mistake::NONE, Pattern::Grid(4));
+    let moved = Scene::default().render(
+        w,
+        h,
+        Mistake {
+            shift: (1.0, 0.0),
+            ..Mistake::NONE
+        },
+        Pattern::Grid(4),
+    );
+    let comparison = compare(&reference, &moved, &Thresholds::GOLDEN);
+    assert!(!comparison.passed());
+    let entries = [ReportEntry::compared(
+        "scenes/moved",
+        &reference,
+        &moved,
+        &comparison,
+    )];
+    let dir = tempfile::tempdir().unwrap();
+    let report = Report {
+        title: "viewray golden images: the failures",
+        summary: "1 of 46 golden images differ and 0 goldens have no scene",
+        rules: Rules::Golden(Thresholds::GOLDEN),
+        entries: &entries,
+    };
+    let page = write_report(dir.path(), &report).unwrap();
+    let page = Html::parse_document(&std::fs::read_to_string(page).unwrap());
+    assert_eq!(
+        texts_in(&page.root_element(), "p.summary"),
+        [report.summary]
+    );
+    let section = &select(&page, "section.entry")[0];
+    assert_eq!(texts_in(section, "h2"), ["FAIL scenes/moved"]);
+    assert_eq!(
+        texts_in(section, "tr th[title]"),
+        [
+            "pixels that differ",
+            "mean FLIP",
+            "peak FLIP",
+            "largest difference"
+        ]
+    );
+    assert!(texts_in(section, "tr.misses th").contains(&"pixels that differ".to_owned()));
+    let allowed = Thresholds::GOLDEN.max_bad_pixels(u64::from(w * h));
+    assert_eq!(
+        texts_in(section, "tr:has(th[title]) td.rule")[0],
+        format!("by more than 2/255; passes at most {allowed}")
+    );
+    assert!(
+        texts_in(&page.root_element(), "section.rules p")
+            .concat()
+            .starts_with("Golden check: an image passes when at most 0.05% of its pixels")
+    );
 }

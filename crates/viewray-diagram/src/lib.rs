@@ -1,61 +1,262 @@
-//! Lecture figures as display lists, rendered to PNG with tiny-skia and written as SVG.
+//! The lecture's figures, drawn with `viewray-draw` from the camera code.
 //!
-//! This crate owns the 2D drawing layer of viewray's figures: a [`Figure`] is a canvas and
-//! a list of [`Item`]s (lines, polylines, arrows, dots, polygons, ellipses, [`Label`]s and
-//! embedded raster images) in figure pixels, x right and y down. [`Mapping`] lets figure
-//! code draw in world units with y up. [`style`] fixes the visual language (colours, line
-//! weights, label sizes, the 1600 x 900 slide and 1080 x 1080 square canvases) so every
-//! lecture figure matches.
+//! Every 3D point of a figure is placed through a `FigureView`: a viewray [`Camera`]'s
+//! [`Camera::project`] (the 3D figures look through an orthographic "figure camera", the
+//! pictures through the camera they show) or a side view of the y-z plane. Every viewing
+//! ray drawn is one that a camera generates ([`Camera::generate_ray`]) and is recorded
+//! with the figure, so tests check the figures against the cameras number by number, and
+//! a figure can never disagree with a render.
 //!
-//! [`figures`] draws the lecture's figures on this layer, every 3D point placed with a
-//! `viewray-camera` camera's `project` and every ray one its `generate_ray` makes; its
-//! registry ([`figures::all_figures`], [`figures::figure_by_name`]) is what `viewray
-//! figure(s)` and `cargo xtask figures` list. Pictures inside figures come from a
-//! [`figures::Pictures`] source: [`figures::RenderedPictures`] builds each picture's
-//! scene in code and renders it with `viewray-render` (the default, what
-//! [`figures::NamedFigure::figure`] draws), [`figures::Wireframes`] draws projected
-//! polygons instead, without ray tracing.
+//! The pictures inside figures (the taxonomy's thumbnails, the distortions' and the thin
+//! lens's pictures) are rendered by `viewray-render` at the size of their slot, so they
+//! land on the figure pixel for pixel; the little scenes they show are built in code as
+//! `viewray-scene`'s runtime `Scene`, the same objects as the fixtures' scene files.
 //!
-//! It knows nothing about scene files (it builds `viewray-scene`'s runtime `Scene`
-//! directly), and it does no I/O except [`Figure::write_png`] and [`Figure::write_svg`],
-//! which write one file atomically.
+//! The figures share one visual language (colours, line weights, label sizes, the
+//! 1600 x 900 slide and 1080 x 1080 square canvases), so the camera basis looks the same
+//! on every slide. Labels follow the lecture's notation: vectors in bold (**u**), scalars
+//! in italics (*vw*).
 //!
-//! Text is set with the DejaVu Sans faces bundled in the `dejavu` crate (nothing to
-//! install), laid out with the font's kerning and rasterized from its glyph outlines with
-//! antialiasing. SVG output draws the same outlines as paths by default, so a slide looks
-//! identical everywhere; [`SvgText::Elements`] writes editable `<text>` instead. Labels
-//! follow the lecture's notation: [`Label::vector`] sets **u** in bold, [`Label::math`]
-//! sets *vw* in italics, and `v_h` writes h as a subscript.
+//! [`all_figures`] lists the figures by name for `viewray figure NAME`, `cargo xtask
+//! figures` and the golden check (`golden/figures/<name>.png`); [`figure_by_name`] finds
+//! one. This crate knows no file format and does no I/O: writing a figure is
+//! `viewray-draw`'s.
 //!
-//! ```
-//! use glam::Vec2;
-//! use viewray_diagram::{style, ArrowEnds, Figure, Item, Label, Stroke};
+//! ```no_run
+//! use viewray_diagram::figure_by_name;
 //!
-//! let mut figure = Figure::square();
-//! let e = Vec2::new(200.0, 800.0);
-//! figure.push(Item::Arrow {
-//!     from: e,
-//!     to: Vec2::new(600.0, 800.0),
-//!     stroke: Stroke::new(style::U_AXIS, style::LINE_THICK),
-//!     ends: ArrowEnds::End,
-//! });
-//! figure.push(Label::vector("u", Vec2::new(640.0, 800.0)).with_color(style::U_AXIS));
-//! let pixels = figure.render();
-//! assert_eq!(pixels.dimensions(), (1080, 1080));
-//! assert!(figure.to_svg().contains("<svg"));
+//! let taxonomy = figure_by_name("taxonomy").expect("a lecture figure").figure();
+//! let pixels = viewray_draw::raster::render(&taxonomy);
+//! assert_eq!(pixels.dimensions(), (1600, 900));
 //! ```
 
-mod color;
-mod figure;
-pub mod figures;
-mod mapping;
-mod output;
-mod raster;
-pub mod style;
-mod svg;
-mod text;
+mod assumptions;
+mod canonical;
+mod clip;
+mod distortions;
+mod frame;
+mod image_plane;
+mod pictures;
+mod rendered;
+mod side;
+mod sketch;
+mod style;
+mod taxonomy;
+#[cfg(test)]
+mod tests;
+mod thin_lens;
+mod view;
+mod viewing_rays;
 
-pub use color::Color;
-pub use figure::{ArrowEnds, Figure, Item, Rect, Sampling, Stroke, SvgText};
-pub use mapping::Mapping;
-pub use text::{Anchor, Baseline, FontFace, Label, TextExtent, measure_text};
+use std::fmt;
+
+use glam::{DVec3, Vec2};
+use viewray_camera::{Camera, CameraSample};
+use viewray_draw::Figure;
+
+use crate::assumptions::{
+    assumption_basis, assumption_distance, assumption_eye, assumption_viewport,
+};
+use crate::canonical::{canonical_camera, canonical_camera_square};
+use crate::distortions::{distortion_foreshortening, distortion_verticals};
+use crate::frame::{camera_frame, camera_frame_square};
+use crate::image_plane::pixel_to_image_plane;
+use crate::pictures::Pictures;
+use crate::rendered::RenderedPictures;
+use crate::taxonomy::taxonomy;
+use crate::thin_lens::thin_lens;
+use crate::view::FigureView;
+use crate::viewing_rays::viewing_rays;
+
+/// A figure and the viewing rays it draws.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Diagram {
+    /// The figure.
+    pub(crate) figure: Figure,
+    /// Every viewing ray drawn, with the camera that generated it, in drawing order.
+    pub(crate) rays: Vec<DrawnRay>,
+}
+
+/// A viewing ray drawn on a figure: which camera generated it for which pixel and
+/// sample, the world segment drawn, and where it was drawn.
+///
+/// ```text
+/// from = ray.at(t.0),  to = ray.at(t.1),  ray = camera.generate_ray(row, col, sample)
+/// from_px = view.to_figure(from),  to_px = view.to_figure(to)
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DrawnRay {
+    /// How the figure places world points.
+    pub(crate) view: FigureView,
+    /// The camera that generated the ray.
+    pub(crate) camera: Camera,
+    /// The pixel's row (0-based, from the top).
+    pub(crate) row: u32,
+    /// The pixel's column (0-based, from the left).
+    pub(crate) col: u32,
+    /// The film and lens sample.
+    pub(crate) sample: CameraSample,
+    /// The ray parameters of the drawn segment's ends.
+    pub(crate) t: (f64, f64),
+    /// The world point at `t.0`.
+    pub(crate) from: DVec3,
+    /// The world point at `t.1`.
+    pub(crate) to: DVec3,
+    /// Where `from` is drawn (figure pixels).
+    pub(crate) from_px: Vec2,
+    /// Where `to` is drawn (figure pixels).
+    pub(crate) to_px: Vec2,
+}
+
+/// A lecture figure with its name, as `viewray figure NAME` and `cargo xtask figures`
+/// list them.
+#[derive(Clone, Copy)]
+pub struct NamedFigure {
+    /// The name, snake_case: also the file stem of `golden/figures/<name>.png`.
+    pub name: &'static str,
+    /// One line saying what the figure shows.
+    pub summary: &'static str,
+    draw: fn(&dyn Pictures) -> Diagram,
+}
+
+impl NamedFigure {
+    /// Draws the figure, taking its pictures (if it has any) from `pictures`.
+    pub(crate) fn draw(&self, pictures: &dyn Pictures) -> Diagram {
+        (self.draw)(pictures)
+    }
+
+    /// The figure as the lecture shows it: its pictures rendered by the ray tracer.
+    pub fn figure(&self) -> Figure {
+        self.draw(&RenderedPictures::default()).figure
+    }
+
+    /// The figure with every picture drawn as flat-shaded polygons projected with the
+    /// picture's camera: nothing is ray traced, so it is quick, for previews and tests.
+    pub fn wireframe(&self) -> Figure {
+        self.draw(&pictures::Wireframes).figure
+    }
+}
+
+impl fmt::Debug for NamedFigure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("NamedFigure")
+            .field("name", &self.name)
+            .field("summary", &self.summary)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Every lecture figure, in the lecture's order.
+pub fn all_figures() -> Vec<NamedFigure> {
+    vec![
+        NamedFigure {
+            name: "canonical_camera",
+            summary: "The canonical camera: eye at the origin, -z, d = 1, rays through the pixel centres",
+            draw: |_| canonical_camera(),
+        },
+        NamedFigure {
+            name: "canonical_camera_square",
+            summary: "The canonical camera on the square canvas",
+            draw: |_| canonical_camera_square(),
+        },
+        NamedFigure {
+            name: "pixel_to_image_plane",
+            summary: "Pixel indices (row, col) and (i, j) to the image-plane point (u, v)",
+            draw: |_| pixel_to_image_plane(),
+        },
+        NamedFigure {
+            name: "assumption_distance",
+            summary: "Breaking the assumptions, 1: d != 1 narrows the view",
+            draw: |_| assumption_distance(),
+        },
+        NamedFigure {
+            name: "assumption_viewport",
+            summary: "Breaking the assumptions, 2: vw != vh != 1 scales u and v",
+            draw: |_| assumption_viewport(),
+        },
+        NamedFigure {
+            name: "assumption_eye",
+            summary: "Breaking the assumptions, 3: the eye moved to e, rays start there",
+            draw: |_| assumption_eye(),
+        },
+        NamedFigure {
+            name: "assumption_basis",
+            summary: "Breaking the assumptions, 4: a general basis, direction u u + v v - d w",
+            draw: |_| assumption_basis(),
+        },
+        NamedFigure {
+            name: "camera_frame",
+            summary: "The camera frame e, u, v, w from eye, view and up, in 3D",
+            draw: |_| camera_frame(),
+        },
+        NamedFigure {
+            name: "camera_frame_square",
+            summary: "The camera frame on the square canvas",
+            draw: |_| camera_frame_square(),
+        },
+        NamedFigure {
+            name: "viewing_rays",
+            summary: "Perspective, orthographic, oblique and shifted perspective rays, side by side",
+            draw: |_| viewing_rays(),
+        },
+        NamedFigure {
+            name: "taxonomy",
+            summary: "The classical projection taxonomy as a tree, a picture of the cube per preset",
+            draw: taxonomy,
+        },
+        NamedFigure {
+            name: "distortion_foreshortening",
+            summary: "Foreshortening: equal posts at growing depth, image size inversely related to depth",
+            draw: distortion_foreshortening,
+        },
+        NamedFigure {
+            name: "distortion_verticals",
+            summary: "A tilted camera makes verticals converge, a shifted lens keeps them parallel",
+            draw: distortion_verticals,
+        },
+        NamedFigure {
+            name: "thin_lens",
+            summary: "Thin lens: one pixel's cone of rays meets at the focus plane; pictures at two apertures",
+            draw: thin_lens,
+        },
+    ]
+}
+
+/// The figure called `name`, if there is one; see [`figure_names`] for the names and
+/// [`UnknownFigure`] for the error to report otherwise.
+pub fn figure_by_name(name: &str) -> Option<NamedFigure> {
+    all_figures().into_iter().find(|figure| figure.name == name)
+}
+
+/// The names of all figures, in the lecture's order.
+pub fn figure_names() -> Vec<&'static str> {
+    all_figures().iter().map(|figure| figure.name).collect()
+}
+
+/// The error for a figure name that [`figure_by_name`] does not know; its message lists
+/// the valid names.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnknownFigure {
+    /// The name asked for.
+    pub name: String,
+}
+
+impl UnknownFigure {
+    /// The error for `name`.
+    pub fn new(name: impl Into<String>) -> UnknownFigure {
+        UnknownFigure { name: name.into() }
+    }
+}
+
+impl fmt::Display for UnknownFigure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "unknown figure `{}`; the figures are: {}",
+            self.name,
+            figure_names().join(", ")
+        )
+    }
+}
+
+impl std::error::Error for UnknownFigure {}

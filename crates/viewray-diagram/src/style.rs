@@ -12,72 +12,58 @@
 //! Sizes are in pixels of the [`SLIDE`] canvas (1600 x 900), which a projector shows at
 //! roughly the size of a slide's body text; the [`SQUARE`] canvas uses the same values.
 
-use crate::Color;
+use viewray_draw::Color;
 
 /// The slide canvas, 16:9: `(width, height)` in pixels.
-pub const SLIDE: (u32, u32) = (1600, 900);
+pub(crate) const SLIDE: (u32, u32) = (1600, 900);
 /// The square canvas, for figures that sit beside text on a slide: `(width, height)`.
-pub const SQUARE: (u32, u32) = (1080, 1080);
+pub(crate) const SQUARE: (u32, u32) = (1080, 1080);
 
 /// Figure background.
-pub const BACKGROUND: Color = Color::WHITE;
+pub(crate) const BACKGROUND: Color = Color::WHITE;
 /// Label text and other plain ink.
-pub const TEXT: Color = Color::from_hex(0x1A1A1A);
+pub(crate) const TEXT: Color = Color::from_hex(0x1A1A1A);
 /// The camera basis vector **u** (right): Okabe–Ito vermillion.
-pub const U_AXIS: Color = Color::from_hex(0xD55E00);
+pub(crate) const U_AXIS: Color = Color::from_hex(0xD55E00);
 /// The camera basis vector **v** (up): Okabe–Ito bluish green.
-pub const V_AXIS: Color = Color::from_hex(0x009E73);
+pub(crate) const V_AXIS: Color = Color::from_hex(0x009E73);
 /// The camera basis vector **w** (back): Okabe–Ito blue.
-pub const W_AXIS: Color = Color::from_hex(0x0072B2);
+pub(crate) const W_AXIS: Color = Color::from_hex(0x0072B2);
 /// The eye **e** and other camera body marks.
-pub const EYE: Color = Color::from_hex(0x000000);
+pub(crate) const EYE: Color = Color::from_hex(0x000000);
 /// Viewing rays: Okabe–Ito orange.
-pub const RAY: Color = Color::from_hex(0xE69F00);
+pub(crate) const RAY: Color = Color::from_hex(0xE69F00);
 /// The image plane (viewport) outline; fill it with [`IMAGE_PLANE_FILL`].
-pub const IMAGE_PLANE: Color = Color::from_hex(0x56B4E9);
+pub(crate) const IMAGE_PLANE: Color = Color::from_hex(0x56B4E9);
 /// The image plane's translucent fill.
-pub const IMAGE_PLANE_FILL: Color = Color::rgba(0x56, 0xB4, 0xE9, 0x40);
+pub(crate) const IMAGE_PLANE_FILL: Color = Color::rgba(0x56, 0xB4, 0xE9, 0x40);
 /// Outlines of scene objects (spheres, boxes).
-pub const OBJECT: Color = Color::from_hex(0x4D4D4D);
+pub(crate) const OBJECT: Color = Color::from_hex(0x4D4D4D);
 /// Fill of scene objects.
-pub const OBJECT_FILL: Color = Color::from_hex(0xD9D9D9);
+pub(crate) const OBJECT_FILL: Color = Color::from_hex(0xD9D9D9);
 /// Something the figure points out (a chosen pixel, a hit point): reddish purple.
-pub const HIGHLIGHT: Color = Color::from_hex(0xCC79A7);
+pub(crate) const HIGHLIGHT: Color = Color::from_hex(0xCC79A7);
 /// Construction lines, dimension arrows, world axes and other annotations.
-pub const ANNOTATION: Color = Color::from_hex(0x6B6B6B);
+pub(crate) const ANNOTATION: Color = Color::from_hex(0x6B6B6B);
 /// Light grid lines (pixel grids, world grids).
-pub const GRID: Color = Color::from_hex(0xBFBFBF);
+pub(crate) const GRID: Color = Color::from_hex(0xBFBFBF);
 
 /// Thin lines: grids, construction lines.
-pub const LINE_THIN: f32 = 2.0;
+pub(crate) const LINE_THIN: f32 = 2.0;
 /// The ordinary weight: rays, outlines, dimension arrows.
-pub const LINE_REGULAR: f32 = 3.5;
+pub(crate) const LINE_REGULAR: f32 = 3.5;
 /// Emphasis: the camera basis vectors, the image plane.
-pub const LINE_THICK: f32 = 5.0;
+pub(crate) const LINE_THICK: f32 = 5.0;
 /// The dash pattern for hidden or construction lines: `[on, off]` in pixels.
-pub const DASH: [f32; 2] = [14.0, 10.0];
+pub(crate) const DASH: [f32; 2] = [14.0, 10.0];
 /// Radius of a point mark such as the eye or a pixel centre.
-pub const DOT_RADIUS: f32 = 7.0;
+pub(crate) const DOT_RADIUS: f32 = 7.0;
 
 /// Font size (pixels per em) of ordinary labels such as **u**, *d* or *vw*.
-pub const LABEL_SIZE: f32 = 40.0;
+pub(crate) const LABEL_SIZE: f32 = 40.0;
 /// Font size of secondary labels: tick values, coordinates.
-pub const SMALL_LABEL_SIZE: f32 = 30.0;
+pub(crate) const SMALL_LABEL_SIZE: f32 = 30.0;
 /// Font size of a figure's caption line, if it has one.
-pub const CAPTION_SIZE: f32 = 34.0;
+pub(crate) const CAPTION_SIZE: f32 = 34.0;
 /// Font size of a slide's title (set bold, top left).
-pub const TITLE_SIZE: f32 = 48.0;
-
-/// Length of an arrowhead, tip to barbs, for a shaft of width `stroke_width`.
-///
-/// ```text
-/// length = 4 * stroke_width + 10
-/// ```
-/// A 3.5 px ray gets a 24 px head, a 5 px basis vector a 30 px one. The head's half-width
-/// at its barbs is [`ARROWHEAD_ASPECT`] times its length.
-pub fn arrowhead_length(stroke_width: f32) -> f32 {
-    4.0 * stroke_width.max(0.0) + 10.0
-}
-
-/// Half-width of an arrowhead at its barbs, as a fraction of its length.
-pub const ARROWHEAD_ASPECT: f32 = 0.42;
+pub(crate) const TITLE_SIZE: f32 = 48.0;

@@ -92,8 +92,10 @@ const EMPTY_REF: u32 = u32::MAX;
 /// Each level then at least halves the largest range, so with fewer than 2^27 items
 /// the depth stays below `FORCE_MEDIAN_DEPTH + 27 = 67`.
 const FORCE_MEDIAN_DEPTH: u32 = 40;
-/// The traversal stack: a node pushes at most 3 entries more than it pops, and the
-/// tree is less than 67 nodes deep.
+/// The traversal stack: a node pushes at most `WIDTH - 1 = 7` entries more than it pops
+/// (the closest-hit walk pushes the hit children but the nearest; the any-hit walk
+/// pushes all `WIDTH` and pops one at once, hence the `+ 1`), and the tree is less than
+/// 67 nodes deep.
 pub(crate) const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
 /// Ranges at least this large are split with parallel binning and built in parallel.
 const PARALLEL_ITEMS: usize = 16 * 1024;
@@ -227,13 +229,88 @@ pub struct Bvh {
     bounds: Aabb,
 }
 
-/// The numbers of a ray's slab tests: per axis the origin moved for the near and the far
-/// plane and the reciprocal direction (see [`SlabNumbers::new`]).
+/// The robust enlargement of box exits: `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
+/// Traversal", JCGT 2013), so that rounding never culls a box a ray grazes.
+pub(crate) const ROBUST: f32 = 1.0 + 2.0 * 3.0 * f32::EPSILON;
+
+/// The slab numbers of four rays along one axis, from their origins `o` and directions
+/// `d` on that axis: the origin moved for the near plane, the origin moved for the far
+/// plane, and the reciprocal direction. Every box test, single ray or packet, starts
+/// from these, so a packet's rays are tested with exactly the single-ray numbers.
+///
+/// A ray parallel to the slabs never leaves the slab it starts in. With 1 / 0 = inf, a
+/// ray exactly on a box face would give 0 * inf = NaN; a direction component below
+/// 1e-30 is replaced by +-1e-30, whose huge finite reciprocal avoids the NaN, and the
+/// origin is moved a little into the slab for each plane (toward the far plane for the
+/// near one, and back for the far one), which keeps a ray on the face inside the closed
+/// slab: (max - o) * 1e30 would otherwise make it leave at t = 0.
+#[inline(always)]
+pub(crate) fn slab_numbers(o: Vec4, d: Vec4) -> (Vec4, Vec4, Vec4) {
+    let small = d.abs().cmplt(Vec4::splat(1e-30));
+    if !small.any() {
+        return (o, o, Vec4::ONE / d);
+    }
+    let sign = Vec4::ONE.copysign(d);
+    let shift = (o.abs() * 1e-6).max(Vec4::splat(1e-20));
+    let near = Vec4::select(small, o + sign * shift, o);
+    let far = Vec4::select(small, o - sign * shift, o);
+    let d = Vec4::select(small, sign * 1e-30, d);
+    (near, far, Vec4::ONE / d)
+}
+
+/// The slab test of four (ray, box) pairs, from the distances to each pair's near and
+/// far plane on each axis: which pairs' slab intervals meet `[t_min, t_max]`, and the
+/// entry distances. The exit distance is enlarged by [`ROBUST`].
+#[inline(always)]
+pub(crate) fn slab_test(near: [Vec4; 3], far: [Vec4; 3], t_min: Vec4, t_max: Vec4) -> (u32, Vec4) {
+    let t_near = near[0].max(near[1]).max(near[2]).max(t_min);
+    let t_far = (far[0].min(far[1]).min(far[2]) * ROBUST).min(t_max);
+    (t_near.cmple(t_far).bitmask(), t_near)
+}
+
+/// The distances along four rays to four near and far slab planes on each axis:
+/// `(plane - origin) * inverse`, with the origin moved for each plane (see
+/// [`slab_numbers`]).
+#[inline(always)]
+pub(crate) fn plane_distances(
+    near_plane: [Vec4; 3],
+    far_plane: [Vec4; 3],
+    origin_near: [Vec4; 3],
+    origin_far: [Vec4; 3],
+    inverse: [Vec4; 3],
+) -> ([Vec4; 3], [Vec4; 3]) {
+    (
+        per_axis(|axis| (near_plane[axis] - origin_near[axis]) * inverse[axis]),
+        per_axis(|axis| (far_plane[axis] - origin_far[axis]) * inverse[axis]),
+    )
+}
+
+/// `[f(0), f(1), f(2)]`, written out: `array::map` is not always inlined in the hot
+/// loops, and then costs a call per box test.
+#[inline(always)]
+pub(crate) fn per_axis<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
+/// What a single ray's closest-hit traversal carries down the tree besides its closest
+/// distance: the ray, where hits may start, and what happens at leaves.
+pub(crate) struct RayTraversal<'a, L, P> {
+    pub(crate) ray: &'a BoxRay,
+    pub(crate) t_min: f32,
+    /// `leaf(start, count, t_max)` intersects the items of a leaf and returns the new
+    /// closest distance.
+    pub(crate) leaf: L,
+    /// Starts loading the items of a leaf the ray will visit.
+    pub(crate) prefetch_leaf: P,
+}
+
+/// A ray prepared for box tests: origin and reciprocal direction splatted across lanes,
+/// and the direction's sign pattern, which selects the monomorphized traversal.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct SlabNumbers {
-    pub(crate) origin_near: Vec3,
-    pub(crate) origin_far: Vec3,
-    pub(crate) inverse: Vec3,
+pub(crate) struct BoxRay {
+    pub(crate) origin_near: [Vec4; 3],
+    pub(crate) origin_far: [Vec4; 3],
+    pub(crate) inverse: [Vec4; 3],
     /// Bit `axis` is set when the direction is negative on that axis.
     pub(crate) octant: u8,
     /// Whether origin and direction are finite and the direction is not zero; other
@@ -241,70 +318,19 @@ pub(crate) struct SlabNumbers {
     pub(crate) valid: bool,
 }
 
-impl SlabNumbers {
-    #[inline]
+impl BoxRay {
     pub(crate) fn new(ray: &Ray) -> Self {
         let (o, d) = (ray.origin, ray.direction);
-        let mut origin_near = o;
-        let mut origin_far = o;
-        let mut inverse = Vec3::ZERO;
-        for axis in 0..3 {
-            let sign = if d[axis].is_sign_negative() {
-                -1.0
-            } else {
-                1.0
-            };
-            let mut d_axis = d[axis];
-            if d_axis.abs() < 1e-30 {
-                // A ray parallel to the slabs never leaves the slab it starts in. With
-                // 1 / 0 = inf, a ray exactly on a box face would give 0 * inf = NaN; a
-                // huge finite reciprocal avoids the NaN, and moving the origin a little
-                // into the slab for each plane (toward the far plane for the near one,
-                // and back for the far one) keeps a ray on the face inside the closed
-                // slab: (max - o) * 1e30 would otherwise make it leave at t = 0.
-                let shift = (o[axis].abs() * 1e-6).max(1e-20);
-                origin_near[axis] += sign * shift;
-                origin_far[axis] -= sign * shift;
-                d_axis = sign * 1e-30;
-            }
-            inverse[axis] = 1.0 / d_axis;
-        }
+        let numbers = per_axis(|axis| slab_numbers(Vec4::splat(o[axis]), Vec4::splat(d[axis])));
         let octant = (0..3).fold(0, |bits, axis| {
             bits | (u8::from(d[axis].is_sign_negative()) << axis)
         });
         Self {
-            origin_near,
-            origin_far,
-            inverse,
+            origin_near: per_axis(|axis| numbers[axis].0),
+            origin_far: per_axis(|axis| numbers[axis].1),
+            inverse: per_axis(|axis| numbers[axis].2),
             octant,
             valid: o.is_finite() && d.is_finite() && d != Vec3::ZERO,
-        }
-    }
-}
-
-/// A ray prepared for box tests: origin and reciprocal direction splatted across lanes,
-/// and the direction's sign pattern, which selects the monomorphized traversal.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BoxRay {
-    origin_near: [Vec4; 3],
-    origin_far: [Vec4; 3],
-    inverse: [Vec4; 3],
-    /// Bit `axis` is set when the direction is negative on that axis.
-    octant: u8,
-    /// Whether origin and direction are finite and the direction is not zero; other
-    /// rays hit nothing (and would make NaN of the box tests).
-    valid: bool,
-}
-
-impl BoxRay {
-    pub(crate) fn new(ray: &Ray) -> Self {
-        let numbers = SlabNumbers::new(ray);
-        Self {
-            origin_near: numbers.origin_near.to_array().map(Vec4::splat),
-            origin_far: numbers.origin_far.to_array().map(Vec4::splat),
-            inverse: numbers.inverse.to_array().map(Vec4::splat),
-            octant: numbers.octant,
-            valid: numbers.valid,
         }
     }
 
@@ -326,10 +352,8 @@ impl BoxRay {
     }
 
     /// Tests the ray against a node's eight boxes; returns the bit mask of boxes whose
-    /// slab interval meets `[t_min, t_max]`, and the entry distances.
-    ///
-    /// The exit distance is enlarged by `1 + 2 gamma(3)` (Ize, "Robust BVH Ray
-    /// Traversal", JCGT 2013) so that rounding never culls a box the ray grazes.
+    /// slab interval meets `[t_min, t_max]`, and the entry distances (see
+    /// [`slab_test`]).
     #[inline(always)]
     pub(crate) fn hit_children<const OCTANT: u8>(
         &self,
@@ -337,34 +361,53 @@ impl BoxRay {
         t_min: Vec4,
         t_max: Vec4,
     ) -> (u32, [f32; WIDTH]) {
-        const ROBUST: f32 = 1.0 + 2.0 * 3.0 * f32::EPSILON;
         let p = &node.planes;
         let mut mask = 0;
         let mut t_near_all = [0.0; WIDTH];
         for group in 0..GROUPS {
             let lanes = 4 * group..4 * group + 4;
-            // Choosing the near and far plane by the direction's sign (rather than taking
-            // min and max) keeps an empty box (min > max) empty, so unused slots never
-            // hit. The sign pattern is a constant of the monomorphized traversal.
-            let slab = |axis: usize| {
-                let negative = usize::from((OCTANT >> axis) & 1 == 1);
-                let (near, far) = (axis + 3 * negative, axis + 3 * (1 - negative));
-                let near = (Vec4::from_slice(&p[near][lanes.clone()]) - self.origin_near[axis])
-                    * self.inverse[axis];
-                let far = (Vec4::from_slice(&p[far][lanes.clone()]) - self.origin_far[axis])
-                    * self.inverse[axis];
-                (near, far)
-            };
-            let (nx, fx) = slab(0);
-            let (ny, fy) = slab(1);
-            let (nz, fz) = slab(2);
-            let t_near = nx.max(ny).max(nz).max(t_min);
-            let t_far = (fx.min(fy).min(fz) * ROBUST).min(t_max);
-            mask |= t_near.cmple(t_far).bitmask() << (4 * group);
+            let (near_plane, far_plane) = node_planes::<OCTANT>(p, lanes.clone());
+            let (near, far) = plane_distances(
+                near_plane,
+                far_plane,
+                self.origin_near,
+                self.origin_far,
+                self.inverse,
+            );
+            let (hit, t_near) = slab_test(near, far, t_min, t_max);
+            mask |= hit << (4 * group);
             t_near.write_to_slice(&mut t_near_all[lanes]);
         }
         (mask, t_near_all)
     }
+}
+
+/// Which of a node's `planes` is the near (or, with `far`, the far) plane along `axis`
+/// for rays whose direction signs are `OCTANT`: the min plane for a positive direction.
+#[inline(always)]
+pub(crate) const fn plane_index<const OCTANT: u8>(axis: usize, far: bool) -> usize {
+    let negative = (OCTANT >> axis) & 1 == 1;
+    axis + if negative != far { 3 } else { 0 }
+}
+
+/// The near and far planes, per axis, of four of a node's boxes (`lanes`) for rays whose
+/// direction signs are `OCTANT`.
+///
+/// Choosing the near and far plane by the direction's sign (rather than taking min and
+/// max of the distances) keeps an empty box (min > max) empty, so unused slots never
+/// hit. The sign pattern is a constant of the monomorphized traversal.
+#[inline(always)]
+pub(crate) fn node_planes<const OCTANT: u8>(
+    planes: &[[f32; WIDTH]; 6],
+    lanes: std::ops::Range<usize>,
+) -> ([Vec4; 3], [Vec4; 3]) {
+    let plane = |axis: usize, far: bool| {
+        Vec4::from_slice(&planes[plane_index::<OCTANT>(axis, far)][lanes.clone()])
+    };
+    (
+        per_axis(|axis| plane(axis, false)),
+        per_axis(|axis| plane(axis, true)),
+    )
 }
 
 impl Bvh {
@@ -514,31 +557,44 @@ impl Bvh {
             return t_max;
         }
         with_stack(|stack| {
-            self.closest_with_stack::<OCTANT>(ray, 0, t_min, t_max, leaf, prefetch_leaf, stack)
+            let mut traversal = RayTraversal {
+                ray,
+                t_min,
+                leaf,
+                prefetch_leaf,
+            };
+            self.closest_with_stack::<OCTANT, _, _>(&mut traversal, 0, t_max, stack)
         })
     }
 
     /// The closest-hit traversal of the subtree `start` (a node index or a leaf ref)
-    /// for rays whose direction signs are `OCTANT`, with a stack to use.
-    #[allow(clippy::too_many_arguments)]
+    /// for rays whose direction signs are `OCTANT`, from the closest distance so far,
+    /// `t_max`, with a stack to use.
     #[inline(always)]
-    pub(crate) fn closest_with_stack<const OCTANT: u8>(
+    pub(crate) fn closest_with_stack<const OCTANT: u8, L, P>(
         &self,
-        ray: &BoxRay,
+        traversal: &mut RayTraversal<'_, L, P>,
         start: u32,
-        t_min: f32,
         mut t_max: f32,
-        mut leaf: impl FnMut(u32, u32, f32) -> f32,
-        prefetch_leaf: impl Fn(u32, u32),
         stack: &mut Stack,
-    ) -> f32 {
+    ) -> f32
+    where
+        L: FnMut(u32, u32, f32) -> f32,
+        P: Fn(u32, u32),
+    {
+        let RayTraversal {
+            ray,
+            t_min,
+            leaf,
+            prefetch_leaf,
+        } = traversal;
         let Stack {
             refs: stack_refs,
             t: stack_t,
         } = stack;
         let mut sp = 0usize;
         let mut current = start;
-        let t_min4 = Vec4::splat(t_min);
+        let t_min4 = Vec4::splat(*t_min);
         loop {
             if current & LEAF != 0 {
                 let (start, count) = decode_leaf(current);

@@ -7,8 +7,8 @@ use glam::{Affine3A, Mat3A, Vec3, Vec4};
 
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
-    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, for_each_packet, lane as packet_lane, lanes_of,
-    set_lane,
+    BoxPacket, PACKET_GROUPS, PACKET_SIZE, PacketQuery, for_each_packet, lane as packet_lane,
+    lanes_of, set_lane,
 };
 use crate::{Aabb, GeometryError, Mesh, Ray};
 
@@ -128,30 +128,19 @@ impl Instance {
         }
     }
 
-    /// The closest hits of a packet's rays (filled from `rays`, in world space): see
-    /// [`Mesh::intersect_packet`]. Rays are carried into the mesh's space and regrouped
-    /// into packets there, unless the transform is the identity.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn intersect_packet(
-        &self,
-        packet: &BoxPacket,
-        rays: &[Ray],
-        lanes: u64,
-        t_min: f32,
-        t_max: &mut Lanes,
-        object: u32,
-        best: &mut [Option<RawHit>; PACKET_SIZE],
-    ) {
+    /// The closest hits of a query's rays (in world space), as hits on object `object`:
+    /// see [`Mesh::intersect_packet`]. Rays are carried into the mesh's space and
+    /// regrouped into packets there, unless the transform is the identity.
+    pub(crate) fn intersect_packet(&self, query: PacketQuery<'_>, object: u32) {
         if self.identity {
-            self.mesh
-                .intersect_packet(packet, rays, lanes, t_min, t_max, object, best);
+            self.mesh.intersect_packet(query, object);
             return;
         }
         let mut object_rays = [Ray::new(Vec3::ZERO, Vec3::ZERO); PACKET_SIZE];
         let mut lane_of = [0u8; PACKET_SIZE];
         let mut count = 0;
-        for lane in lanes_of(lanes) {
-            object_rays[count] = self.object_ray(&rays[usize::from(packet.rays()[lane])]);
+        for lane in lanes_of(query.lanes) {
+            object_rays[count] = self.object_ray(query.ray(lane));
             lane_of[count] = lane as u8;
             count += 1;
         }
@@ -164,22 +153,26 @@ impl Instance {
                 .map(|&i| usize::from(lane_of[usize::from(i)]));
             let mut object_t_max = [Vec4::ZERO; PACKET_GROUPS];
             for (object_lane, lane) in lanes.clone().enumerate() {
-                set_lane(&mut object_t_max, object_lane, packet_lane(t_max, lane));
+                set_lane(
+                    &mut object_t_max,
+                    object_lane,
+                    packet_lane(query.t_max, lane),
+                );
             }
             let mut object_best = [None; PACKET_SIZE];
-            self.mesh.intersect_packet(
-                object_packet,
-                object_rays,
-                object_packet.all_lanes(),
-                t_min,
-                &mut object_t_max,
-                object,
-                &mut object_best,
-            );
+            let object_query = PacketQuery {
+                packet: object_packet,
+                rays: object_rays,
+                lanes: object_packet.all_lanes(),
+                t_min: query.t_min,
+                t_max: &mut object_t_max,
+                best: &mut object_best,
+            };
+            self.mesh.intersect_packet(object_query, object);
             for (object_lane, lane) in lanes.enumerate() {
                 if let Some(hit) = object_best[object_lane] {
-                    best[lane] = Some(hit);
-                    set_lane(t_max, lane, hit.t);
+                    query.best[lane] = Some(hit);
+                    set_lane(query.t_max, lane, hit.t);
                 }
             }
         });

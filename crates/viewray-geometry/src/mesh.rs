@@ -8,7 +8,9 @@ use rayon::prelude::*;
 
 use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, prefetch};
 use crate::hit::{Hit, RawHit, face_toward};
-use crate::packet::{BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketVisitor, for_each_packet};
+use crate::packet::{
+    BoxPacket, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet,
+};
 use crate::shapes::{WatertightRay, edge_functions_f64};
 use crate::{Aabb, GeometryError, Ray};
 
@@ -480,7 +482,13 @@ impl Mesh {
             |start, count, t_max| {
                 let packet_ray =
                     packet_ray.get_or_insert_with(|| PacketRay::new(&WatertightRay::new(ray)));
-                self.intersect_leaf(packet_ray, start, count, t_min4, t_max, 0, &mut best)
+                match self.intersect_leaf(packet_ray, start, count, t_min4, t_max) {
+                    Some(hit) => {
+                        best = Some(hit);
+                        hit.t
+                    }
+                    None => t_max,
+                }
             },
             |start, count| self.prefetch_leaf(start, count),
         );
@@ -488,9 +496,7 @@ impl Mesh {
     }
 
     /// Intersects the triangle packets `start..start + count` with a ray whose closest
-    /// hit so far (`best`, of object `object`) is at `t_max`; returns the new closest
-    /// distance.
-    #[allow(clippy::too_many_arguments)]
+    /// hit so far is at `t_max`: the closest hit below it, as a hit on object 0.
     #[inline(always)]
     fn intersect_leaf(
         &self,
@@ -499,9 +505,8 @@ impl Mesh {
         count: u32,
         t_min4: Vec4,
         mut t_max: f32,
-        object: u32,
-        best: &mut Option<RawHit>,
-    ) -> f32 {
+    ) -> Option<RawHit> {
+        let mut best = None;
         for packet in &self.packets[start as usize..(start + count) as usize] {
             let (valid, t, [_, v, w], det) = packet_ray.test(packet, t_min4, Vec4::splat(t_max));
             if valid.any() {
@@ -509,15 +514,15 @@ impl Mesh {
                 t_max = t_valid.min_element();
                 let lane = t_valid.cmpeq(Vec4::splat(t_max)).bitmask().trailing_zeros() as usize;
                 let (v, w, det) = (v.to_array()[lane], w.to_array()[lane], det.to_array()[lane]);
-                *best = Some(RawHit {
+                best = Some(RawHit {
                     t: t_max,
-                    object,
+                    object: 0,
                     primitive: packet.faces[lane],
                     barycentric: Vec2::new(v / det, w / det),
                 });
             }
         }
-        t_max
+        best
     }
 
     /// Starts loading the first triangle packets of a leaf.
@@ -532,20 +537,9 @@ impl Mesh {
         }
     }
 
-    /// The closest hits of a packet's rays (filled from `rays`, in the mesh's space)
-    /// with `t` from `t_min` to each ray's `t_max[lane]`: updates `t_max` and `best[lane]`
-    /// (as hits on object `object`) for the lanes in `lanes`.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn intersect_packet(
-        &self,
-        packet: &BoxPacket,
-        rays: &[Ray],
-        lanes: u64,
-        t_min: f32,
-        t_max: &mut Lanes,
-        object: u32,
-        best: &mut [Option<RawHit>; PACKET_SIZE],
-    ) {
+    /// The closest hits of a query's rays (in the mesh's space), as hits on object
+    /// `object`: lowers each lane's `t_max` and `best`.
+    pub(crate) fn intersect_packet(&self, query: PacketQuery<'_>, object: u32) {
         struct Visitor<'a> {
             mesh: &'a Mesh,
             rays: &'a [Ray],
@@ -561,17 +555,29 @@ impl Mesh {
                 let ray = &self.rays[usize::from(self.rays_of_lanes[lane])];
                 let packet_ray = self.packet_rays[lane]
                     .get_or_insert_with(|| PacketRay::new(&WatertightRay::new(ray)));
-                self.mesh.intersect_leaf(
-                    packet_ray,
-                    start,
-                    count,
-                    self.t_min4,
-                    t_max,
-                    self.object,
-                    &mut self.best[lane],
-                )
+                match self
+                    .mesh
+                    .intersect_leaf(packet_ray, start, count, self.t_min4, t_max)
+                {
+                    Some(hit) => {
+                        self.best[lane] = Some(RawHit {
+                            object: self.object,
+                            ..hit
+                        });
+                        hit.t
+                    }
+                    None => t_max,
+                }
             }
         }
+        let PacketQuery {
+            packet,
+            rays,
+            lanes,
+            t_min,
+            t_max,
+            best,
+        } = query;
         let mut visitor = Visitor {
             mesh: self,
             rays,
@@ -609,15 +615,15 @@ impl Mesh {
             for_each_packet(rays, &mut packet, |packet| {
                 let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
                 let mut best = [None; PACKET_SIZE];
-                self.intersect_packet(
+                let query = PacketQuery {
                     packet,
                     rays,
-                    packet.all_lanes(),
-                    t_range.start,
-                    &mut t_max,
-                    0,
-                    &mut best,
-                );
+                    lanes: packet.all_lanes(),
+                    t_min: t_range.start,
+                    t_max: &mut t_max,
+                    best: &mut best,
+                };
+                self.intersect_packet(query, 0);
                 for (&ray, raw) in packet.rays().iter().zip(best) {
                     hits[usize::from(ray)] = raw.map(|raw| TriangleHit {
                         t: raw.t,

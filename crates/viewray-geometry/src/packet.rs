@@ -15,8 +15,11 @@ use glam::{BVec4A, Vec4};
 
 use crate::Ray;
 use crate::bvh::{
-    BoxRay, Bvh, GROUPS, LEAF, Node, STACK_SIZE, Stack, WIDTH, decode_leaf, prefetch, with_stack,
+    BoxRay, Bvh, GROUPS, LEAF, Node, RayTraversal, STACK_SIZE, Stack, WIDTH, decode_leaf,
+    node_planes, per_axis, plane_distances, plane_index, prefetch, slab_numbers, slab_test,
+    with_stack,
 };
+use crate::hit::RawHit;
 
 /// The most rays in a packet: one bit each of a `u64` mask.
 pub(crate) const PACKET_SIZE: usize = 64;
@@ -36,9 +39,6 @@ const MAX_DIRECTION_SPREAD: f32 = 0.05;
 const MANY_CHILDREN: u32 = 6;
 /// Stack entry flag: the child is to be handed to single rays.
 const SINGLE: u32 = 1 << 31;
-
-/// The robust enlargement of box exits (see [`BoxRay::hit_children`]).
-const ROBUST: f32 = 1.0 + 2.0 * 3.0 * f32::EPSILON;
 
 /// The rays of a packet prepared for box tests: each ray's slab numbers (as in
 /// [`BoxRay`]), four rays per vector, and their bounds for the packet's interval test.
@@ -210,27 +210,21 @@ impl BoxPacket {
         t_min: Vec4,
         t_max: Vec4,
     ) -> (u32, [f32; WIDTH]) {
-        let p = &node.planes;
         let mut mask = 0;
         let mut t_near_all = [0.0; WIDTH];
         for group in 0..GROUPS {
             let lanes = 4 * group..4 * group + 4;
-            let slab = |axis: usize| {
-                let negative = usize::from((OCTANT >> axis) & 1 == 1);
-                let (near, far) = (axis + 3 * negative, axis + 3 * (1 - negative));
-                let near = Vec4::from_slice(&p[near][lanes.clone()]) - self.bound_origin_near[axis];
-                let far = Vec4::from_slice(&p[far][lanes.clone()]) - self.bound_origin_far[axis];
-                (
-                    (near * self.inverse_min[axis]).min(near * self.inverse_max[axis]),
-                    (far * self.inverse_min[axis]).max(far * self.inverse_max[axis]),
-                )
-            };
-            let (nx, fx) = slab(0);
-            let (ny, fy) = slab(1);
-            let (nz, fz) = slab(2);
-            let t_near = nx.max(ny).max(nz).max(t_min);
-            let t_far = (fx.min(fy).min(fz) * ROBUST).min(t_max);
-            mask |= t_near.cmple(t_far).bitmask() << (4 * group);
+            let (near_plane, far_plane) = node_planes::<OCTANT>(&node.planes, lanes.clone());
+            let near = per_axis(|axis| {
+                let near = near_plane[axis] - self.bound_origin_near[axis];
+                (near * self.inverse_min[axis]).min(near * self.inverse_max[axis])
+            });
+            let far = per_axis(|axis| {
+                let far = far_plane[axis] - self.bound_origin_far[axis];
+                (far * self.inverse_min[axis]).max(far * self.inverse_max[axis])
+            });
+            let (hit, t_near) = slab_test(near, far, t_min, t_max);
+            mask |= hit << (4 * group);
             t_near.write_to_slice(&mut t_near_all[lanes]);
         }
         (mask, t_near_all)
@@ -240,7 +234,7 @@ impl BoxPacket {
     /// t_max[lane]]`: for each ray exactly the test of [`BoxRay::hit_children`], four
     /// rays at a time.
     #[inline(always)]
-    fn rays_hitting(
+    fn rays_hitting<const OCTANT: u8>(
         &self,
         node: &Node,
         slot: usize,
@@ -248,28 +242,25 @@ impl BoxPacket {
         t_min: Vec4,
         t_max: &Lanes,
     ) -> u64 {
-        let negative = |axis: usize| usize::from((self.octant >> axis) & 1 == 1);
-        let plane = |index: usize| Vec4::splat(node.planes[index][slot]);
-        let near_plane = [0, 1, 2].map(|axis| plane(axis + 3 * negative(axis)));
-        let far_plane = [0, 1, 2].map(|axis| plane(axis + 3 * (1 - negative(axis))));
+        let plane = |axis: usize, far: bool| {
+            Vec4::splat(node.planes[plane_index::<OCTANT>(axis, far)][slot])
+        };
+        let near_plane = per_axis(|axis| plane(axis, false));
+        let far_plane = per_axis(|axis| plane(axis, true));
         let mut hit = 0;
         let mut rest = lanes;
         while rest != 0 {
             let group = rest.trailing_zeros() as usize / 4;
             rest &= !(0xf << (4 * group));
-            let slab = |axis: usize| {
-                let near =
-                    (near_plane[axis] - self.origin_near[axis][group]) * self.inverse[axis][group];
-                let far =
-                    (far_plane[axis] - self.origin_far[axis][group]) * self.inverse[axis][group];
-                (near, far)
-            };
-            let (nx, fx) = slab(0);
-            let (ny, fy) = slab(1);
-            let (nz, fz) = slab(2);
-            let t_near = nx.max(ny).max(nz).max(t_min);
-            let t_far = (fx.min(fy).min(fz) * ROBUST).min(t_max[group]);
-            hit |= u64::from(t_near.cmple(t_far).bitmask()) << (4 * group);
+            let (near, far) = plane_distances(
+                near_plane,
+                far_plane,
+                per_axis(|axis| self.origin_near[axis][group]),
+                per_axis(|axis| self.origin_far[axis][group]),
+                per_axis(|axis| self.inverse[axis][group]),
+            );
+            let (group_hit, _) = slab_test(near, far, t_min, t_max[group]);
+            hit |= u64::from(group_hit) << (4 * group);
         }
         hit & lanes
     }
@@ -324,7 +315,7 @@ fn max_lane(values: &Lanes, mask: u64) -> f32 {
     max.max_element()
 }
 
-/// The slab numbers (see [`SlabNumbers`](crate::bvh::SlabNumbers)) of up to [`PACKET_SIZE`] rays, four rays per
+/// The slab numbers (see [`slab_numbers`]) of up to [`PACKET_SIZE`] rays, four rays per
 /// vector, before they are sorted into packets by octant.
 struct ChunkNumbers {
     len: usize,
@@ -339,9 +330,8 @@ struct ChunkNumbers {
 }
 
 impl ChunkNumbers {
-    /// The numbers of `rays`, exactly as
-    /// [`SlabNumbers::new`](crate::bvh::SlabNumbers::new) computes them ray by ray,
-    /// four rays at a time. Lanes past the last ray copy the first one.
+    /// The numbers of `rays`, as [`BoxRay::new`] computes them ray by ray, four rays at
+    /// a time. Lanes past the last ray copy the first one.
     fn new(rays: &[Ray]) -> Self {
         debug_assert!(!rays.is_empty() && rays.len() <= PACKET_SIZE);
         let mut chunk = Self {
@@ -378,20 +368,10 @@ impl ChunkNumbers {
                 for (i, octant) in octant.iter_mut().enumerate() {
                     *octant |= ((negative >> i) & 1) << axis;
                 }
-                // See `SlabNumbers::new`: a direction component this small is replaced
-                // by +-1e-30, and the origin moved into the slab for each plane.
-                let small = d.abs().cmplt(Vec4::splat(1e-30));
-                let (mut near, mut far, mut d_axis) = (o, o, d);
-                if small.any() {
-                    let sign = Vec4::ONE.copysign(d);
-                    let shift = (o.abs() * 1e-6).max(Vec4::splat(1e-20));
-                    near = Vec4::select(small, o + sign * shift, o);
-                    far = Vec4::select(small, o - sign * shift, o);
-                    d_axis = Vec4::select(small, sign * 1e-30, d);
-                }
+                let (near, far, inverse) = slab_numbers(o, d);
                 chunk.origin_near[axis][group] = near;
                 chunk.origin_far[axis][group] = far;
-                chunk.inverse[axis][group] = Vec4::ONE / d_axis;
+                chunk.inverse[axis][group] = inverse;
                 chunk.direction[axis][group] = d;
             }
             let valid = (valid & nonzero).bitmask() as u64;
@@ -426,6 +406,31 @@ pub(crate) fn for_each_packet(
     }
 }
 
+/// A closest-hit query of some of a packet's rays: which lanes, from where along the
+/// rays, and each lane's closest hit so far, which the query lowers.
+pub(crate) struct PacketQuery<'a> {
+    /// The packet, filled from `rays`.
+    pub(crate) packet: &'a BoxPacket,
+    /// The rays the packet was filled from (see [`BoxPacket::rays`]).
+    pub(crate) rays: &'a [Ray],
+    /// The lanes to trace.
+    pub(crate) lanes: u64,
+    /// Hits closer than this are ignored.
+    pub(crate) t_min: f32,
+    /// Each lane's closest distance so far.
+    pub(crate) t_max: &'a mut Lanes,
+    /// Each lane's closest hit so far.
+    pub(crate) best: &'a mut [Option<RawHit>; PACKET_SIZE],
+}
+
+impl<'a> PacketQuery<'a> {
+    /// The ray of lane `lane`.
+    #[inline(always)]
+    pub(crate) fn ray(&self, lane: usize) -> &'a Ray {
+        &self.rays[usize::from(self.packet.rays()[lane])]
+    }
+}
+
 /// What a packet traversal does at the leaves: a mesh intersects its triangles, a
 /// world its objects.
 pub(crate) trait PacketVisitor {
@@ -444,14 +449,25 @@ pub(crate) trait PacketVisitor {
     }
 }
 
+/// What a packet traversal carries down the tree besides each ray's closest distance:
+/// the packet, where hits may start, what happens at leaves, and a stack for the rays
+/// that finish subtrees on their own.
+struct PacketTraversal<'a, V, P> {
+    packet: &'a BoxPacket,
+    t_min: f32,
+    visitor: &'a mut V,
+    /// Starts loading the items of a leaf a ray will visit.
+    prefetch_leaf: P,
+    ray_stack: &'a mut Stack,
+}
+
 impl Bvh {
     /// The closest-hit traversal of a packet: visits, nearest first, the nodes that
     /// some ray of `lanes` may reach, and hands leaves, and the children of nodes where
     /// the packet enters [`MANY_CHILDREN`] or more, to the rays that hit their box,
-    /// which finish them one by one; leaves go to `visitor`. `t_max[lane]` holds each ray's closest hit
-    /// so far and is updated. `prefetch_leaf(start, count)` may start loading the items
-    /// of a leaf a ray will visit.
-    #[allow(clippy::too_many_arguments)]
+    /// which finish them one by one; leaves go to `visitor`. `t_max[lane]` holds each
+    /// ray's closest hit so far and is updated. `prefetch_leaf(start, count)` may start
+    /// loading the items of a leaf a ray will visit.
     pub(crate) fn closest_packet(
         &self,
         packet: &BoxPacket,
@@ -468,15 +484,18 @@ impl Bvh {
             ($octant:literal) => {
                 with_stack(|stack| {
                     with_stack(|ray_stack| {
-                        self.closest_packet_with_stacks::<$octant>(
+                        let mut traversal = PacketTraversal {
                             packet,
-                            lanes,
                             t_min,
-                            t_max,
                             visitor,
                             prefetch_leaf,
-                            stack,
                             ray_stack,
+                        };
+                        self.closest_packet_with_stack::<$octant, _, _>(
+                            &mut traversal,
+                            lanes,
+                            t_max,
+                            stack,
                         )
                     })
                 })
@@ -494,31 +513,18 @@ impl Bvh {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn closest_packet_with_stacks<const OCTANT: u8>(
+    fn closest_packet_with_stack<const OCTANT: u8, V: PacketVisitor, P: Fn(u32, u32) + Copy>(
         &self,
-        packet: &BoxPacket,
+        traversal: &mut PacketTraversal<'_, V, P>,
         lanes: u64,
-        t_min: f32,
         t_max: &mut Lanes,
-        visitor: &mut impl PacketVisitor,
-        prefetch_leaf: impl Fn(u32, u32) + Copy,
         stack: &mut Stack,
-        ray_stack: &mut Stack,
     ) {
         let nodes = self.nodes();
-        let t_min4 = Vec4::splat(t_min);
+        let packet = traversal.packet;
+        let t_min4 = Vec4::splat(traversal.t_min);
         if !packet.coherent {
-            self.single_rays::<OCTANT>(
-                packet,
-                0,
-                lanes,
-                t_min,
-                t_max,
-                visitor,
-                prefetch_leaf,
-                ray_stack,
-            );
+            self.single_rays::<OCTANT, V, P>(traversal, 0, lanes, t_max);
             return;
         }
 
@@ -555,7 +561,7 @@ impl Bvh {
                         prefetch(nodes, child as usize, [0, 64, 128, 192]);
                     } else {
                         let (start, count) = decode_leaf(child);
-                        prefetch_leaf(start, count);
+                        (traversal.prefetch_leaf)(start, count);
                     }
                     let (entry, dist) = ((current * WIDTH + slot) as u32 | single, t_near[slot]);
                     let mut j = k;
@@ -597,55 +603,43 @@ impl Bvh {
                     current = child as usize;
                     continue 'nodes;
                 }
-                let rays = packet.rays_hitting(parent, slot, lanes, t_min4, t_max);
+                let rays = packet.rays_hitting::<OCTANT>(parent, slot, lanes, t_min4, t_max);
                 if rays != 0 {
-                    self.single_rays::<OCTANT>(
-                        packet,
-                        child,
-                        rays,
-                        t_min,
-                        t_max,
-                        visitor,
-                        prefetch_leaf,
-                        ray_stack,
-                    );
+                    self.single_rays::<OCTANT, V, P>(traversal, child, rays, t_max);
                     t_max_all = max_lane(t_max, lanes);
                 }
             }
         }
     }
-}
 
-impl Bvh {
     /// Each ray of `rays` finishes the subtree `child` (a node or a leaf) on its own.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn single_rays<const OCTANT: u8>(
+    fn single_rays<const OCTANT: u8, V: PacketVisitor, P: Fn(u32, u32) + Copy>(
         &self,
-        packet: &BoxPacket,
+        traversal: &mut PacketTraversal<'_, V, P>,
         child: u32,
         rays: u64,
-        t_min: f32,
         t_max: &mut Lanes,
-        visitor: &mut impl PacketVisitor,
-        prefetch_leaf: impl Fn(u32, u32) + Copy,
-        ray_stack: &mut Stack,
     ) {
+        let visitor = &mut *traversal.visitor;
         if child & LEAF != 0 {
             let (start, count) = decode_leaf(child);
             visitor.leaf_lanes(rays, start, count, t_max);
             return;
         }
         for i in lanes_of(rays) {
-            let visitor = &mut *visitor;
-            let t = self.closest_with_stack::<OCTANT>(
-                &packet.lane_ray(i),
+            let ray = traversal.packet.lane_ray(i);
+            let mut ray_traversal = RayTraversal {
+                ray: &ray,
+                t_min: traversal.t_min,
+                leaf: |start, count, t_max| visitor.leaf(i, start, count, t_max),
+                prefetch_leaf: traversal.prefetch_leaf,
+            };
+            let t = self.closest_with_stack::<OCTANT, _, _>(
+                &mut ray_traversal,
                 child,
-                t_min,
                 lane(t_max, i),
-                |start, count, t_max| visitor.leaf(i, start, count, t_max),
-                prefetch_leaf,
-                ray_stack,
+                traversal.ray_stack,
             );
             set_lane(t_max, i, t);
         }
@@ -663,7 +657,6 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-    use crate::bvh::SlabNumbers;
 
     /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
     /// and validity included, for directions with zero, negative-zero, tiny and
@@ -698,18 +691,19 @@ mod tests {
         for chunk_rays in rays.chunks(37) {
             let chunk = ChunkNumbers::new(chunk_rays);
             for (i, ray) in chunk_rays.iter().enumerate() {
-                let single = SlabNumbers::new(ray);
+                let single_ray = BoxRay::new(ray);
                 let in_octant = chunk.octants.iter().position(|mask| mask & (1 << i) != 0);
-                assert_eq!(in_octant.is_some(), single.valid, "{ray:?}");
-                if !single.valid {
+                assert_eq!(in_octant.is_some(), single_ray.valid, "{ray:?}");
+                if !single_ray.valid {
                     continue;
                 }
-                assert_eq!(in_octant, Some(usize::from(single.octant)), "{ray:?}");
+                assert_eq!(in_octant, Some(usize::from(single_ray.octant)), "{ray:?}");
                 for axis in 0..3 {
                     let lane = |lanes: &[Lanes; 3]| lane(&lanes[axis], i).to_bits();
-                    assert_eq!(lane(&chunk.origin_near), single.origin_near[axis].to_bits());
-                    assert_eq!(lane(&chunk.origin_far), single.origin_far[axis].to_bits());
-                    assert_eq!(lane(&chunk.inverse), single.inverse[axis].to_bits());
+                    let single = |lanes: &[Vec4; 3]| lanes[axis].x.to_bits();
+                    assert_eq!(lane(&chunk.origin_near), single(&single_ray.origin_near));
+                    assert_eq!(lane(&chunk.origin_far), single(&single_ray.origin_far));
+                    assert_eq!(lane(&chunk.inverse), single(&single_ray.inverse));
                 }
             }
         }

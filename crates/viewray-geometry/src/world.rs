@@ -7,7 +7,7 @@ use glam::{Vec2, Vec4};
 use crate::bvh::{BoxRay, BuildParams, Bvh};
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
-    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketVisitor, for_each_packet,
+    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet,
     lane as lane_value, lanes_of, set_lane,
 };
 use crate::shapes::WatertightRay;
@@ -220,7 +220,15 @@ impl World {
                 let lanes = packet.all_lanes();
                 match self.single {
                     Some(object) => self.intersect_object_packet(
-                        object, packet, rays, lanes, t_min, &mut t_max, &mut best,
+                        object,
+                        PacketQuery {
+                            packet,
+                            rays,
+                            lanes,
+                            t_min,
+                            t_max: &mut t_max,
+                            best: &mut best,
+                        },
                     ),
                     None => {
                         let mut visitor = WorldVisitor {
@@ -352,28 +360,18 @@ impl World {
         }
     }
 
-    /// The closest hits of a packet's rays with object `object`, for the lanes of
-    /// `lanes`: an instance traces them as packets, other shapes ray by ray.
-    #[allow(clippy::too_many_arguments)]
-    fn intersect_object_packet(
-        &self,
-        object: u32,
-        packet: &BoxPacket,
-        rays: &[Ray],
-        lanes: u64,
-        t_min: f32,
-        t_max: &mut Lanes,
-        best: &mut [Option<RawHit>; PACKET_SIZE],
-    ) {
+    /// The closest hits of a query's rays with object `object`: an instance traces them
+    /// as packets, other shapes ray by ray.
+    fn intersect_object_packet(&self, object: u32, query: PacketQuery<'_>) {
         if let Object::Instance(instance) = &self.objects[object as usize] {
-            instance.intersect_packet(packet, rays, lanes, t_min, t_max, object, best);
+            instance.intersect_packet(query, object);
             return;
         }
-        for lane in lanes_of(lanes) {
-            let ray = &rays[usize::from(packet.rays()[lane])];
-            if let Some(hit) = self.intersect_object(object, ray, t_min, lane_value(t_max, lane)) {
-                set_lane(t_max, lane, hit.t);
-                best[lane] = Some(hit);
+        for lane in lanes_of(query.lanes) {
+            let t_max = lane_value(query.t_max, lane);
+            if let Some(hit) = self.intersect_object(object, query.ray(lane), query.t_min, t_max) {
+                set_lane(query.t_max, lane, hit.t);
+                query.best[lane] = Some(hit);
             }
         }
     }
@@ -452,15 +450,15 @@ impl PacketVisitor for WorldVisitor<'_> {
 
     fn leaf_lanes(&mut self, lanes: u64, start: u32, count: u32, t_max: &mut Lanes) {
         for &object in &self.world.leaf_objects[start as usize..(start + count) as usize] {
-            self.world.intersect_object_packet(
-                object,
-                self.packet,
-                self.rays,
+            let query = PacketQuery {
+                packet: self.packet,
+                rays: self.rays,
                 lanes,
-                self.t_min,
-                t_max,
-                self.best,
-            );
+                t_min: self.t_min,
+                t_max: &mut *t_max,
+                best: &mut *self.best,
+            };
+            self.world.intersect_object_packet(object, query);
         }
     }
 }

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use viewray_camera::{Camera, CameraSample, Frame, Perspective, Projection};
 use viewray_geometry::{Instance, Mesh, Object, Ray, World};
 use viewray_render::{RenderSettings, render};
-use viewray_scene::{Material, ObjectMaterial, Scene, Shading};
+use viewray_scene::{Material, ObjectMaterial, Scene, SceneParts, Shading};
 
 const SIZE: u32 = 1024;
 const RUNS: usize = 5;
@@ -40,7 +40,7 @@ fn main() {
         shift: DVec2::ZERO,
     });
     let camera = Camera::new(frame, projection, SIZE, SIZE).expect("a camera");
-    let scene = Scene {
+    let scene = Scene::new(SceneParts {
         camera,
         samples: 1,
         background: Vec3::ZERO,
@@ -49,7 +49,8 @@ fn main() {
         lights: Vec::new(),
         world,
         object_materials: vec![ObjectMaterial::Single(0)],
-    };
+    })
+    .expect("one object, one material");
     let rays = f64::from(SIZE * SIZE);
 
     // The bare loop: precomputed rays, closest_hit only.
@@ -77,7 +78,7 @@ fn main() {
                             chunk
                                 .iter()
                                 .filter(|ray| {
-                                    scene.world.closest_hit(ray, 0.0..f32::INFINITY).is_some()
+                                    scene.world().closest_hit(ray, 0.0..f32::INFINITY).is_some()
                                 })
                                 .count()
                         })

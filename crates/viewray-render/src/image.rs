@@ -5,8 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use image::codecs::openexr::OpenExrEncoder;
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{ExtendedColorType, ImageEncoder};
+use image::{ExtendedColorType, ImageEncoder, RgbImage};
+use viewray_output::{Compression, linear_to_srgb8, unit_to_u8};
 
 /// What an image's values mean, which decides how 8-bit output stores them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -46,7 +46,16 @@ impl ImageFormat {
 /// Why an image could not be written.
 #[derive(Debug, thiserror::Error)]
 #[error("cannot encode the image: {0}")]
-pub struct ImageError(#[from] image::ImageError);
+pub struct ImageError(#[from] std::io::Error);
+
+impl From<image::ImageError> for ImageError {
+    fn from(error: image::ImageError) -> Self {
+        match error {
+            image::ImageError::IoError(error) => ImageError(error),
+            other => ImageError(std::io::Error::other(other)),
+        }
+    }
+}
 
 /// A rendered image: `width x height` pixels of linear RGB, row by row from the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,7 +128,8 @@ impl Image {
     }
 
     /// Every pixel as 8-bit sRGB, `[r, g, b]` row by row, whatever the [`PixelKind`]:
-    /// each channel clamped to `[0, 1]` and encoded by [`linear_to_srgb8`].
+    /// each channel clamped to `[0, 1]` and encoded by
+    /// [`linear_to_srgb8`](viewray_output::linear_to_srgb8).
     pub fn to_srgb8(&self) -> Vec<u8> {
         self.to_bytes(linear_to_srgb8)
     }
@@ -140,18 +150,32 @@ impl Image {
             .collect()
     }
 
-    /// Writes the image as a PNG (see [`ImageFormat::Png`]).
+    /// The image as 8-bit pixels, as PNG output stores them ([`Image::to_rgb8`]).
+    pub fn to_rgb_image(&self) -> RgbImage {
+        RgbImage::from_raw(self.width, self.height, self.to_rgb8())
+            .expect("an image holds width x height pixels")
+    }
+
+    /// Writes the image as a PNG (see [`ImageFormat::Png`]) with viewray's one PNG
+    /// encoder ([`viewray_output::write_png`], balanced compression).
     ///
     /// # Errors
     /// An [`ImageError`] if encoding or writing fails.
     pub fn write_png(&self, out: impl Write) -> Result<(), ImageError> {
-        PngEncoder::new_with_quality(out, CompressionType::Default, FilterType::Adaptive)
-            .write_image(
-                &self.to_rgb8(),
-                self.width,
-                self.height,
-                ExtendedColorType::Rgb8,
-            )?;
+        self.write_png_compressed(out, Compression::Balanced)
+    }
+
+    /// [`Image::write_png`] with the given compression (which changes the file's size,
+    /// never its pixels).
+    ///
+    /// # Errors
+    /// An [`ImageError`] if encoding or writing fails.
+    pub fn write_png_compressed(
+        &self,
+        out: impl Write,
+        compression: Compression,
+    ) -> Result<(), ImageError> {
+        viewray_output::write_png(out, &self.to_rgb_image(), compression)?;
         Ok(())
     }
 
@@ -187,61 +211,9 @@ impl Image {
     }
 }
 
-/// The sRGB transfer function (IEC 61966-2-1), linear light to encoded value, both in
-/// `[0, 1]`:
-///
-/// ```text
-/// x <= 0.0031308:  12.92 x
-/// otherwise:       1.055 x^(1/2.4) - 0.055
-/// ```
-pub fn linear_to_srgb(x: f32) -> f32 {
-    if x <= 0.003_130_8 {
-        12.92 * x
-    } else {
-        1.055 * x.powf(1.0 / 2.4) - 0.055
-    }
-}
-
-/// A linear channel value as an 8-bit sRGB code: clamped to `[0, 1]` (NaN to 0),
-/// encoded by [`linear_to_srgb`] and rounded to the nearest of 0..=255. Linear 0.5 is
-/// 188, linear 0.2140 is 128.
-pub fn linear_to_srgb8(x: f32) -> u8 {
-    unit_to_u8(linear_to_srgb(clamp_unit(x)))
-}
-
-/// `x` clamped to `[0, 1]`, NaN to 0.
-fn clamp_unit(x: f32) -> f32 {
-    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
-}
-
-/// A value in `[0, 1]` (clamped; NaN to 0) as `round(255 x)`.
-fn unit_to_u8(x: f32) -> u8 {
-    // In 0.5..=255.5 after clamping: the cast only drops the fraction.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let code = (clamp_unit(x) * 255.0 + 0.5) as u8;
-    code
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn srgb_codes_of_known_values() {
-        for (linear, code) in [
-            (0.0, 0),
-            (1.0, 255),
-            (0.5, 188),
-            (0.214_041_14, 128),
-            (0.001, 3),
-            (0.18, 118),
-            (-1.0, 0),
-            (7.0, 255),
-            (f32::NAN, 0),
-        ] {
-            assert_eq!(linear_to_srgb8(linear), code, "linear {linear}");
-        }
-    }
 
     #[test]
     fn data_images_store_values_as_is() {

@@ -67,7 +67,7 @@
 //! # Output
 //!
 //! [`Image`] holds linear `f32` RGB. PNG output is 8-bit with the sRGB transfer function
-//! ([`linear_to_srgb`], not a 2.2 gamma) for colour renders; Normals and Depth renders
+//! ([`viewray_output::linear_to_srgb`], not a 2.2 gamma) for colour renders; Normals and Depth renders
 //! are data and are stored as `round(255 x)` ([`PixelKind`]). EXR output holds the
 //! linear floats as rendered.
 //!
@@ -95,9 +95,7 @@ mod render;
 mod sampling;
 mod shade;
 
-pub use crate::image::{
-    Image, ImageError, ImageFormat, PixelKind, linear_to_srgb, linear_to_srgb8,
-};
+pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};
 pub use crate::render::{
     MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, render,
 };

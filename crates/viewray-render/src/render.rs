@@ -239,14 +239,14 @@ fn render_on_current_pool(
     settings: &RenderSettings,
     progress: &(impl Fn(u64, u64) + Sync),
 ) -> Rendered {
-    let camera = &scene.camera;
+    let camera = &scene.camera();
     let (width, height) = (camera.width(), camera.height());
-    let samples = scene.samples.max(1);
+    let samples = scene.samples().max(1);
 
     // For depth images, find the range of depths first.
     let mut depth_map = DepthMap::new(camera);
     let mut rays = 0;
-    if scene.shading == Shading::Depth {
+    if scene.shading() == Shading::Depth {
         let probe = Shader::new(scene, 0, depth_map);
         // One band of block rows at a time, each block's rays traced as a packet.
         let (range, probe_rays) = (0..height.div_ceil(BLOCK_SIZE))
@@ -324,7 +324,7 @@ fn render_on_current_pool(
     );
     drop(bands);
 
-    let kind = match scene.shading {
+    let kind = match scene.shading() {
         Shading::Flat | Shading::Lit => PixelKind::Color,
         Shading::Normals | Shading::Depth => PixelKind::Data,
     };

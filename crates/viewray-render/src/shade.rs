@@ -5,9 +5,8 @@ use std::cell::OnceCell;
 use glam::{DVec2, Vec3};
 use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Hit, Object, ObjectHit, Ray};
-use viewray_scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
-
-use crate::image::linear_to_srgb;
+use viewray_output::linear_to_srgb;
+use viewray_scene::{Grid, Light, Material, Scene, Shading};
 
 /// Where primary rays start their search: `t > 0`, as the camera contract says.
 const T_MIN: f32 = f32::MIN_POSITIVE;
@@ -170,9 +169,9 @@ pub(crate) struct Shader<'a> {
 
 impl<'a> Shader<'a> {
     pub(crate) fn new(scene: &'a Scene, max_depth: u32, depth_map: DepthMap) -> Self {
-        let background = match scene.shading {
-            Shading::Flat | Shading::Lit => scene.background,
-            Shading::Normals | Shading::Depth => scene.background.map(linear_to_srgb),
+        let background = match scene.shading() {
+            Shading::Flat | Shading::Lit => scene.background(),
+            Shading::Normals | Shading::Depth => scene.background().map(linear_to_srgb),
         };
         Self {
             scene,
@@ -192,7 +191,7 @@ impl<'a> Shader<'a> {
     #[inline]
     pub(crate) fn trace_primary(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
         self.scene
-            .world
+            .world()
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
     }
 
@@ -210,8 +209,8 @@ impl<'a> Shader<'a> {
         let Some(object_hit) = hit else {
             return self.background;
         };
-        let world = &self.scene.world;
-        match self.scene.shading {
+        let world = &self.scene.world();
+        match self.scene.shading() {
             Shading::Flat => {
                 // A plain colour needs no surface details.
                 let material = self.material(object_hit.object, object_hit.primitive);
@@ -231,21 +230,16 @@ impl<'a> Shader<'a> {
         }
     }
 
-    /// The material of face `primitive` of object `object`, as
-    /// [`Scene::material`](viewray_scene::Scene::material) finds a hit's.
+    /// The material of face `primitive` of object `object`.
     #[inline]
     fn material(&self, object: u32, primitive: u32) -> &Material {
-        let index = match &self.scene.object_materials[object as usize] {
-            ObjectMaterial::Single(index) => *index,
-            ObjectMaterial::PerTriangle(faces) => faces[primitive as usize],
-        };
-        &self.scene.materials[index as usize]
+        self.scene.material_of(object, primitive)
     }
 
     /// The colour seen along a reflected ray at mirror bounce `depth`.
     fn secondary(&self, ray: &Ray, depth: u32, rays: &mut u64) -> Vec3 {
         *rays += 1;
-        match self.scene.world.closest_hit(ray, 0.0..f32::INFINITY) {
+        match self.scene.world().closest_hit(ray, 0.0..f32::INFINITY) {
             Some(hit) => self.lit(ray, &hit, None, depth, rays),
             None => self.background,
         }
@@ -265,18 +259,18 @@ impl<'a> Shader<'a> {
         let base = surface_color(material, hit, || {
             film.map_or(Footprint::Point, |f| self.footprint(f, ray, hit))
         });
-        let world = &self.scene.world;
+        let world = &self.scene.world();
         let view = -ray.direction.normalize_or_zero();
         let n = hit.shading_normal;
         let origin = offset_origin(hit, ray);
 
         let mut color = Vec3::ZERO;
-        if self.scene.lights.is_empty() {
+        if self.scene.lights().is_empty() {
             // Headlight: a light at the eye, so a scene without lights is still visible.
             color += base * HEADLIGHT_AMBIENT
                 + (1.0 - HEADLIGHT_AMBIENT) * blinn_phong(base, material, n, view, view);
         }
-        for light in &self.scene.lights {
+        for light in self.scene.lights() {
             match *light {
                 Light::Ambient { intensity } => color += base * intensity,
                 Light::Point {
@@ -357,14 +351,11 @@ impl<'a> Shader<'a> {
     /// The ray differentials at the image point `center` for a step of `spacing` pixels,
     /// or `None` where a neighbouring ray does not exist (outside a fisheye's circle).
     fn differentials(&self, center: DVec2, spacing: f64) -> Option<RayDifferentials> {
-        let camera = &self.scene.camera;
-        let lens = DVec2::splat(0.5);
-        let ray = |offset: DVec2| {
-            camera
-                .generate_ray_through(center + offset * spacing, lens)
-                .map(|r| r.as_ray())
-        };
-        let (c, x, y) = (ray(DVec2::ZERO)?, ray(DVec2::X)?, ray(DVec2::Y)?);
+        let differential =
+            self.scene
+                .camera()
+                .generate_ray_differential(center, DVec2::splat(0.5), spacing)?;
+        let [c, x, y] = [differential.ray, differential.rx, differential.ry].map(|r| r.as_ray());
         Some(RayDifferentials {
             origin_dx: x.origin - c.origin,
             direction_dx: x.direction - c.direction,
@@ -382,7 +373,7 @@ impl<'a> Shader<'a> {
             range.near = range.near.min(z);
             range.far_any = range.far_any.max(z);
             let plane = matches!(
-                self.scene.world.objects()[hit.object as usize],
+                self.scene.world().objects()[hit.object as usize],
                 Object::Plane(_)
             );
             if !plane {

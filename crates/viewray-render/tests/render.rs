@@ -26,9 +26,9 @@ fn image(text: &str) -> Image {
 /// The pixel `(row, col)` that shows the world point `p`.
 #[track_caller]
 fn pixel_of(scene: &Scene, p: DVec3) -> (u32, u32) {
-    let xy = scene.camera.project(p).expect("the point is visible");
+    let xy = scene.camera().project(p).expect("the point is visible");
     scene
-        .camera
+        .camera()
         .pixel_at(xy)
         .expect("the point is inside the image")
 }

@@ -5,8 +5,8 @@
 //! one [`SceneError`] naming the file, line and column, what was found and what was
 //! expected. The serde types mirroring the file stay private.
 //!
-//! The format is documented in DESIGN.md ("Scene files"); every field but `camera` has a
-//! default, so a camera-only file is a valid scene:
+//! The format is documented for users in the repository's `docs/scene-format.md`; every
+//! field but `camera` has a default, so a camera-only file is a valid scene:
 //!
 //! ```ron
 //! (
@@ -29,12 +29,13 @@ mod mesh;
 mod scene;
 mod schema;
 
+use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
-pub use scene::{Grid, Light, Material, ObjectMaterial, Scene, Shading};
+pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
 
 /// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of
 /// the OBJ fuzz target. Returns the number of triangles kept, or the error message.
@@ -60,7 +61,6 @@ pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 
 /// Reads a scene file, refusing directories and files too large to be a scene.
 fn read_scene_file(path: &Path) -> Result<String, SceneError> {
-    use std::io::Read;
     let error = |message: String| SceneError::at(path, None, message);
     let file = std::fs::File::open(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => error("no such scene file".to_owned()),
@@ -72,13 +72,20 @@ fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     if metadata.is_dir() {
         return Err(error("is a directory, not a scene file".to_owned()));
     }
+    read_scene_text(file, path)
+}
+
+/// Reads scene text from `reader`, refusing text that is not UTF-8 or too large to be a
+/// scene; `path` names it in errors.
+fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
+    let error = |message: String| SceneError::at(path, None, message);
     let mut text = String::new();
-    let read = file
+    let read = reader
         .take(MAX_SCENE_BYTES + 1)
         .read_to_string(&mut text)
         .map_err(|e| match e.kind() {
             std::io::ErrorKind::InvalidData => error("is not a text file (not UTF-8)".to_owned()),
-            _ => error(format!("cannot read the scene file: {e}")),
+            _ => error(format!("cannot read the scene: {e}")),
         })?;
     if read as u64 > MAX_SCENE_BYTES {
         return Err(error(format!(
@@ -114,6 +121,29 @@ impl Scene {
     pub fn load_timed(path: &Path, options: LoadOptions) -> Result<(Scene, LoadTimes), SceneError> {
         let started = Instant::now();
         let text = read_scene_file(path)?;
+        let (scene, build) = load::parse(&text, path, options)?;
+        Ok((
+            scene,
+            LoadTimes {
+                total: started.elapsed(),
+                build,
+            },
+        ))
+    }
+
+    /// Reads a scene from `reader` (standard input, say) like [`Scene::load_timed`];
+    /// `path` names it in error messages, and meshes are found relative to its folder:
+    /// the current folder for a bare name such as `<stdin>`.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if the text cannot be read or is not a valid scene.
+    pub fn read_timed(
+        reader: impl Read,
+        path: &Path,
+        options: LoadOptions,
+    ) -> Result<(Scene, LoadTimes), SceneError> {
+        let started = Instant::now();
+        let text = read_scene_text(reader, path)?;
         let (scene, build) = load::parse(&text, path, options)?;
         Ok((
             scene,

@@ -20,7 +20,9 @@ use crate::schema::{
     ExplicitCamera, ImageDef, LightDef, MaterialDef, ObjectDef, PresetDef, ProjectionDef, Scale,
     SceneFile, ShadingDef, Specular, TransformDef, V2, V3,
 };
-use crate::{Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, Shading};
+use crate::{
+    Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, SceneParts, Shading,
+};
 
 /// The largest image side viewray renders.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -104,9 +106,15 @@ pub(crate) fn parse(
     path: &Path,
     options: LoadOptions,
 ) -> Result<(Scene, Duration), SceneError> {
+    // Windows editors may begin a UTF-8 file with a byte-order mark; it is not part of
+    // the scene, and columns are counted as an editor shows them, without it.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if skip_whitespace_and_comments(text).is_empty() {
+        return Err(SceneError::at(path, None, empty_file_message(text)));
+    }
     let file: SceneFile<'_> = ron_options()
         .from_str(text)
-        .map_err(|e| ron_error(path, Origin::FILE, &e))?;
+        .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;
     let loader = Loader { text, path };
 
     let (mut image, image_origin) = match file.image {
@@ -255,7 +263,7 @@ pub(crate) fn parse(
     let world = World::new(objects).map_err(|e| SceneError::at(path, None, e.to_string()))?;
     let build_time = meshes.build_time + started.elapsed();
 
-    let scene = Scene {
+    let scene = Scene::new(SceneParts {
         camera,
         samples,
         background,
@@ -269,7 +277,8 @@ pub(crate) fn parse(
         lights,
         world,
         object_materials,
-    };
+    })
+    .map_err(|e| SceneError::at(path, None, e.to_string()))?;
     Ok((scene, build_time))
 }
 
@@ -288,7 +297,7 @@ impl Loader<'_> {
         let origin = Origin::FILE.of_slice(self.text, raw.get_ron());
         let value = ron_options()
             .from_str(raw.get_ron())
-            .map_err(|e| ron_error(self.path, origin, &e))?;
+            .map_err(|e| ron_error(self.path, raw.get_ron(), origin, &e))?;
         Ok((value, origin))
     }
 
@@ -488,12 +497,12 @@ fn parse_camera(
     if skip_whitespace_and_comments(text).starts_with('(') {
         let def: ExplicitCamera = ron_options()
             .from_str(text)
-            .map_err(|e| ron_error(path, origin, &e))?;
+            .map_err(|e| ron_error(path, text, origin, &e))?;
         explicit_camera(&def, width, height).map_err(camera_error)
     } else {
         let def: PresetDef = ron_options()
             .from_str(text)
-            .map_err(|e| ron_error(path, origin, &e))?;
+            .map_err(|e| ron_error(path, text, origin, &e))?;
         preset_camera(&def, width, height).map_err(camera_error)
     }
 }
@@ -677,12 +686,123 @@ fn preset_camera(def: &PresetDef, width: u32, height: u32) -> Result<Camera, Str
         .map_err(|e| e.to_string())
 }
 
-/// A RON error as a [`SceneError`], its position moved from `origin`-relative to the
-/// file and its message in the scene format's words.
-fn ron_error(path: &Path, origin: Origin, error: &SpannedError) -> SceneError {
+/// A RON error in `text` (which starts at `origin` in the file) as a [`SceneError`], its
+/// position moved from `origin`-relative to the file and its message in the scene
+/// format's words.
+fn ron_error(path: &Path, text: &str, origin: Origin, error: &SpannedError) -> SceneError {
     let start = error.span.start;
+    if let Some((line, column, message)) = number_error(text, error) {
+        return SceneError::at(path, Some(origin.offset(line, column)), message);
+    }
     let position = origin.offset(start.line, start.col);
     SceneError::at(path, Some(position), describe(&error.code))
+}
+
+/// What to say about an empty scene file, or one that holds only comments (after its
+/// name, as "is not a text file" is).
+fn empty_file_message(text: &str) -> String {
+    let what = if text.trim().is_empty() {
+        "is empty"
+    } else {
+        "holds only comments"
+    };
+    format!(
+        "{what}: a scene is one value in parentheses, at least \
+         `(camera: Front(target: (0.0, 0.0, 0.0), size: 2.0))`"
+    )
+}
+
+/// The mistakes with whole numbers that RON words in its own terms: something else
+/// where a whole number is expected (`width: "wide"`), a decimal point (`width: 8.0`,
+/// which RON reads as `8` followed by a stray `.0`), and a negative or huge whole number
+/// (`width: -8`). Returns the 1-based
+/// line and column of the number in `text` and the message.
+fn number_error(text: &str, error: &SpannedError) -> Option<(usize, usize, String)> {
+    let at = byte_offset(text, error.span.start.line, error.span.start.col)?;
+    if error.code == RonError::ExpectedInteger {
+        let name = field_before(&text[..at])?;
+        let (line, column) = (error.span.start.line, error.span.start.col);
+        return Some((line, column, format!("`{name}` must be a whole number")));
+    }
+    let (start, token) = number_around(text, at)?;
+    let field = field_before(&text[..start]);
+    let message = match error.code {
+        // `8.0`: the parser stops at the `.`, right after the digits of a whole number.
+        RonError::ExpectedComma
+            if text[..at].ends_with(|c: char| c.is_ascii_digit())
+                && token.contains(['.', 'e', 'E'])
+                && token.parse::<f64>().is_ok() =>
+        {
+            match field {
+                Some(name) => format!("`{name}` must be a whole number, found `{token}`"),
+                None => format!("expected a whole number, found `{token}`"),
+            }
+        }
+        RonError::IntegerOutOfBounds if token.starts_with('-') => match field {
+            Some(name) => format!("`{name}` must be a positive whole number, found `{token}`"),
+            None => format!("expected a positive whole number, found `{token}`"),
+        },
+        RonError::IntegerOutOfBounds => match field {
+            Some(name) => format!("`{name}` is out of range: `{token}` is too large"),
+            None => format!("`{token}` is too large"),
+        },
+        _ => return None,
+    };
+    let before = &text[..start];
+    let line = 1 + before.matches('\n').count();
+    let column = 1 + before
+        .rsplit_once('\n')
+        .map_or(before, |(_, last)| last)
+        .chars()
+        .count();
+    Some((line, column, message))
+}
+
+/// The byte offset in `text` of the 1-based `line` and character `column`.
+fn byte_offset(text: &str, line: usize, column: usize) -> Option<usize> {
+    let line_start = if line <= 1 {
+        0
+    } else {
+        text.match_indices('\n').nth(line - 2).map(|(i, _)| i + 1)?
+    };
+    let rest = &text[line_start..];
+    let within = rest
+        .char_indices()
+        .map(|(i, _)| i)
+        .chain(std::iter::once(rest.len()))
+        .nth(column.checked_sub(1)?)?;
+    Some(line_start + within)
+}
+
+/// The number written around byte `at` of `text`: its start and its text.
+fn number_around(text: &str, at: usize) -> Option<(usize, &str)> {
+    let is_number_char = |c: char| c.is_ascii_alphanumeric() || "+-._".contains(c);
+    let start = text[..at]
+        .char_indices()
+        .rev()
+        .take_while(|&(_, c)| is_number_char(c))
+        .last()
+        .map_or(at, |(i, _)| i);
+    let end = text[at..]
+        .char_indices()
+        .find(|&(_, c)| !is_number_char(c))
+        .map_or(text.len(), |(i, _)| at + i);
+    let token = &text[start..end];
+    token
+        .trim_start_matches(['+', '-'])
+        .starts_with(|c: char| c.is_ascii_digit())
+        .then_some((start, token))
+}
+
+/// The name of the field whose value starts right after `before` (`width` in
+/// `(width: `), if the value is a field's.
+fn field_before(before: &str) -> Option<&str> {
+    let before = before.trim_end().strip_suffix(':')?.trim_end();
+    let name_start = before
+        .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .map_or(0, |i| i + 1);
+    let name = &before[name_start..];
+    (!name.is_empty()).then_some(name)
 }
 
 /// The name a scene file's author knows a RON struct or enum by.
@@ -739,6 +859,13 @@ fn describe(code: &RonError) -> String {
             format!("expected {expected}, found {found} elements")
         }
         RonError::Eof => "unexpected end of file".to_owned(),
+        RonError::ExpectedInteger => "expected a whole number".to_owned(),
+        RonError::ExpectedFloat => "expected a number".to_owned(),
+        RonError::ExpectedNamedStructLike("scene") => {
+            "expected `(`: a scene file is one value in parentheses, \
+             `(camera: .., objects: [..])`"
+                .to_owned()
+        }
         RonError::ExceededRecursionLimit => {
             "values are nested too deeply (more than 128 levels)".to_owned()
         }

@@ -52,3 +52,12 @@ fn a_missing_file_is_named() {
             .starts_with("no/such/scene.ron: no such scene file")
     );
 }
+
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    // Windows editors may save UTF-8 with a byte-order mark in front.
+    let text =
+        "\u{feff}(image: (width: 4, height: 2), camera: Front(target: (0.0, 0.0, 0.0), size: 2.0))";
+    let scene = Scene::parse(text, Path::new("bom.ron")).unwrap();
+    assert_eq!((scene.camera().width(), scene.camera().height()), (4, 2));
+}

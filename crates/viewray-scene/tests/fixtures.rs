@@ -71,7 +71,7 @@ fn every_fixture_scene_loads() {
     scenes.insert(0, fixtures().join("default.ron"));
     for path in scenes {
         let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        let camera = &scene.camera;
+        let camera = &scene.camera();
         let f = camera.frame();
         let name = path.file_stem().unwrap().to_str().unwrap();
         writeln!(
@@ -79,9 +79,9 @@ fn every_fixture_scene_loads() {
             "{name}: {} x {}, {} samples, {} objects, {} triangles\n  e = {}, u = {}, v = {}, w = {}\n  {}",
             camera.width(),
             camera.height(),
-            scene.samples,
-            scene.world.objects().len(),
-            scene.world.triangle_count(),
+            scene.samples(),
+            scene.world().objects().len(),
+            scene.world().triangle_count(),
             vec3(f.e),
             vec3(f.u),
             vec3(f.v),
@@ -101,12 +101,12 @@ fn size_and_samples_can_be_overridden() {
         samples: Some(3),
     };
     let scene = Scene::load_with(&path, options).unwrap();
-    assert_eq!((scene.camera.width(), scene.camera.height()), (64, 32));
-    assert_eq!(scene.samples, 3);
+    assert_eq!((scene.camera().width(), scene.camera().height()), (64, 32));
+    assert_eq!(scene.samples(), 3);
     // A field-of-view camera follows the new aspect ratio.
     let path = fixtures().join("scenes/primitives_lit.ron");
     let scene = Scene::load_with(&path, options).unwrap();
-    let viewport = scene.camera.projection().viewport().unwrap();
+    let viewport = scene.camera().projection().viewport().unwrap();
     assert!((viewport.x / viewport.y - 2.0).abs() < 1e-12);
     let too_big = LoadOptions {
         size: Some((20_000, 10)),
@@ -120,7 +120,7 @@ fn size_and_samples_can_be_overridden() {
 fn a_mesh_placed_twice_is_loaded_once() {
     let scene = Scene::load(&fixtures().join("scenes/mesh_houses.ron")).unwrap();
     let meshes: Vec<_> = scene
-        .world
+        .world()
         .objects()
         .iter()
         .filter_map(|o| match o {
@@ -142,6 +142,22 @@ fn the_readme_example_scene_loads() {
     let path = fixtures().join("readme_example.ron");
     let scene =
         Scene::parse(&readme[start..start + length], &path).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.world.objects().len(), 5);
-    assert_eq!(scene.lights.len(), 3);
+    assert_eq!(scene.world().objects().len(), 5);
+    assert_eq!(scene.lights().len(), 3);
+}
+
+#[test]
+fn the_scene_format_examples_load() {
+    let doc = std::fs::read_to_string(fixtures().join("../docs/scene-format.md")).unwrap();
+    let blocks: Vec<&str> = doc
+        .split("```ron\n")
+        .skip(1)
+        .map(|rest| rest.split("```").next().unwrap())
+        .collect();
+    assert!(blocks.len() >= 2, "the scene format shows whole scenes");
+    for block in blocks {
+        let scene = Scene::parse(block, &fixtures().join("scene-format.ron"))
+            .unwrap_or_else(|e| panic!("{e}\n{block}"));
+        assert!(scene.camera().width() > 0);
+    }
 }

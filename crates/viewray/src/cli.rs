@@ -1,28 +1,47 @@
 //! The command line: clap definitions, vector parsing and one-line usage errors.
 
 use std::ffi::OsString;
-use std::path::PathBuf;
+use std::fmt::Display;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use glam::{DVec2, DVec3};
+use viewray_render::ImageFormat;
 use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
+/// The conventions, after the help of the commands that print numbers. Each line fits
+/// in 80 columns, so that clap does not rewrap it.
 const CONVENTIONS: &str = "\
-Conventions (the lecture's, made exact): an image is W columns by H rows; pixel (row, col)
-is 0-based from the top-left (the lecture's 1-based (i, j) = (row + 1, col + 1), see
---one-based). The camera frame is e, u, v, w with u right, v up and w back (the camera looks
-along -w): w = -view/|view|, u = up x w normalized, v = w x u. The pixel centre maps to the
-image plane at u = ((j - 1/2)/W - 1/2) vw, v = -((i - 1/2)/H - 1/2) vh, and the perspective
-viewing ray is origin e, direction u U + v V - d W, not normalized.
+Conventions (the lecture's, made exact; docs/cameras.md in the source explains
+them with worked examples):
 
-Exit codes: 0 success, 1 a comparison failed, 2 bad input or usage, other values internal
-errors.";
+Pixels: an image is W columns by H rows. Pixels are 0-based (row, col) from
+the top-left by default; --one-based takes and prints the lecture's 1-based
+(i, j) = (row + 1, col + 1), and the JSON keys say which: row/col or i/j.
+
+Frame: e = eye, w = -view/|view|, u = (up x w)/|up x w|, v = w x u; u points
+right, v up, w back (the camera looks along -w).
+
+Image plane, at a pixel's centre:
+
+    u = ((j - 1/2)/W - 1/2) vw,   v = -((i - 1/2)/H - 1/2) vh
+
+Perspective ray: origin e, direction u U + v V - d W, with U, V, W the frame's
+vectors; directions are not normalized.
+
+Exit codes: 0 success, 1 a comparison failed, 2 bad input or usage, other
+values internal errors.";
+
+/// What `--version` prints: the version, and the commit it was built from when the
+/// build could ask git.
+pub(crate) const VERSION: &str = env!("VIEWRAY_VERSION");
 
 /// Ray tracing for learning cameras: render scenes, and check camera frames, viewing rays
 /// and projections number by number.
 #[derive(Parser, Debug)]
-#[command(name = "viewray", version, after_long_help = CONVENTIONS, after_help = CONVENTIONS)]
+#[command(name = "viewray", version = VERSION, after_long_help = CONVENTIONS,
+          after_help = CONVENTIONS)]
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Command,
@@ -33,31 +52,70 @@ pub(crate) enum Command {
     /// Render a scene file to a PNG (or, with an .exr output, linear floats).
     ///
     /// For each pixel: generate viewing rays, find the closest object each meets, and
-    /// determine its colour. Without SCENE, renders the built-in default scene. The image
-    /// is the same, byte for byte, on any number of threads. A progress bar is shown on
-    /// stderr when it is a terminal.
+    /// determine its colour. Without SCENE, renders the built-in default scene (`viewray
+    /// scene --default` prints it). The image is the same, byte for byte, on any number
+    /// of threads. A progress bar is shown on stderr when it is a terminal.
     Render(RenderArgs),
-    /// Print the camera frame (e, u, v, w) built from eye, view (or look-at) and up.
+    /// Print the camera frame e, u, v, w of a scene, or of eye, view and up
     ///
-    /// w = -view / |view|, u = (up x w) / |up x w|, v = w x u; with --look-at, view =
-    /// look_at - eye. Prints one JSON line: {"e":[..],"u":[..],"v":[..],"w":[..]}.
+    ///     e = eye,  w = -view/|view|,  u = (up x w)/|up x w|,  v = w x u
+    ///
+    /// with view = look_at - eye for --look-at, and up = (0, 1, 0) unless --up
+    /// says otherwise. With SCENE (a file, or - for standard input), the frame of
+    /// its camera, presets included. Prints one JSON line:
+    ///
+    ///     {"e":[..],"u":[..],"v":[..],"w":[..]}
+    #[command(verbatim_doc_comment)]
     Frame(FrameArgs),
-    /// Print the viewing ray of pixels of a scene's camera.
+    /// Print the viewing rays of pixels, with their image-plane points u, v
     ///
-    /// For pixel (row, col), 0-based from the top-left, the ray goes through the pixel's
-    /// centre (and the lens centre): with the lecture's i = row + 1, j = col + 1,
-    /// u = ((j - 1/2)/W - 1/2) vw, v = -((i - 1/2)/H - 1/2) vh, and for a perspective camera
-    /// origin = e, direction = u U + v V - d W (not normalized). Prints one JSON line per
-    /// pixel: {"row":R,"col":C,"origin":[..],"direction":[..]}. Without --pixel, every
-    /// pixel, row by row.
+    /// Each ray goes through a point of its pixel, the centre unless --sample says
+    /// otherwise, and through the lens centre. The pixel's image-plane point is
+    ///
+    ///     u =  ((col + 1/2)/W - 1/2) vw  =  ((j - 1/2)/W - 1/2) vw
+    ///     v = -((row + 1/2)/H - 1/2) vh  = -((i - 1/2)/H - 1/2) vh
+    ///
+    /// with the 0-based (row, col) or the lecture's 1-based (i, j). A perspective
+    /// camera's ray is then origin e, direction (u + sx) U + (v + sy) V - d W, with
+    /// (sx, sy) the lens shift (zero unless the scene sets one); directions are not
+    /// normalized.
+    ///
+    /// Prints one JSON line per pixel,
+    ///
+    ///     {"row":R,"col":C,"u":U,"v":V,"origin":[..],"direction":[..]}
+    ///
+    /// or with --one-based
+    ///
+    ///     {"i":I,"j":J,"u":U,"v":V,"origin":[..],"direction":[..]}
+    ///
+    /// u and v are null for the panoramic cameras (equirectangular, fisheye), which
+    /// have no image plane; origin and direction are null outside a fisheye's image
+    /// circle. Without --pixel, every pixel, row by row, each printed as computed.
+    #[command(verbatim_doc_comment)]
     Rays(RaysArgs),
-    /// Print where points appear in a scene's camera image.
+    /// Print where points appear in a scene's camera image
     ///
-    /// x, y are continuous image coordinates: x from the left edge, y from the top, so
-    /// pixel (row, col) spans [col, col + 1) x [row, row + 1) and its centre is
-    /// (col + 0.5, row + 0.5). row and col name the pixel holding the point, null outside
-    /// the image; all four are null where the point is not visible (behind a perspective
-    /// eye). Prints one JSON line per point: {"point":[..],"x":X,"y":Y,"row":R,"col":C}.
+    /// x, y are continuous image coordinates in pixels, x from the left edge and y
+    /// from the top; they are the same under both pixel conventions. The pixel
+    /// (row, col), or the lecture's (i, j), covers
+    ///
+    ///     col <= x < col + 1,  row <= y < row + 1   (centre col + 1/2, row + 1/2)
+    ///     j - 1 <= x < j,      i - 1 <= y < i       (centre j - 1/2, i - 1/2)
+    ///
+    /// so the point's image-plane coordinates are u = (x/W - 1/2) vw and
+    /// v = -(y/H - 1/2) vh, the lecture's formula with x = j - 1/2 at a centre.
+    ///
+    /// Prints one JSON line per point,
+    ///
+    ///     {"point":[..],"x":X,"y":Y,"row":R,"col":C}
+    ///
+    /// or with --one-based
+    ///
+    ///     {"point":[..],"x":X,"y":Y,"i":I,"j":J}
+    ///
+    /// The pixel is null outside the image; all four are null where the point is
+    /// not visible (behind a perspective eye).
+    #[command(verbatim_doc_comment)]
     Project(ProjectArgs),
     /// Judge renders against reference images, as an instructor would.
     ///
@@ -94,21 +152,64 @@ pub(crate) enum Command {
     Figure(crate::figures::FigureArgs),
     /// Draw every lecture figure into a folder, as NAME.png and NAME.svg.
     Figures(crate::figures::FiguresArgs),
+    /// Print a scene file to start from: the built-in default scene.
+    ///
+    /// `viewray scene --default > scene.ron` writes the scene `viewray render` renders
+    /// without a SCENE (a camera with a field of view and a lens shift, three kinds of
+    /// light, planes, triangles and spheres, plain, glossy, mirror and grid materials),
+    /// ready to edit and render with `viewray render scene.ron`.
+    Scene(SceneArgs),
+    /// Print the shell completion script for bash, zsh, fish, elvish or powershell.
+    ///
+    /// For example, in bash: `source <(viewray completions bash)`, or save it where
+    /// your shell looks for completions (`viewray completions bash >
+    /// ~/.local/share/bash-completion/completions/viewray`).
+    Completions(CompletionsArgs),
+    /// Print the man page of viewray or of one of its commands (roff, for `man`).
+    ///
+    /// For example: `viewray man > ~/.local/share/man/man1/viewray.1` and `viewray man
+    /// rays > ~/.local/share/man/man1/viewray-rays.1`, then `man viewray`.
+    Man(ManArgs),
+}
+
+/// The file format of an image written to standard output, or one whose name has no
+/// .png or .exr extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum OutputFormat {
+    /// 8-bit sRGB PNG.
+    Png,
+    /// OpenEXR of linear 32-bit floats.
+    Exr,
+}
+
+impl From<OutputFormat> for ImageFormat {
+    fn from(format: OutputFormat) -> Self {
+        match format {
+            OutputFormat::Png => ImageFormat::Png,
+            OutputFormat::Exr => ImageFormat::Exr,
+        }
+    }
 }
 
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
-    /// The scene file to render; without it, the built-in default scene.
+    /// The scene file to render, or - to read it from standard input (mesh paths are
+    /// then relative to the current folder); without it, the built-in default scene.
     pub(crate) scene: Option<PathBuf>,
-    /// Where to write the image: .png (8-bit sRGB) or .exr (linear 32-bit floats).
+    /// Where to write the image: .png (8-bit sRGB) or .exr (linear 32-bit floats), or -
+    /// for standard output (PNG unless --format says otherwise).
     #[arg(short, long, value_name = "OUT.png", default_value = "viewray.png")]
     pub(crate) output: PathBuf,
+    /// The image format, when the output's extension does not say (as for -o -).
+    #[arg(long, value_name = "FORMAT")]
+    pub(crate) format: Option<OutputFormat>,
     /// Samples per pixel, instead of the scene's (1 is the pixel centre, the lecture's
     /// ray).
     #[arg(long, value_name = "N", value_parser = parse_samples)]
     pub(crate) samples: Option<u32>,
-    /// The image size as WIDTHxHEIGHT, instead of the scene's; fields of view given in
-    /// degrees and presets follow the new aspect ratio.
+    /// The image size as WIDTHxHEIGHT, instead of the scene's; fields of view and presets
+    /// follow the new aspect ratio, an explicit viewport does not (a warning says when
+    /// pixels are no longer square).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub(crate) size: Option<(u32, u32)>,
     /// How many threads to load, build and render on (default: one per core).
@@ -126,51 +227,89 @@ pub(crate) struct RenderArgs {
 #[derive(Args, Debug)]
 #[command(after_help = CONVENTIONS)]
 pub(crate) struct FrameArgs {
+    /// A scene file (or - for standard input) whose camera's frame to print, instead of
+    /// --eye, --view or --look-at, and --up.
+    #[arg(value_name = "SCENE", conflicts_with_all = ["eye", "view", "look_at", "up"])]
+    pub(crate) scene: Option<PathBuf>,
     /// The eye position e.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub(crate) eye: DVec3,
-    /// The view direction.
+    pub(crate) eye: Option<DVec3>,
+    /// The view direction (or give --look-at).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
-          required_unless_present = "look_at", conflicts_with = "look_at")]
+          conflicts_with = "look_at")]
     pub(crate) view: Option<DVec3>,
     /// A point to look at: view = look_at - eye.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub(crate) look_at: Option<DVec3>,
-    /// The up vector; it fixes the camera's roll and need not be perpendicular to view.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
-          default_value = "0,1,0")]
-    pub(crate) up: DVec3,
+    /// The up vector; it fixes the camera's roll and need not be perpendicular to view
+    /// [default: 0,1,0].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) up: Option<DVec3>,
 }
 
 #[derive(Args, Debug)]
 #[command(after_help = CONVENTIONS)]
 pub(crate) struct RaysArgs {
-    /// The scene file whose camera and image size to use.
+    /// The scene file whose camera and image size to use, or - for standard input.
     pub(crate) scene: PathBuf,
-    /// A pixel as ROW,COL (repeat the option, or list several after it). Without it,
-    /// every pixel.
+    /// A pixel as ROW,COL, 0-based (or I,J with --one-based); repeat the option, or list
+    /// several after it. Without it, every pixel.
     #[arg(long, value_name = "ROW,COL", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub(crate) pixel: Vec<(i64, i64)>,
-    /// Pixels are given and printed 1-based, as the lecture's (i, j).
+    /// Pixels are given and printed 1-based, as the lecture's (i, j), with the JSON keys
+    /// "i" and "j" instead of "row" and "col".
     #[arg(long)]
     pub(crate) one_based: bool,
-    /// The point inside each pixel as SX,SY in [0, 1); 0.5,0.5 is the centre.
-    #[arg(long, value_name = "SX,SY", value_parser = parse_vec2, default_value = "0.5,0.5")]
+    /// The point inside each pixel as OX,OY, each in [0, 1) from the pixel's top-left
+    /// corner; 0.5,0.5 is the centre, the lecture's ray.
+    #[arg(long, value_name = "OX,OY", value_parser = parse_offset, default_value = "0.5,0.5")]
     pub(crate) sample: DVec2,
 }
 
 #[derive(Args, Debug)]
 #[command(after_help = CONVENTIONS)]
 pub(crate) struct ProjectArgs {
-    /// The scene file whose camera and image size to use.
+    /// The scene file whose camera and image size to use, or - for standard input.
     pub(crate) scene: PathBuf,
     /// A world point as X,Y,Z (repeat the option, or list several after it).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
           required = true)]
     pub(crate) point: Vec<DVec3>,
-    /// Print row and col 1-based, as the lecture's (i, j).
+    /// Print the pixel 1-based, as the lecture's (i, j), with the JSON keys "i" and "j"
+    /// instead of "row" and "col" (x and y do not change).
     #[arg(long)]
     pub(crate) one_based: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct SceneArgs {
+    /// Print the built-in default scene, the one `viewray render` renders without a
+    /// SCENE.
+    #[arg(long, required = true)]
+    pub(crate) default: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct CompletionsArgs {
+    /// The shell to complete for.
+    #[arg(value_name = "SHELL")]
+    pub(crate) shell: clap_complete::Shell,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct ManArgs {
+    /// The command whose page to print (`viewray-COMMAND`); without it, viewray's own
+    /// page, which lists the commands.
+    #[arg(value_name = "COMMAND")]
+    pub(crate) command: Option<String>,
+}
+
+/// The SCENE argument that means standard input.
+pub(crate) const STDIN: &str = "-";
+
+/// Whether a SCENE or OUT argument is `-`, standard input or output.
+pub(crate) fn is_standard_stream(path: &Path) -> bool {
+    path.as_os_str() == STDIN
 }
 
 /// Parses `text` as comma-separated finite numbers, exactly `N` of them.
@@ -194,8 +333,16 @@ fn parse_vec3(text: &str) -> Result<DVec3, String> {
     parse_numbers::<3>(text, "0,1.5,-2").map(DVec3::from)
 }
 
-fn parse_vec2(text: &str) -> Result<DVec2, String> {
-    parse_numbers::<2>(text, "0.5,0.5").map(DVec2::from)
+/// Parses an offset inside a pixel: two numbers in `[0, 1)`.
+fn parse_offset(text: &str) -> Result<DVec2, String> {
+    let offset = DVec2::from(parse_numbers::<2>(text, "0.5,0.5")?);
+    if !(0.0..1.0).contains(&offset.x) || !(0.0..1.0).contains(&offset.y) {
+        return Err(format!(
+            "{},{} lies outside the pixel: each offset must be in [0, 1)",
+            offset.x, offset.y
+        ));
+    }
+    Ok(offset)
 }
 
 fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
@@ -223,6 +370,7 @@ fn parse_size(text: &str) -> Result<(u32, u32), String> {
             "{width} x {height} is too large: each side can be at most {side} pixels"
         ));
     }
+    // Both sides are at most MAX_IMAGE_SIDE (2^14), so the product cannot overflow.
     if width * height > MAX_IMAGE_PIXELS {
         return Err(format!(
             "{width} x {height} is too large: at most {MAX_IMAGE_PIXELS} pixels (2^28)"
@@ -296,10 +444,85 @@ pub(crate) fn expand_repeated_values(args: impl IntoIterator<Item = OsString>) -
     out
 }
 
+/// The options whose value is several numbers joined by commas, the format each takes
+/// and how many numbers that is.
+const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
+    ("--eye", "X,Y,Z", 3),
+    ("--view", "X,Y,Z", 3),
+    ("--look-at", "X,Y,Z", 3),
+    ("--up", "X,Y,Z", 3),
+    ("--point", "X,Y,Z", 3),
+    ("--pixel", "ROW,COL", 2),
+    ("--sample", "OX,OY", 2),
+];
+
+/// The options of `viewray frame` that describe a camera by hand.
+const FRAME_OPTIONS: [&str; 4] = ["--eye", "--view", "--look-at", "--up"];
+
+/// The subcommand named in `args` (which start with the program's name), if any.
+pub(crate) fn subcommand_in(args: &[OsString]) -> Option<String> {
+    let name = args.get(1)?.to_str()?;
+    Cli::command()
+        .get_subcommands()
+        .any(|command| command.get_name() == name)
+        .then(|| name.to_owned())
+}
+
+/// `(see `viewray COMMAND --help`)`, the pointer every usage error ends with.
+pub(crate) fn see_help(command: Option<&str>) -> String {
+    match command {
+        Some(command) => format!("(see `viewray {command} --help`)"),
+        None => "(see `viewray --help`)".to_owned(),
+    }
+}
+
+/// A usage error of `viewray COMMAND`: the message and where the help is.
+pub(crate) fn usage_error(command: &str, message: impl Display) -> anyhow::Error {
+    anyhow::anyhow!("{message} {}", see_help(Some(command)))
+}
+
+/// Finds numbers separated by spaces where an option wants them joined by commas
+/// (`--eye 1 2 3`, `--pixel 1 1`), which clap would report as "unexpected argument
+/// '2'". Returns the message that says the format and what to write instead.
+pub(crate) fn spaced_number_list(args: &[OsString]) -> Option<String> {
+    let texts: Vec<&str> = args.iter().map(|a| a.to_str().unwrap_or("")).collect();
+    for (index, &arg) in texts.iter().enumerate() {
+        let Some(&(option, format, count)) = NUMBER_LIST_OPTIONS.iter().find(|o| o.0 == arg) else {
+            continue;
+        };
+        // Take the arguments after the option while they are numbers (or pieces of a
+        // list, like `1,`) and fewer than the option needs.
+        let mut numbers: Vec<&str> = Vec::new();
+        let mut taken = 0;
+        for next in &texts[index + 1..] {
+            let pieces: Vec<&str> = next.split(',').filter(|p| !p.trim().is_empty()).collect();
+            let numeric =
+                !pieces.is_empty() && pieces.iter().all(|p| p.trim().parse::<f64>().is_ok());
+            if !numeric || numbers.len() + pieces.len() > count {
+                break;
+            }
+            numbers.extend(pieces);
+            taken += 1;
+            if numbers.len() == count {
+                break;
+            }
+        }
+        if taken > 1 {
+            let typed = texts[index + 1..=index + taken].join(" ");
+            return Some(format!(
+                "{option} takes {format}, {count} numbers joined by commas without spaces: \
+                 write `{option} {}`, not `{option} {typed}`",
+                numbers.join(",")
+            ));
+        }
+    }
+    None
+}
+
 /// Prints a clap error: help and version as clap formats them, usage errors as one line
-/// `error: ...`, exit code 2.
-pub(crate) fn report_usage_error(error: &clap::Error) -> ExitCode {
-    use clap::error::ErrorKind;
+/// `error: ...` pointing to the subcommand's help, exit code 2.
+pub(crate) fn report_usage_error(error: &clap::Error, args: &[OsString]) -> ExitCode {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
     if matches!(
         error.kind(),
         ErrorKind::DisplayHelp
@@ -313,16 +536,37 @@ pub(crate) fn report_usage_error(error: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         };
     }
+    let command = subcommand_in(args);
+    let help = see_help(command.as_deref());
+    let invalid = match error.get(ContextKind::InvalidArg) {
+        Some(ContextValue::String(arg)) => Some(arg.as_str()),
+        _ => None,
+    };
+    // `viewray rays --eye ..`: the camera comes from the scene; clap's tip ("use '--
+    // --eye'") would send a student the wrong way.
+    if error.kind() == ErrorKind::UnknownArgument
+        && let (Some(command @ ("rays" | "project")), Some(arg)) = (command.as_deref(), invalid)
+        && let Some(option) = FRAME_OPTIONS.iter().find(|o| arg.starts_with(**o))
+    {
+        crate::style::error(format_args!(
+            "`viewray {command}` takes its camera from a SCENE file, not from {option}; \
+             `viewray frame --eye X,Y,Z --look-at X,Y,Z` prints the frame of eye, view and \
+             up {help}"
+        ));
+        return ExitCode::from(crate::EXIT_BAD_INPUT);
+    }
     let text = error.render().to_string();
     let line: Vec<&str> = text
         .lines()
         .map(str::trim)
         .take_while(|line| !line.starts_with("Usage:") && !line.starts_with("For more information"))
-        .filter(|line| !line.is_empty())
+        // clap suggests `-- --option` to pass an unknown option as a value: never what a
+        // viewray user means.
+        .filter(|line| !line.is_empty() && !line.starts_with("tip: to pass '"))
         .collect();
     let line = line.join(" ");
     let line = line.strip_prefix("error: ").unwrap_or(&line);
-    eprintln!("error: {line} (see `viewray --help`)");
+    crate::style::error(format_args!("{line} {help}"));
     ExitCode::from(crate::EXIT_BAD_INPUT)
 }
 
@@ -330,8 +574,12 @@ pub(crate) fn report_usage_error(error: &clap::Error) -> ExitCode {
 mod tests {
     use super::*;
 
+    fn os(args: &[&str]) -> Vec<OsString> {
+        args.iter().map(OsString::from).collect()
+    }
+
     fn expand(args: &[&str]) -> Vec<String> {
-        expand_repeated_values(args.iter().map(OsString::from))
+        expand_repeated_values(os(args))
             .into_iter()
             .map(|a| a.into_string().unwrap())
             .collect()
@@ -366,8 +614,49 @@ mod tests {
         );
     }
 
+    #[track_caller]
+    fn check_spaced(args: &[&str], expected: Option<&str>) {
+        assert_eq!(spaced_number_list(&os(args)).as_deref(), expected);
+    }
+
     #[test]
-    fn sizes_samples_and_threads_are_checked() {
+    fn numbers_separated_by_spaces_are_caught_with_the_fix() {
+        check_spaced(
+            &[
+                "viewray", "frame", "--eye", "1", "2", "3", "--view", "0,0,-1",
+            ],
+            Some(
+                "--eye takes X,Y,Z, 3 numbers joined by commas without spaces: write \
+                 `--eye 1,2,3`, not `--eye 1 2 3`",
+            ),
+        );
+        check_spaced(
+            &["viewray", "rays", "s.ron", "--pixel", "1", "1"],
+            Some(
+                "--pixel takes ROW,COL, 2 numbers joined by commas without spaces: write \
+                 `--pixel 1,1`, not `--pixel 1 1`",
+            ),
+        );
+        check_spaced(
+            &["viewray", "frame", "--eye", "1,", "-2,", "3"],
+            Some(
+                "--eye takes X,Y,Z, 3 numbers joined by commas without spaces: write \
+                 `--eye 1,-2,3`, not `--eye 1, -2, 3`",
+            ),
+        );
+        // Correct lists, several values after one option, and a lone wrong value (which
+        // the option's own parser explains) are left alone.
+        check_spaced(
+            &["viewray", "project", "s", "--point", "1,2,3", "4,5,6"],
+            None,
+        );
+        check_spaced(&["viewray", "rays", "s", "--pixel", "1,1", "2,2"], None);
+        check_spaced(&["viewray", "frame", "--eye", "1", "--view", "0,0,1"], None);
+        check_spaced(&["viewray", "rays", "--pixel", "1", "s.ron"], None);
+    }
+
+    #[test]
+    fn sizes_samples_threads_and_offsets_are_checked() {
         assert_eq!(parse_size("640x480"), Ok((640, 480)));
         assert_eq!(parse_size("16384X16384"), Ok((16384, 16384)));
         for bad in [
@@ -379,6 +668,7 @@ mod tests {
             "640x",
             "axb",
             "-1x5",
+            "99999999999999999999x1",
         ] {
             assert!(parse_size(bad).is_err(), "{bad}");
         }
@@ -388,6 +678,10 @@ mod tests {
         }
         assert_eq!(parse_threads("2"), Ok(2));
         assert!(parse_threads("0").is_err());
+        assert_eq!(parse_offset("0,0.999"), Ok(DVec2::new(0.0, 0.999)));
+        for bad in ["1,0", "0,-0.1", "0.5", "nan,0"] {
+            assert!(parse_offset(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]
@@ -397,6 +691,17 @@ mod tests {
         assert!(parse_vec3("1,2,x").is_err());
         assert!(parse_vec3("1,2,inf").is_err());
         assert_eq!(parse_pixel("2, 3"), Ok((2, 3)));
+        assert_eq!(
+            parse_pixel("-9223372036854775808,0"),
+            Ok((i64::MIN, 0)),
+            "any whole number parses; the command checks it against the image"
+        );
         assert!(parse_pixel("2.5,3").is_err());
+        assert!(parse_pixel("9223372036854775808,0").is_err());
+    }
+
+    #[test]
+    fn the_clap_definitions_are_consistent() {
+        Cli::command().debug_assert();
     }
 }

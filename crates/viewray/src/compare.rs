@@ -13,8 +13,8 @@ use clap::Args;
 use serde_json::{Value, json};
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Comparison, Diagnosis, Expectations, InstructorThresholds, ReportEntry, RgbaImage,
-    judge_with, load_png, write_report,
+    CameraKind, Comparison, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry,
+    RgbaImage, Rules, Verdict, judge_with, load_png, write_report,
 };
 use viewray_scene::{LoadOptions, Scene};
 
@@ -141,17 +141,11 @@ pub(crate) fn run(args: &CompareArgs) -> ExitCode {
     });
     let pairs = match pairs {
         Ok(pairs) => pairs,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            return ExitCode::from(EXIT_BAD_INPUT);
-        }
+        Err(error) => return crate::failure(&error),
     };
     match judge_all(args, &pairs) {
         Ok(tally) => tally.exit_code(),
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            ExitCode::from(EXIT_BAD_INPUT)
-        }
+        Err(error) => crate::failure(&error),
     }
 }
 
@@ -268,7 +262,7 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
         shift: (shift.x, shift.y),
         camera: CameraKind::Perspective,
     };
-    Ok(match scene.camera.projection() {
+    Ok(match scene.camera().projection() {
         Projection::Perspective(p) => Some(perspective(p.viewport, p.shift)),
         Projection::ThinLens(p) => Some(perspective(p.viewport, p.shift)),
         Projection::Orthographic(_) | Projection::Oblique(_) => Some(Expectations {
@@ -312,7 +306,8 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         .max()
         .unwrap_or(0)
         .max(4);
-    let mut out = BufWriter::new(std::io::stdout().lock());
+    // The table's verdicts are coloured on a terminal (see `style`); JSON never is.
+    let mut out = BufWriter::new(anstream::AutoStream::auto(std::io::stdout().lock()));
     if !args.json {
         writeln!(out, "{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")?;
         out.flush()?;
@@ -339,6 +334,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         });
     }
     let tally = Tally::of(&results);
+    let summary_line = format!("{} (threshold {})", tally.summary(), args.threshold);
     if args.json {
         let summary = json!({"summary": {
             "total": results.len(),
@@ -348,7 +344,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         }});
         crate::json::write_line(&mut out, &summary)?;
     } else {
-        writeln!(out, "{} (threshold {})", tally.summary(), args.threshold)?;
+        writeln!(out, "{summary_line}")?;
     }
     out.flush()?;
     if let Some(directory) = &args.report {
@@ -366,7 +362,18 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
                 }
             })
             .collect();
-        let page = write_report(directory, &entries)
+        let title = format!(
+            "viewray compare {} {}",
+            args.expected.display(),
+            args.actual.display()
+        );
+        let report = Report {
+            title: &title,
+            summary: &summary_line,
+            rules: Rules::Instructor(thresholds),
+            entries: &entries,
+        };
+        let page = write_report(directory, &report)
             .with_context(|| format!("cannot write the report into `{}`", directory.display()))?;
         eprintln!("report: {}", page.display());
     }
@@ -416,12 +423,13 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, scenes: &mut Scene
     }
 }
 
-/// The verdict word: `pass`, `fail`, or `error` for a pair that could not be compared.
-fn verdict(judged: &Judged) -> &'static str {
+/// The verdict, as the report states it too: `error` for a pair that could not be
+/// compared.
+fn verdict(judged: &Judged) -> Verdict {
     match &judged.outcome {
-        Ok(c) if c.passed() => "pass",
-        Ok(_) => "fail",
-        Err(_) => "error",
+        Ok(c) if c.passed() => Verdict::Pass,
+        Ok(_) => Verdict::Fail,
+        Err(_) => Verdict::Error,
     }
 }
 
@@ -443,10 +451,15 @@ fn table_row(judged: &Judged, name_width: usize) -> String {
         }) => format!("{:.3}", m.peak_flip),
         _ => "-".to_owned(),
     };
+    let style = match verdict(judged) {
+        Verdict::Pass => crate::style::PASS,
+        Verdict::Fail => crate::style::FAIL,
+        Verdict::Error => crate::style::BROKEN,
+    };
     let row = format!(
-        "{:name_width$}  {:7}  {peak:9}  {}",
+        "{:name_width$}  {}  {peak:9}  {}",
         judged.name,
-        verdict(judged).to_uppercase(),
+        crate::style::padded(style, verdict(judged).label(), 7),
         note(judged)
     );
     row.trim_end().to_owned()
@@ -468,7 +481,7 @@ fn json_line(judged: &Judged, threshold: f32) -> Value {
     };
     json!({
         "name": judged.name,
-        "verdict": verdict(judged),
+        "verdict": verdict(judged).word(),
         "peak_flip": metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
         "mean_flip": metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
         "threshold": figure(threshold),

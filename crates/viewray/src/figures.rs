@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use viewray_diagram::Figure;
-use viewray_diagram::figures::{NamedFigure, UnknownFigure, all_figures, figure_by_name};
+use viewray_diagram::{NamedFigure, UnknownFigure, all_figures, figure_by_name};
+use viewray_draw::Figure;
 
 #[derive(Args, Debug)]
 #[command(after_help = figure_list())]
@@ -78,13 +78,14 @@ impl Format {
     }
 }
 
-/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into place).
+/// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into
+/// place); an error names `path`.
 fn write(figure: &Figure, path: &Path, format: Format) -> Result<()> {
     match format {
-        Format::Png => figure.write_png(path),
-        Format::Svg => figure.write_svg(path),
+        Format::Png => viewray_draw::write_png(figure, path)?,
+        Format::Svg => viewray_draw::write_svg(figure, path)?,
     }
-    .with_context(|| format!("cannot write {}", path.display()))
+    Ok(())
 }
 
 /// `viewray figure`: one figure to a PNG or SVG.

@@ -3,17 +3,23 @@
 //! lecture's figures.
 //!
 //! Output meant for programs (and for checking by hand) is JSON lines on stdout. Errors
-//! are one line, `error: ...`, on stderr.
+//! are one line, `error: ...`, on stderr. The conventions the numbers follow (pixel
+//! indices, the camera frame, each family's ray, `project`'s coordinates) are written
+//! for users in the repository's `docs/cameras.md`, the scene format in
+//! `docs/scene-format.md`.
 //!
 //! Exit codes: 0 success; 1 a comparison failed; 2 bad input or usage; anything else an
-//! internal error.
+//! internal error. A closed standard output (`viewray rays scene.ron | head`) ends the
+//! command quietly with 0.
 
 mod cli;
 mod commands;
 mod compare;
 mod figures;
+mod input;
 mod json;
 mod render;
+mod style;
 
 use std::process::ExitCode;
 
@@ -25,10 +31,16 @@ use crate::cli::{Cli, Command};
 const EXIT_BAD_INPUT: u8 = 2;
 
 fn main() -> ExitCode {
-    let args = cli::expand_repeated_values(std::env::args_os());
-    let cli = match Cli::try_parse_from(args) {
+    let args: Vec<_> = std::env::args_os().collect();
+    if let Some(message) = cli::spaced_number_list(&args) {
+        let help = cli::see_help(cli::subcommand_in(&args).as_deref());
+        style::error(format_args!("{message} {help}"));
+        return ExitCode::from(EXIT_BAD_INPUT);
+    }
+    let expanded = cli::expand_repeated_values(args.iter().cloned());
+    let cli = match Cli::try_parse_from(&expanded) {
         Ok(cli) => cli,
-        Err(error) => return cli::report_usage_error(&error),
+        Err(error) => return cli::report_usage_error(&error, &args),
     };
     let result = match cli.command {
         Command::Render(args) => render::render(&args),
@@ -38,12 +50,31 @@ fn main() -> ExitCode {
         Command::Compare(args) => return compare::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
+        Command::Scene(args) => commands::scene(&args),
+        Command::Completions(args) => commands::completions(&args),
+        Command::Man(args) => commands::man(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            ExitCode::from(EXIT_BAD_INPUT)
-        }
+        Err(error) => failure(&error),
     }
+}
+
+/// Reports `error` as one `error:` line and returns exit code 2; a closed standard output
+/// (the reader of a pipe went away, as `head` does) is not an error: exit code 0, quietly.
+pub(crate) fn failure(error: &anyhow::Error) -> ExitCode {
+    if is_broken_pipe(error) {
+        return ExitCode::SUCCESS;
+    }
+    style::error(format_args!("{error:#}"));
+    ExitCode::from(EXIT_BAD_INPUT)
+}
+
+/// Whether `error` comes from writing to a pipe whose reader has gone.
+fn is_broken_pipe(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }

@@ -1,25 +1,21 @@
-//! `viewray render`: load a scene, render it, write the image atomically.
+//! `viewray render`: load a scene, render it, write the image atomically to a file or to
+//! standard output.
 
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{BufWriter, Cursor, IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use tempfile::NamedTempFile;
-use viewray_render::{ImageFormat, RenderSettings};
-use viewray_scene::{LoadOptions, Scene};
+use viewray_camera::{Camera, Projection};
+use viewray_output::AtomicFile;
+use viewray_render::{Image, ImageFormat, RenderSettings};
+use viewray_scene::LoadOptions;
 
-use crate::cli::RenderArgs;
-use crate::json;
-
-/// The scene rendered when no scene file is given. It uses only analytic shapes, so it
-/// needs no other file and works from any directory.
-const DEFAULT_SCENE: &str = include_str!("../../../fixtures/default.ron");
-
-/// The name the default scene goes by in error messages.
-const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
+use crate::cli::{RenderArgs, is_standard_stream, usage_error};
+use crate::{json, style};
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
 ///
@@ -37,31 +33,82 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
     }
 }
 
+/// Where the image goes: a file written atomically, or standard output.
+enum Destination {
+    File(OutputFile),
+    Stdout,
+}
+
+/// The image format: `--format`, else the output's extension; PNG on standard output.
+fn output_format(args: &RenderArgs) -> Result<ImageFormat> {
+    let asked = args.format.map(ImageFormat::from);
+    if is_standard_stream(&args.output) {
+        return Ok(asked.unwrap_or(ImageFormat::Png));
+    }
+    match (ImageFormat::from_path(&args.output), asked) {
+        (Some(by_name), Some(asked)) if by_name != asked => Err(usage_error(
+            "render",
+            format!(
+                "--format {} disagrees with the output's name {}",
+                format_name(asked),
+                args.output.display()
+            ),
+        )),
+        (Some(format), _) | (None, Some(format)) => Ok(format),
+        (None, None) => bail!(
+            "cannot write {}: the output must be a .png or .exr file (or say --format png or \
+             --format exr)",
+            args.output.display()
+        ),
+    }
+}
+
+fn format_name(format: ImageFormat) -> &'static str {
+    match format {
+        ImageFormat::Png => "png",
+        ImageFormat::Exr => "exr",
+    }
+}
+
 fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
-    if args.output.is_dir() {
+    let to_stdout = is_standard_stream(&args.output);
+    if !to_stdout && args.output.is_dir() {
         bail!("cannot write {}: it is a directory", args.output.display());
     }
-    let format = ImageFormat::from_path(&args.output).ok_or_else(|| {
-        anyhow!(
-            "cannot write {}: the output must be a .png or .exr file",
-            args.output.display()
-        )
-    })?;
-    // Open the output's temporary file first, so that an unwritable path fails before
-    // a long render rather than after it.
-    let mut output = OutputFile::create(&args.output)?;
-    remove_on_interrupt(output.temporary.path(), &args.output);
+    let format = output_format(args)?;
+    if to_stdout && args.stats {
+        return Err(usage_error(
+            "render",
+            "--stats prints on standard output, which -o - takes for the image: write the \
+             image to a file to see the statistics",
+        ));
+    }
+    let destination = if to_stdout {
+        if std::io::stdout().is_terminal() {
+            bail!(
+                "standard output is a terminal, not a place for a binary image: redirect it \
+                 (`-o - > picture.png`) or pipe it into a program"
+            );
+        }
+        Destination::Stdout
+    } else {
+        // Open the output's temporary file first, so that an unwritable path fails before
+        // a long render rather than after it (Ctrl-C deletes it from then on).
+        Destination::File(OutputFile::create(&args.output)?)
+    };
 
     // Load the scene (this builds its BVHs too).
     let options = LoadOptions {
         size: args.size,
         samples: args.samples,
     };
-    let (scene, load_times) = match &args.scene {
-        Some(path) => Scene::load_timed(path, options)?,
-        None => Scene::parse_timed(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
-    };
-    check_memory(scene.camera.width(), scene.camera.height(), format)?;
+    let (scene, load_times) = crate::input::load_scene(args.scene.as_deref(), options)?;
+    if let Some(size) = args.size
+        && let Some(warning) = stretched_pixels(scene.camera(), size)
+    {
+        style::warning(warning);
+    }
+    check_memory(scene.camera().width(), scene.camera().height(), format)?;
 
     // Render, with a progress bar on a terminal.
     let interactive = std::io::stderr().is_terminal();
@@ -76,23 +123,30 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     let render_time = start.elapsed();
     bar.finish_and_clear();
 
-    // Write the image beside the output and move it into place.
-    output.write(|out| rendered.image.write(out, format).map_err(Into::into))?;
-    output.persist()?;
+    let written_to = match destination {
+        // Write the image beside the output and move it into place.
+        Destination::File(output) => {
+            output.write_and_commit(|out| rendered.image.write(out, format).map_err(Into::into))?;
+            args.output.display().to_string()
+        }
+        Destination::Stdout => {
+            write_to_stdout(&rendered.image, format)?;
+            "standard output".to_owned()
+        }
+    };
 
     if interactive {
         eprintln!(
-            "wrote {}: {} x {}, {} samples per pixel, rendered in {:.2} s",
-            args.output.display(),
+            "wrote {written_to}: {} x {}, {} samples per pixel, rendered in {:.2} s",
             rendered.image.width(),
             rendered.image.height(),
-            scene.samples,
+            scene.samples(),
             render_time.as_secs_f64()
         );
     }
     if args.stats {
         let line = json!({
-            "triangles": scene.world.triangle_count(),
+            "triangles": scene.world().triangle_count(),
             "load_s": seconds(load_times.total.saturating_sub(load_times.build)),
             "build_s": seconds(load_times.build),
             "render_s": seconds(render_time),
@@ -103,6 +157,56 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         out.flush()?;
     }
     Ok(())
+}
+
+/// Encodes the image in memory (EXR needs to seek), then writes it to standard output.
+fn write_to_stdout(image: &Image, format: ImageFormat) -> Result<()> {
+    let mut encoded = Cursor::new(Vec::new());
+    image.write(&mut encoded, format)?;
+    let mut out = std::io::stdout().lock();
+    out.write_all(encoded.get_ref())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// The warning for `--size` making the pixels of an explicit viewport non-square (a
+/// field of view or a preset follows the new aspect ratio; a viewport stays as written,
+/// and the picture is stretched). `None` when the pixels are square.
+fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> Option<String> {
+    let viewport = camera.projection().viewport()?;
+    let image_aspect = f64::from(width) / f64::from(height);
+    let viewport_aspect = viewport.x / viewport.y;
+    if (image_aspect / viewport_aspect - 1.0).abs() <= 1e-3 {
+        return None;
+    }
+    // The size nearest the one asked for with the viewport's aspect ratio: the same
+    // width, or where that does not fit, the same height.
+    let same_width = (f64::from(width) / viewport_aspect).round();
+    let same_height = (f64::from(height) * viewport_aspect).round();
+    let side = f64::from(viewray_scene::MAX_IMAGE_SIDE);
+    let square = if (1.0..=side).contains(&same_width) {
+        Some(format!("{width}x{same_width}"))
+    } else if (1.0..=side).contains(&same_height) {
+        Some(format!("{same_height}x{height}"))
+    } else {
+        None
+    };
+    let instead = match camera.projection() {
+        Projection::Perspective(_) | Projection::ThinLens(_) => {
+            "a field of view (`fov_y` or `fov_x`) instead of `viewport`"
+        }
+        _ => "`height` instead of `viewport`",
+    };
+    let keep = match square {
+        Some(size) => format!("use --size {size} (the viewport's aspect ratio), or give {instead}"),
+        None => format!("give {instead}"),
+    };
+    Some(format!(
+        "--size {width}x{height} stretches the picture: the scene's viewport is {} x {} \
+         (aspect {viewport_aspect:.3}) but the image is {width} x {height} (aspect \
+         {image_aspect:.3}), so pixels are no longer square; to keep them square, {keep}",
+        viewport.x, viewport.y
+    ))
 }
 
 /// A duration in seconds, to the microsecond.
@@ -171,72 +275,104 @@ fn available_memory() -> Option<u64> {
     Some(kib * 1024)
 }
 
-/// On Ctrl-C, deletes the unfinished temporary file and exits with 130 (the shell's code
-/// for SIGINT): the output path keeps what it held, and no stray file is left beside it.
-fn remove_on_interrupt(temporary: &Path, output: &Path) {
-    let temporary = temporary.to_owned();
-    let output = output.to_owned();
-    // Only a second handler fails to install; the first one already does the job.
-    let _ = ctrlc::set_handler(move || {
-        let _ = std::fs::remove_file(&temporary);
-        eprintln!("interrupted: {} was not written", output.display());
-        std::process::exit(130);
-    });
-}
-
-/// An output file written atomically: into a temporary file beside it, renamed into
-/// place only when complete. Until then the path keeps what it held; a failure deletes
-/// the temporary file.
+/// The output file, written atomically (viewray-output's [`AtomicFile`]: a temporary file
+/// beside it, renamed into place only when complete), and what Ctrl-C does to it.
+///
+/// Until the rename the path keeps what it held. On Ctrl-C the temporary file is deleted
+/// and the command exits with 130 (the shell's code for SIGINT), saying so on stderr. The
+/// handler is installed before the temporary file is created, and the file is handed to
+/// it under the same lock it takes: once the temporary file exists, Ctrl-C removes it.
 struct OutputFile {
     path: PathBuf,
-    temporary: NamedTempFile,
+    state: Arc<Mutex<OutputState>>,
+}
+
+/// Where the output file stands, as the Ctrl-C handler sees it.
+enum OutputState {
+    /// The temporary file is being created.
+    Opening,
+    /// The temporary file exists and the render is under way.
+    Pending(AtomicFile),
+    /// Written, or given up after an error: nothing left to clean up.
+    Finished,
 }
 
 impl OutputFile {
-    /// Creates the temporary file in the folder of `path`.
+    /// Installs the Ctrl-C handler, then creates the temporary file in the folder of
+    /// `path`.
     fn create(path: &Path) -> Result<Self> {
-        let cannot = || format!("cannot write {}", path.display());
-        let folder = match path.parent() {
-            Some(parent) if !parent.as_os_str().is_empty() => parent,
-            _ => Path::new("."),
+        let state = Arc::new(Mutex::new(OutputState::Opening));
+        // Held until the file is in `state`: a Ctrl-C meanwhile waits for it.
+        let mut opening = lock(&state);
+        remove_on_interrupt(Arc::clone(&state), path);
+        *opening = match AtomicFile::create(path) {
+            Ok(file) => OutputState::Pending(file),
+            Err(error) => {
+                *opening = OutputState::Finished;
+                return Err(error.into());
+            }
         };
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(".viewray-").suffix(".tmp");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            // An image is an ordinary file (temporary files default to owner-only).
-            builder.permissions(std::fs::Permissions::from_mode(0o644));
-        }
-        let temporary = builder.tempfile_in(folder).with_context(cannot)?;
+        drop(opening);
         Ok(Self {
             path: path.to_owned(),
-            temporary,
+            state,
         })
     }
 
-    /// Writes the contents with `write`.
-    fn write(
-        &mut self,
-        write: impl FnOnce(&mut BufWriter<&mut std::fs::File>) -> Result<()>,
+    /// Writes the contents with `write` and moves the finished file into place. Ctrl-C
+    /// meanwhile waits until the file is in place (or given up).
+    fn write_and_commit(
+        self,
+        write: impl FnOnce(&mut BufWriter<&mut AtomicFile>) -> Result<()>,
     ) -> Result<()> {
         let cannot = || format!("cannot write {}", self.path.display());
-        let mut out = BufWriter::new(self.temporary.as_file_mut());
+        let mut state = lock(&self.state);
+        let OutputState::Pending(mut file) = std::mem::replace(&mut *state, OutputState::Finished)
+        else {
+            bail!(
+                "cannot write {}: the output was not open",
+                self.path.display()
+            );
+        };
+        let mut out = BufWriter::new(&mut file);
         write(&mut out).with_context(cannot)?;
         out.flush().with_context(cannot)?;
         drop(out);
-        self.temporary.as_file().sync_all().with_context(cannot)?;
+        file.commit()?;
         Ok(())
     }
+}
 
-    /// Moves the finished file into place.
-    fn persist(self) -> Result<()> {
-        let path = self.path;
-        self.temporary
-            .persist(&path)
-            .map_err(|error| anyhow!("cannot write {}: {}", path.display(), error.error))?;
-        Ok(())
+impl Drop for OutputFile {
+    /// An output dropped before it was written (a bad scene, a failed render) deletes its
+    /// temporary file: the Ctrl-C handler keeps the state alive, so this cannot wait for
+    /// the last reference.
+    fn drop(&mut self) {
+        let mut state = lock(&self.state);
+        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
+            let _ = file.discard();
+        }
     }
+}
+
+/// The state, even if a thread panicked while holding it (the handler must still run).
+fn lock(state: &Mutex<OutputState>) -> MutexGuard<'_, OutputState> {
+    state.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// On Ctrl-C, deletes the unfinished temporary file and exits with 130: the output path
+/// keeps what it held, and no stray file is left beside it.
+fn remove_on_interrupt(state: Arc<Mutex<OutputState>>, output: &Path) {
+    let output = output.to_owned();
+    // Only a second handler fails to install, and a process renders once.
+    let _ = ctrlc::set_handler(move || {
+        let mut state = lock(&state);
+        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
+            let _ = file.discard();
+            eprintln!("interrupted: {} was not written", output.display());
+        }
+        std::process::exit(130);
+    });
 }
 
 #[cfg(test)]

@@ -67,6 +67,7 @@ fn every_bad_scene_fails_with_one_line_and_no_output() {
 #[cfg(unix)]
 #[test]
 fn ctrl_c_during_a_render_keeps_the_previous_image() {
+    use std::io::Read as _;
     let dir = tempfile::tempdir().unwrap();
     let output = dir.path().join("picture.png");
     std::fs::write(&output, b"the previous picture").unwrap();
@@ -75,22 +76,55 @@ fn ctrl_c_during_a_render_keeps_the_previous_image() {
         .args(["render", "-o"])
         .arg(&output)
         .args(["--size", "1600x1200", "--samples", "256"])
+        .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // Wait until the render has opened its temporary file, then interrupt it.
+    // The render installs its Ctrl-C handler before it creates its temporary file, so
+    // once that file exists an interrupt is handled: no sleep, no race.
     let started = std::time::Instant::now();
     while files_in(dir.path()).len() < 2 {
         assert!(started.elapsed().as_secs() < 60, "the render never started");
-        std::thread::sleep(std::time::Duration::from_millis(10));
+        std::thread::sleep(std::time::Duration::from_millis(5));
     }
-    std::thread::sleep(std::time::Duration::from_millis(200));
     let killed = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(killed.success());
     let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "{status:?}");
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    assert_eq!(status.code(), Some(130), "{status:?}: {stderr}");
+    assert_eq!(
+        stderr,
+        format!("interrupted: {} was not written\n", output.display())
+    );
     assert_eq!(std::fs::read(&output).unwrap(), b"the previous picture");
     assert_eq!(files_in(dir.path()), ["picture.png"]);
+}
+
+#[test]
+fn an_unwritable_output_is_named_as_given_never_by_its_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("file.txt");
+    std::fs::write(&file, "").unwrap();
+    let output = file.join("out.png");
+    let output = output.to_str().unwrap();
+    for args in [
+        ["render", "-o", output].as_slice(),
+        ["figure", "taxonomy", "-o", output].as_slice(),
+    ] {
+        let line = support::error_line(args);
+        assert_eq!(
+            line,
+            format!("error: cannot write {output}: Not a directory (os error 20)"),
+            "{args:?}"
+        );
+    }
+    assert_eq!(files_in(dir.path()), ["file.txt"]);
 }

@@ -43,14 +43,7 @@ fn picture(width: u32, height: u32, n: u32, mirrored: bool, shift_x: f64) -> Rgb
                 sum[i] += c[i] / f64::from(n * n);
             }
         }
-        let encode = |l: f64| {
-            let s = if l <= 0.003_130_8 {
-                l * 12.92
-            } else {
-                1.055 * l.powf(1.0 / 2.4) - 0.055
-            };
-            (s * 255.0).round() as u8
-        };
+        let encode = |l: f64| viewray_output::linear_to_srgb8(l as f32);
         Rgba([encode(sum[0]), encode(sum[1]), encode(sum[2]), 255])
     })
 }
@@ -221,8 +214,36 @@ fn report_writes_a_page_and_heatmaps() {
         "{stderr}"
     );
     let page = std::fs::read_to_string(report.join("index.html")).unwrap();
-    assert!(page.contains("1 passed, 3 failed, 2 could not be compared, of 6."));
     assert!(page.contains("mirrored left-right: check u = up x w"));
+    // The page says what the terminal says: the same summary line, the same verdict
+    // for each pair, in the same order.
+    let html = scraper::Html::parse_document(&page);
+    let select = |selector: &str| -> Vec<String> {
+        html.select(&scraper::Selector::parse(selector).unwrap())
+            .map(|e| {
+                e.text()
+                    .collect::<String>()
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect()
+    };
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(select("p.summary"), [*lines.last().unwrap()]);
+    let terminal: Vec<String> = lines[1..lines.len() - 1]
+        .iter()
+        .map(|row| {
+            let words: Vec<&str> = row.split_whitespace().collect();
+            format!("{} {}", words[1], words[0])
+        })
+        .collect();
+    assert_eq!(select("section.entry h2"), terminal);
+    assert!(
+        terminal.iter().any(|t| t.starts_with("ERROR")),
+        "{terminal:?}"
+    );
     for name in ["correct", "mirrored", "moved"] {
         let heatmap = image::open(report.join(format!("{name}.diff.png"))).unwrap();
         assert_eq!((heatmap.width(), heatmap.height()), (W, H));

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use tempfile::TempDir;
-use viewray_diagram::figures::{figure_by_name, figure_names};
+use viewray_diagram::{figure_by_name, figure_names};
 
 mod support;
 use support::{error_line_in as error_line, viewray_in};
@@ -125,7 +125,7 @@ fn figures_writes_every_figure_as_png_and_svg() {
         let (width, height) = svg_size(&out.join(format!("{name}.svg")));
         assert_eq!((width, height), (size.0.to_string(), size.1.to_string()));
         // The pictures are rendered, not drawn as polygons.
-        let wireframe = figure_by_name(name).unwrap().wireframe().render();
+        let wireframe = viewray_draw::raster::render(&figure_by_name(name).unwrap().wireframe());
         let has_pictures = [
             "taxonomy",
             "distortion_foreshortening",

@@ -7,7 +7,7 @@ use serde_json::Value;
 use tempfile::TempDir;
 
 mod support;
-use support::{error_line, viewray};
+use support::{error_line, viewray, viewray_with_input};
 
 #[track_caller]
 fn run_ok(args: &[&str]) -> String {
@@ -188,4 +188,133 @@ fn a_failed_render_keeps_the_previous_image() {
     error_line(&["render", missing.to_str().unwrap(), "-o", &out]);
     assert_eq!(std::fs::read(&out).unwrap(), b"a good image");
     assert_eq!(files(dir.path()), ["keep.png"]);
+}
+
+#[test]
+fn an_image_goes_to_standard_output_with_dash() {
+    let dir = TempDir::new().unwrap();
+    let file = path(&dir, "file.png");
+    run_ok(&["render", "-o", &file, "--size", "32x24", "--samples", "1"]);
+    // -o - writes the same PNG to stdout (PNG unless --format says otherwise), and no
+    // file.
+    let piped = viewray(&["render", "-o", "-", "--size", "32x24", "--samples", "1"]);
+    assert!(piped.status.success());
+    assert!(piped.stderr.is_empty());
+    assert_eq!(piped.stdout, std::fs::read(&file).unwrap());
+    // EXR by --format: its magic number (the image crate here decodes PNG only).
+    let exr = viewray(&["render", "-o", "-", "--format", "exr", "--size", "32x24"]);
+    assert!(exr.status.success());
+    assert_eq!(exr.stdout[..4], [0x76, 0x2f, 0x31, 0x01]);
+    assert_eq!(files(dir.path()), ["file.png"]);
+}
+
+#[test]
+fn a_scene_on_standard_input_renders_as_its_file_does() {
+    let dir = TempDir::new().unwrap();
+    let scene = path(&dir, "red.ron");
+    std::fs::write(&scene, RED_SPHERE).unwrap();
+    let by_file = path(&dir, "by_file.png");
+    let by_stdin = path(&dir, "by_stdin.png");
+    run_ok(&["render", &scene, "-o", &by_file]);
+    let out = viewray_with_input(
+        dir.path(),
+        &["render", "-", "-o", &by_stdin],
+        RED_SPHERE.as_bytes(),
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(&by_file).unwrap(),
+        std::fs::read(&by_stdin).unwrap()
+    );
+    // And the default scene's text renders as the default scene does.
+    let text = viewray(&["scene", "--default"]).stdout;
+    let from_text = path(&dir, "from_text.png");
+    let default = path(&dir, "default.png");
+    let out = viewray_with_input(
+        dir.path(),
+        &[
+            "render",
+            "-",
+            "-o",
+            &from_text,
+            "--size",
+            "40x30",
+            "--samples",
+            "1",
+        ],
+        &text,
+    );
+    assert!(out.status.success());
+    run_ok(&[
+        "render",
+        "-o",
+        &default,
+        "--size",
+        "40x30",
+        "--samples",
+        "1",
+    ]);
+    assert_eq!(
+        std::fs::read(&default).unwrap(),
+        std::fs::read(&from_text).unwrap()
+    );
+}
+
+#[test]
+fn a_size_that_stretches_an_explicit_viewport_is_warned_about() {
+    let dir = TempDir::new().unwrap();
+    let scene = path(&dir, "red.ron");
+    std::fs::write(&scene, RED_SPHERE).unwrap();
+    let out = path(&dir, "square.png");
+    // RED_SPHERE's viewport is 1.0 x 0.75: a square image stretches it.
+    let square = viewray(&["render", &scene, "-o", &out, "--size", "64x64"]);
+    assert!(square.status.success());
+    let stderr = String::from_utf8(square.stderr).unwrap();
+    assert_eq!(
+        stderr,
+        "warning: --size 64x64 stretches the picture: the scene's viewport is 1 x 0.75 \
+         (aspect 1.333) but the image is 64 x 64 (aspect 1.000), so pixels are no longer \
+         square; to keep them square, use --size 64x48 (the viewport's aspect ratio), or \
+         give a field of view (`fov_y` or `fov_x`) instead of `viewport`\n"
+    );
+    assert_eq!(
+        image::open(&out).unwrap().width(),
+        64,
+        "the image is still made"
+    );
+    // The viewport's own aspect ratio, a field of view and a preset: no warning.
+    run_ok(&["render", &scene, "-o", &out, "--size", "64x48"]);
+    let fov = path(&dir, "fov.ron");
+    std::fs::write(
+        &fov,
+        RED_SPHERE.replace("distance: 1.0, viewport: (1.0, 0.75)", "fov_y: 40.0"),
+    )
+    .unwrap();
+    run_ok(&["render", &fov, "-o", &out, "--size", "64x64"]);
+    let preset = path(&dir, "preset.ron");
+    std::fs::write(
+        &preset,
+        "(camera: Isometric(target: (0.0, 0.0, 0.0), size: 2.0))",
+    )
+    .unwrap();
+    run_ok(&["render", &preset, "-o", &out, "--size", "64x16"]);
+    // A parallel camera's viewport is stretched alike; its remedy is `height`.
+    let ortho = path(&dir, "ortho.ron");
+    std::fs::write(
+        &ortho,
+        "(camera: (eye: (0.0, 0.0, 5.0), view: (0.0, 0.0, -1.0),
+                   projection: Orthographic(viewport: (4.0, 3.0))))",
+    )
+    .unwrap();
+    let wide = viewray(&["render", &ortho, "-o", &out, "--size", "90x30"]);
+    let stderr = String::from_utf8(wide.stderr).unwrap();
+    assert!(stderr.contains("use --size 90x68"), "{stderr}");
+    assert!(
+        stderr.ends_with("or give `height` instead of `viewport`\n"),
+        "{stderr}"
+    );
 }

@@ -145,7 +145,7 @@ impl Scene {
                 }
             }
             let n = samples.len() as f64;
-            let encode = |linear: f64| (linear_to_srgb(linear / n) * 255.0).round() as u8;
+            let encode = |linear: f64| viewray_output::linear_to_srgb8((linear / n) as f32);
             Rgba([encode(sum[0]), encode(sum[1]), encode(sum[2]), 255])
         })
     }
@@ -169,15 +169,6 @@ fn inside(polygon: &[(f64, f64)], u: f64, v: f64) -> bool {
         j = i;
     }
     inside
-}
-
-fn linear_to_srgb(linear: f64) -> f64 {
-    let linear = linear.clamp(0.0, 1.0);
-    if linear <= 0.003_130_8 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 /// A random number in [0, 1) from (seed, row, col, index) alone: splitmix64.

@@ -8,9 +8,42 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-/// The `viewray` binary built for these tests, not yet run.
+/// The `viewray` binary built for these tests, not yet run: help wrapped at 80 columns
+/// whatever the terminal, and colour left to the tests that ask for it.
 pub(crate) fn command() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_viewray"))
+    let mut command = Command::new(env!("CARGO_BIN_EXE_viewray"));
+    command
+        .env("COLUMNS", "80")
+        .env_remove("CLICOLOR_FORCE")
+        .env_remove("NO_COLOR");
+    command
+}
+
+/// The repository's root, where the tests run commands that name fixtures, so that
+/// messages show paths like `fixtures/homework/canonical_2x2.ron`.
+pub(crate) fn repository() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .expect("the repository root exists")
+}
+
+/// Runs `viewray args` with `input` on its standard input.
+pub(crate) fn viewray_with_input(dir: &Path, args: &[&str], input: &[u8]) -> Output {
+    use std::io::Write;
+    let mut child = command()
+        .args(args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the viewray binary runs");
+    let mut stdin = child.stdin.take().unwrap();
+    // The command may stop reading early (bad input): a closed pipe is no failure here.
+    let _ = stdin.write_all(input);
+    drop(stdin);
+    child.wait_with_output().expect("the viewray binary runs")
 }
 
 /// Runs `viewray args` in the current folder.

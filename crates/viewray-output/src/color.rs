@@ -1,0 +1,142 @@
+//! Colour encodings: linear light, as scene files, the renderer and EXR hold colour, and
+//! sRGB, as PNG files, figures and screens store it.
+//!
+//! The sRGB transfer function (IEC 61966-2-1) is written here once; every crate that
+//! turns linear light into stored bytes, or stored bytes back into light, calls it.
+
+/// A linear-light RGB colour: what scene files write and the renderer computes. Channels
+/// are nominally in `[0, 1]`; lights and sums of them may exceed 1 before they are stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinearRgb(pub [f32; 3]);
+
+/// An sRGB-encoded colour, 8 bits a channel: what a PNG file stores and a screen shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Srgb8(pub [u8; 3]);
+
+impl LinearRgb {
+    /// The colour as stored in 8 bits: each channel clamped to `[0, 1]` (NaN to 0),
+    /// encoded by [`linear_to_srgb`] and rounded ([`linear_to_srgb8`]).
+    pub fn to_srgb8(self) -> Srgb8 {
+        Srgb8(self.0.map(linear_to_srgb8))
+    }
+}
+
+impl Srgb8 {
+    /// The linear light this stored colour stands for ([`srgb_to_linear`] of each
+    /// channel's `code / 255`).
+    pub fn to_linear(self) -> LinearRgb {
+        LinearRgb(self.0.map(|code| srgb_to_linear(f32::from(code) / 255.0)))
+    }
+}
+
+/// The sRGB transfer function (IEC 61966-2-1): a linear-light value to its encoded
+/// value, both in `[0, 1]`.
+///
+/// ```text
+/// x <= 0.0031308:  12.92 x
+/// otherwise:       1.055 x^(1/2.4) - 0.055
+/// ```
+///
+/// Outside `[0, 1]` the two formulas simply extend; [`linear_to_srgb8`] clamps first.
+pub fn linear_to_srgb(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// The inverse of [`linear_to_srgb`]: an sRGB-encoded value in `[0, 1]` to linear light.
+///
+/// ```text
+/// s <= 0.04045:  s / 12.92
+/// otherwise:     ((s + 0.055) / 1.055)^2.4
+/// ```
+pub fn srgb_to_linear(s: f32) -> f32 {
+    if s <= 0.040_45 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// A linear channel value as an 8-bit sRGB code: clamped to `[0, 1]` (NaN to 0),
+/// encoded by [`linear_to_srgb`] and stored by [`unit_to_u8`]. Linear 0.5 is 188,
+/// linear 0.2140 is 128.
+pub fn linear_to_srgb8(x: f32) -> u8 {
+    unit_to_u8(linear_to_srgb(clamp_unit(x)))
+}
+
+/// A value in `[0, 1]` as the 8-bit code `round(255 x)`, as an 8-bit image stores an
+/// already-encoded channel (or data, such as a normal map): clamped to `[0, 1]` first,
+/// NaN to 0.
+pub fn unit_to_u8(x: f32) -> u8 {
+    // In 0.5..=255.5 after clamping, and the sum is exact in f32: the cast only drops
+    // the fraction, rounding halves up.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let code = (clamp_unit(x) * 255.0 + 0.5) as u8;
+    code
+}
+
+/// `x` clamped to `[0, 1]`, NaN to 0.
+fn clamp_unit(x: f32) -> f32 {
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_codes_of_known_values() {
+        for (linear, code) in [
+            (0.0, 0),
+            (1.0, 255),
+            (0.5, 188),
+            (0.214_041_14, 128),
+            (0.001, 3),
+            (0.18, 118),
+            (-1.0, 0),
+            (7.0, 255),
+            (f32::NAN, 0),
+        ] {
+            assert_eq!(linear_to_srgb8(linear), code, "linear {linear}");
+        }
+    }
+
+    #[test]
+    fn the_two_pieces_of_the_transfer_function_meet() {
+        // Both sides of each breakpoint agree to within the standard's rounding.
+        let below = 12.92 * 0.003_130_8_f32;
+        let above = 1.055 * 0.003_130_8_f32.powf(1.0 / 2.4) - 0.055;
+        assert!((below - above).abs() < 1e-6, "{below} {above}");
+        assert!((srgb_to_linear(0.040_45) - 0.040_45 / 12.92).abs() < 1e-7);
+        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-6);
+    }
+
+    #[test]
+    fn every_8_bit_code_survives_a_round_trip_through_linear_light() {
+        for code in 0..=255u8 {
+            let stored = Srgb8([code, 0, 255]);
+            assert_eq!(stored.to_linear().to_srgb8(), stored, "code {code}");
+            let encoded = f32::from(code) / 255.0;
+            assert!((linear_to_srgb(srgb_to_linear(encoded)) - encoded).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn unit_values_round_to_the_nearest_code() {
+        for (value, code) in [
+            (0.0, 0),
+            (0.5, 128),
+            (0.25, 64),
+            (1.0, 255),
+            (1.5, 255),
+            (-0.2, 0),
+            (f32::NAN, 0),
+            (0.5 / 255.0, 1),
+        ] {
+            assert_eq!(unit_to_u8(value), code, "{value}");
+        }
+    }
+}

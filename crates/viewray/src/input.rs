@@ -1,0 +1,49 @@
+//! Where a scene comes from: a file, standard input (`-`), or the built-in default.
+
+use std::io::IsTerminal;
+use std::path::Path;
+
+use anyhow::Result;
+use viewray_scene::{LoadOptions, LoadTimes, Scene};
+
+use crate::cli::is_standard_stream;
+
+/// The scene rendered when no scene file is given. It uses only analytic shapes, so it
+/// needs no other file and works from any directory.
+pub(crate) const DEFAULT_SCENE: &str = include_str!("../../../fixtures/default.ron");
+
+/// The name the default scene goes by in error messages.
+const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
+
+/// The name standard input goes by in error messages. Meshes it names are found
+/// relative to the current folder (the folder of a bare name).
+const STDIN_NAME: &str = "<stdin>";
+
+/// Loads the scene `path` names (`-`: standard input), or the default scene for `None`.
+///
+/// # Errors
+/// The scene's error: the file, line and column, and what is wrong.
+pub(crate) fn load_scene(path: Option<&Path>, options: LoadOptions) -> Result<(Scene, LoadTimes)> {
+    Ok(match path {
+        None => Scene::parse_timed(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_PATH), options)?,
+        Some(path) if is_standard_stream(path) => {
+            let stdin = std::io::stdin();
+            if stdin.is_terminal() {
+                crate::style::note(
+                    "reading the scene from standard input: type or paste it, then press \
+                     Ctrl-D (or give a file name instead of -)",
+                );
+            }
+            Scene::read_timed(stdin.lock(), Path::new(STDIN_NAME), options)?
+        }
+        Some(path) => Scene::load_timed(path, options)?,
+    })
+}
+
+/// Loads the scene `path` names (`-`: standard input) as it is.
+///
+/// # Errors
+/// The scene's error: the file, line and column, and what is wrong.
+pub(crate) fn load_scene_file(path: &Path) -> Result<Scene> {
+    load_scene(Some(path), LoadOptions::default()).map(|(scene, _)| scene)
+}
