@@ -54,10 +54,10 @@ pub struct InstructorThresholds {
     /// A transform is reported only when undoing it removes at least this fraction of the
     /// mean squared difference between the blurred images, on the part both show.
     ///
-    /// Default 0.5: a camera mistake explains nearly all of the difference (0.93 and more
-    /// on the test scenes), while the transform fitted to a correct render's antialiasing
-    /// noise explains at most 0.14, and one fitted to an unrelated change (a missing
-    /// object) little.
+    /// Default 0.5: a camera mistake explains nearly all of the difference (0.98 and more
+    /// on the test matrix, `tests/planted`; the half-pixel offset at one sample, 0.82),
+    /// while a transform fitted to antialiasing noise or to an unrelated change (a missing
+    /// object) explains little.
     pub min_explained: f64,
     /// A transform is reported only when, undone, it leaves at most this much of the
     /// contrast on the part both images show (the squared difference over the variances
