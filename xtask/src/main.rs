@@ -71,14 +71,14 @@ fn main() -> ExitCode {
 /// golden check too (the `golden` test target), so it is not run a second time.
 fn ci() -> Result<()> {
     cargo(&["fmt", "--all", "--check"])?;
-    // The geometry benchmark's peers are behind a feature so `cargo test` does not build
-    // them; turn it on here so the benchmark is linted too.
+    // The benchmarks' harness and peers are behind features so `cargo test` does not build
+    // them; turn them on here so the benchmarks are linted too.
     cargo(&[
         "clippy",
         "--workspace",
         "--all-targets",
         "--features",
-        "viewray-geometry/bench",
+        "viewray-geometry/bench,viewray-compare/bench",
         "--",
         "-D",
         "warnings",
