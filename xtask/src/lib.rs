@@ -1,12 +1,13 @@
 //! viewray's automation, written in Rust so it runs wherever cargo does: the golden check,
-//! the lecture figures, the benchmark's icosphere scene and the interop check against
-//! the real tools.
+//! the lecture figures, the benchmark's icosphere scene, the interop check against the
+//! real tools, and the live playground driven in headless Chromium.
 //!
 //! `main.rs` is the `cargo xtask` command (an alias in `.cargo/config.toml`); the golden
 //! check is also the `golden` test target (`tests/golden.rs`), so plain `cargo test` runs
 //! it and `cargo test -p xtask --test golden -- oblique` runs the images whose name
 //! contains `oblique`.
 
+pub mod browser;
 pub mod figures;
 pub mod golden;
 pub mod icosphere;

@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{figures, golden, icosphere, interop, workspace_root};
+use xtask::{browser, figures, golden, icosphere, interop, workspace_root};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -18,8 +18,9 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Task {
     /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
-    /// test (the golden check included, as the `golden` test target), then the interop
-    /// check against the real tools.
+    /// test (the golden check included, as the `golden` test target), the live
+    /// playground in headless Chromium (`browser`), then the interop check against the
+    /// real tools.
     Ci,
     /// Render every scene in fixtures/scenes (and the default scene), every lecture
     /// figure and the first, middle and last frames of every built-in animation, and
@@ -37,6 +38,11 @@ enum Task {
     /// and projections against viewray's, and each importer by round trips (1e-5
     /// relative).
     Interop(interop::InteropArgs),
+    /// Drive the live playground (`viewray serve`) in headless Chromium: it loads with no
+    /// console errors, renders, follows a slider, survives a reload, and shows a clicked
+    /// pixel's ray as `viewray rays` prints it; screenshots in target/browser/. Installs
+    /// Debian's chromium and playwright-core (into target/) when missing.
+    Browser(browser::BrowserArgs),
 }
 
 fn main() -> ExitCode {
@@ -52,6 +58,7 @@ fn main() -> ExitCode {
         Some(Task::Figures(args)) => figures::figures(&root, &args),
         Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
         Some(Task::Interop(args)) => interop::interop(&root, &args),
+        Some(Task::Browser(args)) => browser::browser(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -66,19 +73,21 @@ fn main() -> ExitCode {
 /// golden check too (the `golden` test target), so it is not run a second time.
 fn ci() -> Result<()> {
     cargo(&["fmt", "--all", "--check"])?;
-    // The geometry benchmark's peers are behind a feature so `cargo test` does not build
-    // them; turn it on here so the benchmark is linted too.
+    // The benchmarks' harness and peers are behind features so `cargo test` does not build
+    // them; turn them on here so the benchmarks are linted too.
     cargo(&[
         "clippy",
         "--workspace",
         "--all-targets",
         "--features",
-        "viewray-geometry/bench",
+        "viewray-geometry/bench,viewray-compare/bench",
         "--",
         "-D",
         "warnings",
     ])?;
     cargo(&["test", "--workspace"])?;
+    eprintln!("$ cargo xtask browser");
+    browser::browser(&workspace_root(), &browser::BrowserArgs { out: None })?;
     // The real tools: about a minute to install them the first time (PyPI and npm), half
     // a minute to check every export and import against them.
     eprintln!("$ cargo xtask interop");
@@ -120,7 +129,7 @@ mod tests {
         assert!(parse(&[]).unwrap().command.is_none());
         let help = Cli::command().render_help().to_string();
         assert!(help.contains("Usage: cargo xtask [COMMAND]"), "{help}");
-        for command in ["ci", "golden", "figures", "icosphere", "interop"] {
+        for command in ["ci", "golden", "figures", "icosphere", "interop", "browser"] {
             assert!(
                 help.contains(&format!("\n  {command} ")),
                 "{command}: {help}"

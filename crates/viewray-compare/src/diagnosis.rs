@@ -1,54 +1,118 @@
-//! Estimating the systematic transform between an expected and an actual image, and
-//! naming the camera mistake it points to.
+//! What a failed render's difference says about the student's camera, and the words for
+//! it: in pixels, or in the lecture's terms when the reference's scene is known.
 //!
-//! The model: the actual image is the expected one, mirrored about the image centre (left-
-//! right, upside down, or both), scaled about the centre (by `sx`, `sy`), then moved by
-//! (`tx`, `ty`) pixels. In continuous image coordinates (x right, y down, c = (W/2, H/2)),
-//! the actual pixel at X shows what the expected image shows at
-//!
-//! ```text
-//! E(X) = c + M ((X - t - c) / s)        M = diag(+-1, +-1)
-//! ```
-//!
-//! Each camera mistake is one such transform: u = w x up instead of up x w mirrors
-//! left-right; a missing pixel-centre offset moves everything by +0.5 px in x and y; a wrong
-//! vw, vh or d scales; a lens shift with the wrong sign moves by twice the shift.
-//!
-//! Estimation: both images are blurred (so antialiasing noise does not matter) and built
-//! into pyramids; an exhaustive search over mirrors, uniform scales in [0.8, 1.25] and
-//! whole-pixel moves of up to a quarter of the image runs on the coarsest level, then
-//! Levenberg-Marquardt on the sum of squared differences refines the best candidates level
-//! by level to sub-pixel moves and per-axis scales, sampling the expected image
-//! bilinearly. A transform is reported only when it is clearly away from the identity and
-//! explains most of the difference (see [`crate::InstructorThresholds`]).
+//! Each classic camera mistake is a transform of the picture (see [`CameraMistake`]):
+//! u = w x up instead of up x w mirrors it left-right; a wrong v turns it upside down; a
+//! missing pixel-centre offset (j instead of j - 1/2) moves it by half a pixel; a wrong
+//! vw, vh or d scales it about the principal point; a wrong up vector rolls the camera and
+//! turns it; a lens shift left out moves it by the shift (sx W / vw pixels along x, sy H /
+//! vh along y), and one with the wrong sign by twice that. With [`Expectations`] (the
+//! scene's principal point and shift, as plain numbers) the messages name the parameter
+//! ("the sign of the shift is flipped", "your field of view is 1.25 times too wide").
 
 use std::fmt;
 
-use crate::raster::{AxisSample, FloatImage};
-
-/// A camera mistake found in an actual image: how it is transformed from the expected one.
+/// What the reference's scene says a camera mistake would look like: the facts the
+/// messages are worded with. Plain numbers, so that this crate needs no scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Diagnosis {
-    /// Mirrored left-right (about the vertical centre line).
-    pub mirrored_left_right: bool,
-    /// Upside down (mirrored about the horizontal centre line).
-    pub upside_down: bool,
-    /// How many times larger the content appears in the actual image, along x and y
-    /// (about the image centre): 1.1 when vw and vh are 1.1 times too small.
-    pub scale: (f64, f64),
-    /// How far the content moved in the actual image, in pixels: x right, y down.
+pub struct Expectations {
+    /// Where the principal point (the foot of the perpendicular from the eye to the image
+    /// plane) sits in the picture, as fractions of its width and height from the top-left:
+    /// `(1/2 - sx/vw, 1/2 + sy/vh)` for a perspective camera with a lens shift (sx, sy),
+    /// `(0.5, 0.5)` without one. A wrong d or field of view scales the picture about it;
+    /// a roll turns it about it.
+    pub principal_point: (f64, f64),
+    /// The scene's lens shift (sx, sy), in image-plane units (zero without one).
     pub shift: (f64, f64),
-    /// Which of the parts above are beyond the tolerances (the others are measurement
-    /// noise and are not reported).
-    pub significant: Significant,
-    /// The fraction of the mean squared difference between the (blurred) images that the
-    /// transform explains: 1 when undoing it leaves no difference.
-    pub explained: f64,
+    /// The kind of projection, which decides what sets the field of view.
+    pub camera: CameraKind,
 }
 
-/// Which parts of a [`Diagnosis`] are beyond the tolerances.
+/// What kind of projection made the reference, as far as the wording needs it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CameraKind {
+    /// Rays from the eye (perspective, thin lens): the field of view is set by vw, vh and
+    /// d; a lens shift moves the picture.
+    Perspective,
+    /// Parallel rays (orthographic, oblique): the view is set by vw and vh; moving e
+    /// across the view moves the picture.
+    Parallel,
+}
+
+impl Expectations {
+    /// The principal point in pixels of a `width` x `height` picture.
+    pub fn principal_point_pixels(&self, width: u32, height: u32) -> (f64, f64) {
+        (
+            self.principal_point.0 * f64::from(width),
+            self.principal_point.1 * f64::from(height),
+        )
+    }
+
+    /// How far the picture moves, in pixels (x right, y down), when the shift is left
+    /// out: from the principal point to the centre, `(sx W / vw, -sy H / vh)`.
+    pub fn missing_shift_move(&self, width: u32, height: u32) -> (f64, f64) {
+        (
+            (0.5 - self.principal_point.0) * f64::from(width),
+            (0.5 - self.principal_point.1) * f64::from(height),
+        )
+    }
+}
+
+/// What the instructor's judgement found about a render that differs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Diagnosis {
+    /// The actual picture is the expected one transformed: a camera mistake.
+    Camera(CameraMistake),
+    /// The render failed, and no camera transform explains the difference.
+    Unexplained {
+        /// Most of the picture differs (a different view altogether, or a transform beyond
+        /// what can be measured); otherwise the difference is local: an object or a
+        /// colour.
+        whole_view: bool,
+    },
+}
+
+/// A camera mistake: how the actual picture is transformed from the expected one.
+///
+/// In continuous image coordinates (x right, y down), what the expected picture shows at
+/// `X` the actual one shows at `about + R S M (X - about) + shift`, where `M` mirrors,
+/// `S` scales and `R` turns by `rotation`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraMistake {
+    /// Mirrored left-right (about the vertical line through `about`).
+    pub mirrored_left_right: bool,
+    /// Upside down (mirrored about the horizontal line through `about`).
+    pub upside_down: bool,
+    /// How far the picture is turned, in degrees, counterclockwise as seen.
+    pub rotation: f64,
+    /// How many times larger the content appears in the actual image, along x and y:
+    /// 1.1 when vw and vh are 1.1 times too small.
+    pub scale: (f64, f64),
+    /// The point the mirrors, the turn and the scale are about, in pixels.
+    pub about: (f64, f64),
+    /// How far the content moved besides, in pixels: x right, y down.
+    pub shift: (f64, f64),
+    /// Which parts are beyond the tolerances (the others are measurement noise and are
+    /// not reported).
+    pub significant: Significant,
+    /// The fraction of the mean squared difference between the (blurred) images, on the
+    /// part both show, that the transform explains: 1 when undoing it leaves no
+    /// difference.
+    pub explained: f64,
+    /// The fraction of the actual picture that shows part of the expected one through
+    /// the transform (the rest is new content, entered at an edge).
+    pub overlap: f64,
+    /// The width and height of the pictures.
+    pub size: (u32, u32),
+    /// The scene's facts the messages are worded with, when it is known.
+    pub expectations: Option<Expectations>,
+}
+
+/// Which parts of a [`CameraMistake`] are beyond the tolerances.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Significant {
+    /// The picture is turned.
+    pub rotation: bool,
     /// The scale along x differs from 1.
     pub scale_x: bool,
     /// The scale along y differs from 1.
@@ -57,96 +121,36 @@ pub struct Significant {
     pub shift_x: bool,
     /// The move along y differs from 0.
     pub shift_y: bool,
+    /// The turn or scale is about a point that is neither the image centre nor the
+    /// principal point (so it is named).
+    pub about: bool,
 }
 
 impl Diagnosis {
-    /// One message per mistake, each saying what is seen and what to check, e.g.
-    /// `shifted +0.5 px in x and y: check the pixel-centre offset` or
+    /// One message per finding, each saying what is seen and what to check, e.g.
+    /// `shifted -0.5 px in x and y: check the pixel-centre offset (j - 1/2, i - 1/2)` or
     /// `mirrored left-right: check u = up x w`.
     pub fn messages(&self) -> Vec<String> {
-        let mut messages = Vec::new();
-        match (self.mirrored_left_right, self.upside_down) {
-            (true, true) => messages.push(
-                "rotated 180 degrees (mirrored left-right and upside down): check the sign of up"
+        match self {
+            Diagnosis::Camera(mistake) => mistake.messages(),
+            Diagnosis::Unexplained { whole_view: false } => vec![
+                "no camera transform explains the difference: an object or a colour differs"
                     .to_owned(),
-            ),
-            (true, false) => messages.push("mirrored left-right: check u = up x w".to_owned()),
-            (false, true) => messages.push(
-                "upside down: check v = w x u and the minus sign in v = -((row + sy)/H - 1/2) vh"
+            ],
+            Diagnosis::Unexplained { whole_view: true } => vec![
+                "no camera transform explains the difference: the whole view differs (check e, \
+                 the view direction and the shift)"
                     .to_owned(),
-            ),
-            (false, false) => {}
+            ],
         }
-        let (sx, sy) = self.scale;
-        match (self.significant.scale_x, self.significant.scale_y) {
-            (true, true) if (sx - sy).abs() < 0.01 => {
-                messages.push(format!("scaled {:.2}x: check vw, vh or d", 0.5 * (sx + sy)))
-            }
-            (true, true) => messages.push(format!(
-                "scaled {sx:.2}x in x and {sy:.2}x in y: check vw and vh (the aspect ratio)"
-            )),
-            (true, false) => messages.push(format!("scaled {sx:.2}x in x only: check vw")),
-            (false, true) => messages.push(format!("scaled {sy:.2}x in y only: check vh")),
-            (false, false) => {}
-        }
-        if let Some(message) = self.shift_message() {
-            messages.push(message);
-        }
-        messages
     }
 
-    /// The message about the move, if it is significant.
-    fn shift_message(&self) -> Option<String> {
-        let (tx, ty) = self.shift;
-        let (moved_x, moved_y) = (self.significant.shift_x, self.significant.shift_y);
-        if !moved_x && !moved_y {
-            return None;
+    /// The camera mistake, if the diagnosis is one.
+    pub fn camera_mistake(&self) -> Option<&CameraMistake> {
+        match self {
+            Diagnosis::Camera(mistake) => Some(mistake),
+            Diagnosis::Unexplained { .. } => None,
         }
-        // Half a pixel (within a fifth of a pixel) on each moved axis, nothing on the others:
-        // the samples are taken at a pixel corner instead of its centre.
-        let half = |t: f64| (t.abs() - 0.5).abs() < 0.2;
-        let is_centre_offset = (!moved_x || half(tx)) && (!moved_y || half(ty));
-        if is_centre_offset {
-            let axes = match (moved_x, moved_y) {
-                (true, true) if tx.signum() == ty.signum() => {
-                    format!("{:+.1} px in x and y", 0.5 * tx.signum())
-                }
-                (true, true) => format!(
-                    "{:+.1} px in x and {:+.1} px in y",
-                    0.5 * tx.signum(),
-                    0.5 * ty.signum()
-                ),
-                (true, false) => format!("{:+.1} px in x", 0.5 * tx.signum()),
-                _ => format!("{:+.1} px in y", 0.5 * ty.signum()),
-            };
-            return Some(format!("shifted {axes}: check the pixel-centre offset"));
-        }
-        let amount = |t: f64| {
-            if t.abs() >= 2.0 {
-                format!("{:.0}", t.abs())
-            } else {
-                format!("{:.1}", t.abs())
-            }
-        };
-        let mut parts = Vec::new();
-        if moved_y {
-            parts.push(format!(
-                "{} px {}",
-                amount(ty),
-                if ty < 0.0 { "up" } else { "down" }
-            ));
-        }
-        if moved_x {
-            parts.push(format!(
-                "{} px {}",
-                amount(tx),
-                if tx < 0.0 { "left" } else { "right" }
-            ));
-        }
-        Some(format!(
-            "shifted {}: check the sign of the shift",
-            parts.join(" and ")
-        ))
     }
 }
 
@@ -156,484 +160,386 @@ impl fmt::Display for Diagnosis {
     }
 }
 
-/// A mirror-scale-move transform from actual to expected coordinates (see the module doc).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Transform {
-    pub(crate) mirror_x: bool,
-    pub(crate) mirror_y: bool,
-    /// The content's magnification in the actual image along x and y.
-    pub(crate) scale: [f64; 2],
-    /// The content's move in the actual image, in full-resolution pixels.
-    pub(crate) shift: [f64; 2],
-}
-
-impl Transform {
-    const IDENTITY: Transform = Transform {
-        mirror_x: false,
-        mirror_y: false,
-        scale: [1.0, 1.0],
-        shift: [0.0, 0.0],
-    };
-
-    fn signs(&self) -> [f64; 2] {
-        [
-            if self.mirror_x { -1.0 } else { 1.0 },
-            if self.mirror_y { -1.0 } else { 1.0 },
-        ]
+impl fmt::Display for CameraMistake {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.messages().join("; "))
     }
 }
 
-/// One level of the image pyramids: `factor` full-resolution pixels per level pixel.
-struct Level {
-    factor: f64,
-    expected: FloatImage,
-    expected_dx: FloatImage,
-    expected_dy: FloatImage,
-    actual: FloatImage,
+/// A number of pixels or degrees as the messages print it: whole from 2 up, else with
+/// one decimal.
+fn amount(value: f64) -> String {
+    if value.abs() >= 2.0 {
+        format!("{:.0}", value.abs())
+    } else {
+        format!("{:.1}", value.abs())
+    }
 }
 
-/// The result of estimating the transform: the best one, and what it and the identity
-/// leave unexplained.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Estimate {
-    pub(crate) transform: Transform,
-    /// The mean squared difference after undoing the transform.
-    pub(crate) residual: f64,
-    /// The mean squared difference as the images are.
-    pub(crate) identity_residual: f64,
+/// A scene parameter as the messages print it: up to four decimals, no trailing zeros.
+fn parameter(value: f64) -> String {
+    let text = format!("{value:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".to_owned()
+    } else {
+        text.to_owned()
+    }
 }
 
-/// Side of the coarsest pyramid level (its shorter side is at least this, and halving once
-/// more would make it shorter).
-const COARSEST_SIDE: usize = 24;
+/// A move in words, e.g. `64 px up` or `25 px down and 40 px left`.
+fn move_words(shift: (f64, f64), moved: (bool, bool)) -> String {
+    let (tx, ty) = shift;
+    let mut parts = Vec::new();
+    if moved.1 {
+        parts.push(format!(
+            "{} px {}",
+            amount(ty),
+            if ty < 0.0 { "up" } else { "down" }
+        ));
+    }
+    if moved.0 {
+        parts.push(format!(
+            "{} px {}",
+            amount(tx),
+            if tx < 0.0 { "left" } else { "right" }
+        ));
+    }
+    parts.join(" and ")
+}
 
-/// Estimates the mirror-scale-move transform that best maps `expected` onto `actual`, two
-/// images of the same size that are already blurred and sRGB-encoded.
-///
-/// Returns `None` for images too small to estimate anything (either side below 16 pixels).
-pub(crate) fn estimate(expected: &FloatImage, actual: &FloatImage) -> Option<Estimate> {
-    if expected.width < 16 || expected.height < 16 {
+/// How close a measured move must be to a predicted one: a third of a pixel, and 2% of
+/// a large move (where new content enters at the border).
+fn matches(measured: f64, predicted: f64) -> bool {
+    (measured - predicted).abs() <= 0.35 + 0.02 * predicted.abs()
+}
+
+impl CameraMistake {
+    /// One message per mistake, each saying what is seen and what to check.
+    pub fn messages(&self) -> Vec<String> {
+        let mut messages = Vec::new();
+        match (self.mirrored_left_right, self.upside_down) {
+            (true, true) => messages.push(
+                "rotated 180 degrees (mirrored left-right and upside down): check the sign of up"
+                    .to_owned(),
+            ),
+            (true, false) => messages.push("mirrored left-right: check u = up x w".to_owned()),
+            (false, true) => messages.push(
+                "upside down: check v = w x u and the minus sign in v = -((i - 1/2)/H - 1/2) vh"
+                    .to_owned(),
+            ),
+            (false, false) => {}
+        }
+        let about = if self.significant.about {
+            format!(" about ({:.0}, {:.0})", self.about.0, self.about.1)
+        } else {
+            String::new()
+        };
+        if self.significant.rotation {
+            messages.push(format!(
+                "rotated {} degrees {}{about}: check the up vector",
+                amount(self.rotation),
+                if self.rotation > 0.0 {
+                    "counterclockwise"
+                } else {
+                    "clockwise"
+                }
+            ));
+        }
+        if let Some(message) = self.scale_message(&about) {
+            messages.push(message);
+        }
+        if let Some(message) = self.shift_message() {
+            messages.push(message);
+        }
+        messages
+    }
+
+    fn scale_message(&self, about: &str) -> Option<String> {
+        let (sx, sy) = self.scale;
+        let parallel = self
+            .expectations
+            .is_some_and(|e| e.camera == CameraKind::Parallel);
+        let view = |s: f64, axis: &str| -> String {
+            let Some(expectations) = self.expectations else {
+                return String::new();
+            };
+            let what = match expectations.camera {
+                CameraKind::Perspective => "your field of view",
+                CameraKind::Parallel => "your view",
+            };
+            let (times, how) = if s > 1.0 {
+                (s, "narrow")
+            } else {
+                (1.0 / s, "wide")
+            };
+            let how = match (axis, how) {
+                ("y", "narrow") => "short",
+                ("y", "wide") => "tall",
+                _ => how,
+            };
+            format!(": {what} is {times:.2} times too {how}")
+        };
+        let message = match (self.significant.scale_x, self.significant.scale_y) {
+            (true, true) if (sx - sy).abs() < 0.01 => {
+                let s = 0.5 * (sx + sy);
+                let names = if parallel { "vw and vh" } else { "vw, vh or d" };
+                format!("scaled {s:.2}x{about}: check {names}{}", view(s, ""))
+            }
+            (true, true) => format!(
+                "scaled {sx:.2}x in x and {sy:.2}x in y{about}: check vw and vh (the aspect ratio)"
+            ),
+            (true, false) => format!(
+                "scaled {sx:.2}x in x only{about}: check vw{}",
+                view(sx, "x")
+            ),
+            (false, true) => format!(
+                "scaled {sy:.2}x in y only{about}: check vh{}",
+                view(sy, "y")
+            ),
+            (false, false) => return None,
+        };
+        Some(message)
+    }
+
+    /// The message about the move, if it is significant.
+    fn shift_message(&self) -> Option<String> {
+        let moved = (self.significant.shift_x, self.significant.shift_y);
+        if !moved.0 && !moved.1 {
+            return None;
+        }
+        let (tx, ty) = self.shift;
+        let words = move_words(self.shift, moved);
+        let Some(expectations) = self.expectations else {
+            return Some(
+                half_pixel_message(self.shift, moved)
+                    .unwrap_or_else(|| format!("shifted {words}: check the shift (sx, sy)")),
+            );
+        };
+        let (w, h) = self.size;
+        let (mx, my) = expectations.missing_shift_move(w, h);
+        let has_shift = mx.abs() > 0.5 || my.abs() > 0.5;
+        let (sx, sy) = expectations.shift;
+        let scene_shift = format!(
+            "the scene's shift (sx, sy) is ({}, {})",
+            parameter(sx),
+            parameter(sy)
+        );
+        // The move as twice or once the shift, plus perhaps half a pixel.
+        if has_shift {
+            for (k, cause) in [
+                (2.0, "the sign of the shift is flipped"),
+                (1.0, "the shift is missing"),
+            ] {
+                let (px, py) = (k * mx, k * my);
+                if matches(tx, px) && matches(ty, py) {
+                    return Some(format!("shifted {words}: {cause} ({scene_shift})"));
+                }
+                let rest = (tx - px, ty - py);
+                let rest_moved = (rest.0.abs() > 0.25, rest.1.abs() > 0.25);
+                let is_half = |t: f64, on: bool| !on || (t.abs() - 0.5).abs() < 0.2;
+                if (rest_moved.0 || rest_moved.1)
+                    && is_half(rest.0, rest_moved.0)
+                    && is_half(rest.1, rest_moved.1)
+                    && let Some(half) = half_pixel_message(rest, rest_moved)
+                {
+                    return Some(format!(
+                        "shifted {words}: {cause} ({scene_shift}); and {half}"
+                    ));
+                }
+            }
+        }
+        if let Some(message) = half_pixel_message(self.shift, moved) {
+            return Some(message);
+        }
+        Some(match expectations.camera {
+            CameraKind::Parallel => {
+                format!("shifted {words}: check e (the eye moved across the view)")
+            }
+            CameraKind::Perspective if has_shift => {
+                format!("shifted {words}: check sx and sy ({scene_shift}) and the view direction")
+            }
+            CameraKind::Perspective => format!(
+                "shifted {words}: check sx and sy (the scene has no shift) and the view direction"
+            ),
+        })
+    }
+}
+
+/// The message for a move of half a pixel (within a fifth of a pixel) on each moved axis:
+/// the samples are taken at a pixel corner instead of its centre.
+fn half_pixel_message(shift: (f64, f64), moved: (bool, bool)) -> Option<String> {
+    let (tx, ty) = shift;
+    let half = |t: f64| (t.abs() - 0.5).abs() < 0.2;
+    if (moved.0 && !half(tx)) || (moved.1 && !half(ty)) {
         return None;
     }
-    let centre = [expected.width as f64 / 2.0, expected.height as f64 / 2.0];
-    let levels = build_pyramid(expected, actual);
-    let top = levels.len() - 1;
-
-    // Search the coarsest level exhaustively; keep the best few per mirror.
-    let coarse = &levels[top];
-    let reach_x = (coarse.actual.width / 4) as i64;
-    let reach_y = (coarse.actual.height / 4) as i64;
-    let mut starts: Vec<(f64, Transform)> = Vec::new();
-    for (mirror_x, mirror_y) in [(false, false), (true, false), (false, true), (true, true)] {
-        // The best three so far, cheapest first; a candidate is abandoned as soon as its
-        // partial sum exceeds the third's cost.
-        let mut best: Vec<(f64, Transform)> = Vec::new();
-        for step in -4..=4 {
-            let s = 1.25f64.powf(f64::from(step) / 4.0);
-            for ty in -reach_y..=reach_y {
-                for tx in -reach_x..=reach_x {
-                    let transform = Transform {
-                        mirror_x,
-                        mirror_y,
-                        scale: [s, s],
-                        shift: [tx as f64 * coarse.factor, ty as f64 * coarse.factor],
-                    };
-                    let bound = if best.len() < 3 {
-                        f64::INFINITY
-                    } else {
-                        best[2].0
-                    };
-                    if let Some(cost) =
-                        bounded_mean_squared_difference(coarse, &transform, centre, bound)
-                    {
-                        best.push((cost, transform));
-                        best.sort_by(|a, b| a.0.total_cmp(&b.0));
-                        best.truncate(3);
-                    }
-                }
-            }
-        }
-        starts.extend(best);
-    }
-
-    // Refine every start on the coarsest level; keep the best per mirror (and the
-    // identity, which must be heard even when the coarse search prefers a move).
-    let mut per_mirror: Vec<(f64, Transform)> = Vec::new();
-    for &(_, start) in &starts {
-        let transform = refine(coarse, start, centre);
-        let cost = mean_squared_difference(coarse, &transform, centre);
-        let same_mirror =
-            |t: &Transform| (t.mirror_x, t.mirror_y) == (transform.mirror_x, transform.mirror_y);
-        match per_mirror.iter_mut().find(|(_, t)| same_mirror(t)) {
-            Some(slot) if cost < slot.0 => *slot = (cost, transform),
-            Some(_) => {}
-            None => per_mirror.push((cost, transform)),
-        }
-    }
-    per_mirror.push((0.0, refine(coarse, Transform::IDENTITY, centre)));
-    // Refine those down to the second-finest level; keep the best plain and mirrored.
-    let mut best_plain: Option<(f64, Transform)> = None;
-    let mut best_mirrored: Option<(f64, Transform)> = None;
-    for &(_, start) in &per_mirror {
-        let mut transform = start;
-        for level in levels[1.min(top)..top].iter().rev() {
-            transform = refine(level, transform, centre);
-        }
-        let cost = mean_squared_difference(&levels[1.min(top)], &transform, centre);
-        let slot = if transform.mirror_x || transform.mirror_y {
-            &mut best_mirrored
-        } else {
-            &mut best_plain
-        };
-        if slot.is_none_or(|(best, _)| cost < best) {
-            *slot = Some((cost, transform));
-        }
-    }
-    // Finish the best plain and the best mirrored candidates at full resolution.
-    let finish = |candidate: Option<(f64, Transform)>| {
-        candidate.map(|(_, transform)| {
-            let transform = refine(&levels[0], transform, centre);
-            (
-                mean_squared_difference(&levels[0], &transform, centre),
-                transform,
-            )
-        })
+    let (axes, terms) = match moved {
+        (true, true) if tx.signum() == ty.signum() => (
+            format!("{:+.1} px in x and y", 0.5 * tx.signum()),
+            "j - 1/2, i - 1/2",
+        ),
+        (true, true) => (
+            format!(
+                "{:+.1} px in x and {:+.1} px in y",
+                0.5 * tx.signum(),
+                0.5 * ty.signum()
+            ),
+            "j - 1/2, i - 1/2",
+        ),
+        (true, false) => (format!("{:+.1} px in x", 0.5 * tx.signum()), "j - 1/2"),
+        (false, true) => (format!("{:+.1} px in y", 0.5 * ty.signum()), "i - 1/2"),
+        (false, false) => return None,
     };
-    let (best_plain, best_mirrored) = (finish(best_plain), finish(best_mirrored));
-    let identity_residual = mean_squared_difference(&levels[0], &Transform::IDENTITY, centre);
-    let (mut residual, mut transform) =
-        best_plain.unwrap_or((identity_residual, Transform::IDENTITY));
-    // A mirror must do clearly better than the best plain transform: a nearly symmetric
-    // picture looks much the same mirrored, and then the simpler answer stands.
-    if let Some((mirrored_cost, mirrored)) = best_mirrored
-        && mirrored_cost < 0.5 * residual
-    {
-        (residual, transform) = (mirrored_cost, mirrored);
-    }
-    if residual > identity_residual {
-        (residual, transform) = (identity_residual, Transform::IDENTITY);
-    }
-    Some(Estimate {
-        transform,
-        residual,
-        identity_residual,
-    })
-}
-
-fn build_pyramid(expected: &FloatImage, actual: &FloatImage) -> Vec<Level> {
-    let mut levels = Vec::new();
-    let (mut e, mut a, mut factor) = (expected.clone(), actual.clone(), 1.0);
-    loop {
-        let (dx, dy) = e.gradients();
-        let next_side = e.width.min(e.height) / 2;
-        levels.push(Level {
-            factor,
-            expected: e.clone(),
-            expected_dx: dx,
-            expected_dy: dy,
-            actual: a.clone(),
-        });
-        if next_side < COARSEST_SIDE {
-            return levels;
-        }
-        e = e.gaussian_blur(1.0).downsample_2x();
-        a = a.gaussian_blur(1.0).downsample_2x();
-        factor *= 2.0;
-    }
-}
-
-/// For each pixel index along one axis of a level: its centre in full-resolution
-/// coordinates X, and where E(X) = c + m (X - t - c) / s falls in the expected level.
-fn axis_samples(
-    level: &Level,
-    count: usize,
-    size: usize,
-    centre: f64,
-    sign: f64,
-    shift: f64,
-    scale: f64,
-) -> Vec<(f64, AxisSample)> {
-    (0..count)
-        .map(|i| {
-            let x = (i as f64 + 0.5) * level.factor;
-            let e = centre + sign * (x - shift - centre) / scale;
-            (x, AxisSample::new(e / level.factor, size))
-        })
-        .collect()
-}
-
-/// The mean over the actual level's pixels and channels of the squared difference from
-/// the expected level sampled through `transform`.
-fn mean_squared_difference(level: &Level, transform: &Transform, centre: [f64; 2]) -> f64 {
-    bounded_mean_squared_difference(level, transform, centre, f64::INFINITY)
-        .expect("an infinite bound is never exceeded")
-}
-
-/// [`mean_squared_difference`], or `None` as soon as it is sure to exceed `bound`.
-fn bounded_mean_squared_difference(
-    level: &Level,
-    transform: &Transform,
-    centre: [f64; 2],
-    bound: f64,
-) -> Option<f64> {
-    let (w, h) = (level.actual.width, level.actual.height);
-    let [mx, my] = transform.signs();
-    let columns = axis_samples(
-        level,
-        w,
-        level.expected.width,
-        centre[0],
-        mx,
-        transform.shift[0],
-        transform.scale[0],
-    );
-    let rows = axis_samples(
-        level,
-        h,
-        level.expected.height,
-        centre[1],
-        my,
-        transform.shift[1],
-        transform.scale[1],
-    );
-    let count = (w * h * 3) as f64;
-    let bound_sum = bound * count;
-    let mut sum = 0.0f64;
-    for (row, &(_, ys)) in rows.iter().enumerate() {
-        let mut row_sum = 0.0f32;
-        for (col, &(_, xs)) in columns.iter().enumerate() {
-            let e = level.expected.sample_separable(ys, xs);
-            let a = level.actual.at(row, col);
-            for c in 0..3 {
-                let r = e[c] - a[c];
-                row_sum += r * r;
-            }
-        }
-        sum += f64::from(row_sum);
-        if sum > bound_sum {
-            return None;
-        }
-    }
-    Some(sum / count)
-}
-
-/// Levenberg-Marquardt on the move and the per-axis scales at one level, mirrors fixed.
-///
-/// The parameters are p = (tx, ty, kx, ky) with k = 1/s, so that E is linear in each:
-/// E_x = c_x + m_x k_x (X_x - t_x - c_x).
-#[allow(
-    clippy::needless_range_loop,
-    reason = "matrix indices read as the algebra does"
-)]
-fn refine(level: &Level, start: Transform, centre: [f64; 2]) -> Transform {
-    let [mx, my] = start.signs();
-    let mut p = [
-        start.shift[0],
-        start.shift[1],
-        1.0 / start.scale[0],
-        1.0 / start.scale[1],
-    ];
-    let to_transform = |p: &[f64; 4]| Transform {
-        scale: [1.0 / p[2], 1.0 / p[3]],
-        shift: [p[0], p[1]],
-        ..start
-    };
-    let mut cost = mean_squared_difference(level, &to_transform(&p), centre);
-    let mut lambda = 1e-3;
-    let (w, h) = (level.actual.width, level.actual.height);
-    for _ in 0..30 {
-        // Build the normal equations J^T J and J^T r.
-        let columns = axis_samples(
-            level,
-            w,
-            level.expected.width,
-            centre[0],
-            mx,
-            p[0],
-            1.0 / p[2],
-        );
-        let rows = axis_samples(
-            level,
-            h,
-            level.expected.height,
-            centre[1],
-            my,
-            p[1],
-            1.0 / p[3],
-        );
-        let mut jtj = [[0.0f64; 4]; 4];
-        let mut jtr = [0.0f64; 4];
-        for (row, &(y, ys)) in rows.iter().enumerate() {
-            // dE_y/dp for ty and ky; E_x depends only on tx and kx.
-            let dey = [-my * p[3], my * (y - p[1] - centre[1])];
-            for (col, &(x, xs)) in columns.iter().enumerate() {
-                let e = level.expected.sample_separable(ys, xs);
-                let gx = level.expected_dx.sample_separable(ys, xs);
-                let gy = level.expected_dy.sample_separable(ys, xs);
-                let a = level.actual.at(row, col);
-                let dex = [-mx * p[2], mx * (x - p[0] - centre[0])];
-                for c in 0..3 {
-                    let r = f64::from(e[c] - a[c]);
-                    // Level gradients are per level pixel; the parameters are in
-                    // full-resolution pixels.
-                    let gxc = f64::from(gx[c]) / level.factor;
-                    let gyc = f64::from(gy[c]) / level.factor;
-                    let j = [gxc * dex[0], gyc * dey[0], gxc * dex[1], gyc * dey[1]];
-                    for a in 0..4 {
-                        jtr[a] += j[a] * r;
-                        for b in a..4 {
-                            jtj[a][b] += j[a] * j[b];
-                        }
-                    }
-                }
-            }
-        }
-        for a in 0..4 {
-            for b in 0..a {
-                jtj[a][b] = jtj[b][a];
-            }
-        }
-        // Try damped steps until one lowers the cost.
-        let mut improved = false;
-        for _ in 0..8 {
-            let mut system = jtj;
-            for (k, row) in system.iter_mut().enumerate() {
-                row[k] += lambda * jtj[k][k].max(1e-12);
-            }
-            let Some(step) = solve4(system, jtr.map(|v| -v)) else {
-                break;
-            };
-            let candidate: [f64; 4] = std::array::from_fn(|k| p[k] + step[k]);
-            if candidate[2] <= 0.0 || candidate[3] <= 0.0 {
-                lambda *= 10.0;
-                continue;
-            }
-            let candidate_cost = mean_squared_difference(level, &to_transform(&candidate), centre);
-            if candidate_cost < cost {
-                let small = step[0].abs() < 1e-3
-                    && step[1].abs() < 1e-3
-                    && step[2].abs() < 1e-6
-                    && step[3].abs() < 1e-6;
-                p = candidate;
-                cost = candidate_cost;
-                lambda = (lambda * 0.3).max(1e-7);
-                improved = !small;
-                break;
-            }
-            lambda *= 10.0;
-        }
-        if !improved {
-            break;
-        }
-    }
-    to_transform(&p)
-}
-
-/// Solves the 4 x 4 linear system `a x = b` by Gaussian elimination with partial
-/// pivoting; `None` when it is singular.
-#[allow(
-    clippy::needless_range_loop,
-    reason = "matrix indices read as the algebra does"
-)]
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
-    for col in 0..4 {
-        let pivot = (col..4).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[pivot][col].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(col, pivot);
-        b.swap(col, pivot);
-        for row in col + 1..4 {
-            let factor = a[row][col] / a[col][col];
-            for k in col..4 {
-                a[row][k] -= factor * a[col][k];
-            }
-            b[row] -= factor * b[col];
-        }
-    }
-    let mut x = [0.0; 4];
-    for row in (0..4).rev() {
-        let tail: f64 = (row + 1..4).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - tail) / a[row][row];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    Some(format!(
+        "shifted {axes}: check the pixel-centre offset ({terms})"
+    ))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn solve4_solves_a_known_system_and_rejects_a_singular_one() {
-        let a = [
-            [4.0, 1.0, 0.0, 0.0],
-            [1.0, 3.0, 1.0, 0.0],
-            [0.0, 1.0, 2.0, 1.0],
-            [0.0, 0.0, 1.0, 5.0],
-        ];
-        let x = [1.0, -2.0, 0.5, 3.0];
-        let b: [f64; 4] = std::array::from_fn(|r| (0..4).map(|c| a[r][c] * x[c]).sum());
-        let solved = solve4(a, b).unwrap();
-        for k in 0..4 {
-            assert!((solved[k] - x[k]).abs() < 1e-12);
-        }
-        assert_eq!(solve4([[1.0; 4]; 4], [1.0; 4]), None);
-    }
-
-    fn diagnosis(shift: (f64, f64), scale: (f64, f64), significant: Significant) -> Diagnosis {
-        Diagnosis {
+    fn mistake(shift: (f64, f64), scale: (f64, f64), significant: Significant) -> CameraMistake {
+        CameraMistake {
             mirrored_left_right: false,
             upside_down: false,
+            rotation: 0.0,
             scale,
+            about: (96.0, 72.0),
             shift,
             significant,
             explained: 0.9,
+            overlap: 1.0,
+            size: (192, 144),
+            expectations: None,
+        }
+    }
+
+    const BOTH: Significant = Significant {
+        shift_x: true,
+        shift_y: true,
+        rotation: false,
+        scale_x: false,
+        scale_y: false,
+        about: false,
+    };
+    const ONLY_Y: Significant = Significant {
+        shift_x: false,
+        ..BOTH
+    };
+    const ONLY_X: Significant = Significant {
+        shift_y: false,
+        ..BOTH
+    };
+    const SCALED: Significant = Significant {
+        scale_x: true,
+        scale_y: true,
+        shift_x: false,
+        shift_y: false,
+        ..BOTH
+    };
+
+    /// The boxes scene of the tests: viewport 1.2 x 0.9, shift (0, 0.2), 192 x 144: the
+    /// principal point is at y = 144 (1/2 + 0.2/0.9) = 104, a missing shift moves the
+    /// picture 32 px up.
+    const BOXES: Expectations = Expectations {
+        principal_point: (0.5, 0.5 + 0.2 / 0.9),
+        shift: (0.0, 0.2),
+        camera: CameraKind::Perspective,
+    };
+
+    #[test]
+    fn messages_in_pixels_name_the_classic_mistakes() {
+        let cases = [
+            (
+                mistake((-0.48, -0.53), (1.0, 1.0), BOTH),
+                "shifted -0.5 px in x and y: check the pixel-centre offset (j - 1/2, i - 1/2)",
+            ),
+            (
+                mistake((0.02, -12.2), (1.0, 1.0), ONLY_Y),
+                "shifted 12 px up: check the shift (sx, sy)",
+            ),
+            (
+                mistake((3.0, 1.2), (1.0, 1.0), BOTH),
+                "shifted 1.2 px down and 3 px right: check the shift (sx, sy)",
+            ),
+            (
+                mistake((0.0, 0.0), (1.098, 1.101), SCALED),
+                "scaled 1.10x: check vw, vh or d",
+            ),
+            (
+                CameraMistake {
+                    mirrored_left_right: true,
+                    ..mistake((0.0, 0.0), (1.0, 1.0), Significant::default())
+                },
+                "mirrored left-right: check u = up x w",
+            ),
+            (
+                CameraMistake {
+                    rotation: -8.04,
+                    significant: Significant {
+                        rotation: true,
+                        about: true,
+                        ..Significant::default()
+                    },
+                    ..mistake((0.0, 0.0), (1.0, 1.0), Significant::default())
+                },
+                "rotated 8 degrees clockwise about (96, 72): check the up vector",
+            ),
+        ];
+        for (mistake, expected) in cases {
+            assert_eq!(mistake.to_string(), expected);
         }
     }
 
     #[test]
-    fn messages_name_the_classic_mistakes() {
-        let both = Significant {
-            shift_x: true,
-            shift_y: true,
-            ..Significant::default()
-        };
-        let only_y = Significant {
-            shift_y: true,
-            ..Significant::default()
-        };
-        let scaled = Significant {
-            scale_x: true,
-            scale_y: true,
-            ..Significant::default()
+    fn messages_with_the_scene_speak_the_lectures_terms() {
+        let with = |m: CameraMistake| CameraMistake {
+            expectations: Some(BOXES),
+            ..m
         };
         let cases = [
             (
-                diagnosis((0.48, 0.53), (1.0, 1.0), both),
-                "shifted +0.5 px in x and y: check the pixel-centre offset",
+                mistake((0.1, -64.2), (1.0, 1.0), ONLY_Y),
+                "shifted 64 px up: the sign of the shift is flipped (the scene's shift (sx, sy) \
+                 is (0, 0.2))",
             ),
             (
-                diagnosis((0.02, -12.2), (1.0, 1.0), only_y),
-                "shifted 12 px up: check the sign of the shift",
+                mistake((0.0, -31.9), (1.0, 1.0), ONLY_Y),
+                "shifted 32 px up: the shift is missing (the scene's shift (sx, sy) is (0, 0.2))",
             ),
             (
-                diagnosis((3.0, 1.2), (1.0, 1.0), both),
-                "shifted 1.2 px down and 3 px right: check the sign of the shift",
+                mistake((-0.5, -32.4), (1.0, 1.0), BOTH),
+                "shifted 32 px up and 0.5 px left: the shift is missing (the scene's shift (sx, \
+                 sy) is (0, 0.2)); and shifted -0.5 px in x and y: check the pixel-centre \
+                 offset (j - 1/2, i - 1/2)",
             ),
             (
-                diagnosis((0.0, 0.0), (1.098, 1.101), scaled),
-                "scaled 1.10x: check vw, vh or d",
+                mistake((12.0, 0.0), (1.0, 1.0), ONLY_X),
+                "shifted 12 px right: check sx and sy (the scene's shift (sx, sy) is (0, 0.2)) \
+                 and the view direction",
             ),
             (
-                Diagnosis {
-                    mirrored_left_right: true,
-                    ..diagnosis((0.0, 0.0), (1.0, 1.0), Significant::default())
-                },
-                "mirrored left-right: check u = up x w",
+                mistake((0.0, 0.0), (0.8, 0.8), SCALED),
+                "scaled 0.80x: check vw, vh or d: your field of view is 1.25 times too wide",
+            ),
+            (
+                mistake((0.0, 0.0), (1.25, 1.25), SCALED),
+                "scaled 1.25x: check vw, vh or d: your field of view is 1.25 times too narrow",
             ),
         ];
-        for (diagnosis, expected) in cases {
-            assert_eq!(diagnosis.to_string(), expected);
+        for (mistake, expected) in cases {
+            assert_eq!(with(mistake).to_string(), expected);
         }
+    }
+
+    #[test]
+    fn the_missing_shift_moves_the_picture_from_the_principal_point_to_the_centre() {
+        // sy = 0.2 on vh = 0.9 and H = 144: 0.2 * 144 / 0.9 = 32 px up.
+        let (mx, my) = BOXES.missing_shift_move(192, 144);
+        assert!(mx.abs() < 1e-9 && (my + 32.0).abs() < 1e-9, "{mx} {my}");
+        let (px, py) = BOXES.principal_point_pixels(192, 144);
+        assert!((px - 96.0).abs() < 1e-9 && (py - 104.0).abs() < 1e-9);
     }
 }

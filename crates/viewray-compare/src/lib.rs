@@ -15,12 +15,18 @@
 //!   3 x 3 window).
 //! - [`judge`] with [`InstructorThresholds`]: a student's render against the instructor's.
 //!   Antialiasing and sample count are not errors (both images are blurred before FLIP);
-//!   camera mistakes are, and the systematic transform between the images names them: a
-//!   [`Diagnosis`] such as `shifted +0.5 px in x and y: check the pixel-centre offset`.
+//!   camera mistakes are, and the systematic transform between the images (mirrors, a
+//!   turn, a scale about any point, a move; measured on the part both images show) names
+//!   them: a [`Diagnosis`] such as `shifted -0.5 px in x and y: check the pixel-centre
+//!   offset (j - 1/2, i - 1/2)` or `rotated 8 degrees counterclockwise: check the up
+//!   vector`, or, when no transform explains the difference, [`Diagnosis::Unexplained`].
+//!   [`judge_with`] takes the reference scene's [`Expectations`] (its principal point and
+//!   lens shift, as plain numbers) and words the diagnosis in the lecture's terms: `shifted
+//!   64 px up: the sign of the shift is flipped`.
 //!
 //! Images follow the camera crate's pixel convention: W columns by H rows, 0-based from
 //! the top-left, pixel (row, col) covering [col, col + 1) x [row, row + 1); x runs right
-//! and y down, so a diagnosis's move (+0.5, +0.5) is right and down.
+//! and y down, so a diagnosis's move (-0.5, -0.5) is left and up.
 //!
 //! ```no_run
 //! use viewray_compare::{Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report};
@@ -45,6 +51,7 @@
 
 mod comparison;
 mod diagnosis;
+mod estimate;
 mod flip;
 mod golden;
 mod instructor;
@@ -57,9 +64,9 @@ mod report;
 pub use image::{RgbImage, RgbaImage};
 
 pub use comparison::{Comparison, Failure, Metrics, Mode};
-pub use diagnosis::{Diagnosis, Significant};
+pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use golden::{Thresholds, compare};
-pub use instructor::{InstructorThresholds, judge};
+pub use instructor::{InstructorThresholds, judge, judge_with};
 pub use load::{LoadError, load_png};
 pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, write_report};
 

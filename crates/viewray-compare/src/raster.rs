@@ -16,30 +16,6 @@ pub(crate) struct FloatImage {
     pub(crate) pixels: Vec<[f32; 3]>,
 }
 
-/// Where a continuous coordinate falls between pixel centres along one axis: the two
-/// neighbouring indices (clamped to the image) and the weight of the higher one.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct AxisSample {
-    pub(crate) low: usize,
-    pub(crate) high: usize,
-    pub(crate) t: f32,
-}
-
-impl AxisSample {
-    /// The neighbours of continuous coordinate `x` (pixel centres at half-integers) on an
-    /// axis of `size` pixels, edge pixels extended.
-    pub(crate) fn new(x: f64, size: usize) -> Self {
-        let f = x - 0.5;
-        let floor = f.floor();
-        let last = size as f64 - 1.0;
-        Self {
-            low: floor.clamp(0.0, last) as usize,
-            high: (floor + 1.0).clamp(0.0, last) as usize,
-            t: (f - floor) as f32,
-        }
-    }
-}
-
 impl FloatImage {
     /// An image of `width` x `height` black pixels.
     pub(crate) fn new(width: usize, height: usize) -> Self {
@@ -118,23 +94,44 @@ impl FloatImage {
         horizontal.convolve(&kernel, radius, false)
     }
 
-    /// Convolves rows (`along_rows`) or columns with a symmetric `kernel` of `radius`.
+    /// Convolves rows (`along_rows`) or columns with a symmetric `kernel` of `radius`,
+    /// edge pixels extended.
     fn convolve(&self, kernel: &[f32], radius: isize, along_rows: bool) -> Self {
-        let mut out = Self::new(self.width, self.height);
-        for row in 0..self.height as isize {
-            for col in 0..self.width as isize {
-                let mut sum = [0.0f32; 3];
+        let (w, h) = (self.width, self.height);
+        let mut out = Self::new(w, h);
+        let r = radius as usize;
+        if along_rows {
+            // Each row padded with its edge pixels, then a contiguous dot product.
+            let mut padded = vec![[0.0f32; 3]; w + 2 * r];
+            for row in 0..h {
+                let line = &self.pixels[row * w..(row + 1) * w];
+                for (i, slot) in padded.iter_mut().enumerate() {
+                    *slot = line[i.saturating_sub(r).min(w - 1)];
+                }
+                let out_line = &mut out.pixels[row * w..(row + 1) * w];
+                for (col, pixel) in out_line.iter_mut().enumerate() {
+                    let mut sum = [0.0f32; 3];
+                    for (p, weight) in padded[col..col + 2 * r + 1].iter().zip(kernel) {
+                        for c in 0..3 {
+                            sum[c] += weight * p[c];
+                        }
+                    }
+                    *pixel = sum;
+                }
+            }
+        } else {
+            // Each output row is the weighted sum of whole input rows.
+            for row in 0..h {
+                let out_line = &mut out.pixels[row * w..(row + 1) * w];
                 for (k, weight) in (-radius..=radius).zip(kernel) {
-                    let p = if along_rows {
-                        self.at_clamped(row, col + k)
-                    } else {
-                        self.at_clamped(row + k, col)
-                    };
-                    for c in 0..3 {
-                        sum[c] += weight * p[c];
+                    let source = (row as isize + k).clamp(0, h as isize - 1) as usize;
+                    let line = &self.pixels[source * w..(source + 1) * w];
+                    for (o, p) in out_line.iter_mut().zip(line) {
+                        for c in 0..3 {
+                            o[c] += weight * p[c];
+                        }
                     }
                 }
-                out.pixels[row as usize * self.width + col as usize] = sum;
             }
         }
         out
@@ -162,35 +159,20 @@ impl FloatImage {
 
     /// The bilinear interpolation at continuous image coordinates (`x`, `y`) (pixel
     /// centres at half-integers), edge pixels extended.
-    #[cfg(test)]
-    pub(crate) fn sample_bilinear(&self, x: f32, y: f32) -> [f32; 3] {
-        let (fx, fy) = (x - 0.5, y - 0.5);
-        let (x0, y0) = (fx.floor(), fy.floor());
-        let (tx, ty) = (fx - x0, fy - y0);
-        let (c0, r0) = (x0 as isize, y0 as isize);
-        let p00 = self.at_clamped(r0, c0);
-        let p01 = self.at_clamped(r0, c0 + 1);
-        let p10 = self.at_clamped(r0 + 1, c0);
-        let p11 = self.at_clamped(r0 + 1, c0 + 1);
+    pub(crate) fn sample_bilinear(&self, x: f64, y: f64) -> [f32; 3] {
+        let fx = (x - 0.5).clamp(0.0, (self.width - 1) as f64);
+        let fy = (y - 0.5).clamp(0.0, (self.height - 1) as f64);
+        let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
+        let (x1, y1) = ((x0 + 1).min(self.width - 1), (y0 + 1).min(self.height - 1));
+        let (tx, ty) = ((fx - x0 as f64) as f32, (fy - y0 as f64) as f32);
+        let p00 = self.at(y0, x0);
+        let p01 = self.at(y0, x1);
+        let p10 = self.at(y1, x0);
+        let p11 = self.at(y1, x1);
         [0, 1, 2].map(|c| {
             let top = p00[c] + tx * (p01[c] - p00[c]);
             let bottom = p10[c] + tx * (p11[c] - p10[c]);
             top + ty * (bottom - top)
-        })
-    }
-
-    /// The bilinear interpolation at a point given by its weights along each axis (see
-    /// [`AxisSample`]): the same value as `FloatImage::sample_bilinear`, much cheaper when
-    /// a whole row of points shares `y` and a whole column shares `x`.
-    pub(crate) fn sample_separable(&self, y: AxisSample, x: AxisSample) -> [f32; 3] {
-        let p00 = self.at(y.low, x.low);
-        let p01 = self.at(y.low, x.high);
-        let p10 = self.at(y.high, x.low);
-        let p11 = self.at(y.high, x.high);
-        [0, 1, 2].map(|c| {
-            let top = p00[c] + x.t * (p01[c] - p00[c]);
-            let bottom = p10[c] + x.t * (p11[c] - p10[c]);
-            top + y.t * (bottom - top)
         })
     }
 
@@ -227,13 +209,33 @@ mod tests {
         assert_eq!(image.sample_bilinear(0.5, 0.5), [0.0; 3]);
         assert_eq!(image.sample_bilinear(1.5, 0.5), [1.0; 3]);
         assert_eq!(image.sample_bilinear(1.0, 0.5), [0.5; 3]);
+        assert_eq!(image.sample_bilinear(1.25, 0.5), [0.75; 3]);
         // Outside, edge pixels extend.
         assert_eq!(image.sample_bilinear(-3.0, 7.0), [0.0; 3]);
-        for x in [-1.0, 0.2, 0.75, 1.0, 1.3, 2.5, 9.0] {
-            let separable = image.sample_separable(AxisSample::new(0.5, 1), AxisSample::new(x, 2));
-            let direct = image.sample_bilinear(x as f32, 0.5);
-            assert!((separable[0] - direct[0]).abs() < 1e-6, "{x}");
+        assert_eq!(image.sample_bilinear(9.0, -2.0), [1.0; 3]);
+    }
+
+    #[test]
+    fn blur_spreads_an_impulse_as_the_gaussian_and_extends_the_edges() {
+        let sigma = 1.0f32;
+        let g = |d: f32| (-d * d / (2.0 * sigma * sigma)).exp();
+        let norm: f32 = (-3..=3).map(|i| g(i as f32)).sum();
+        let mut image = FloatImage::new(9, 9);
+        image.pixels[4 * 9 + 4] = [1.0, 0.5, 0.0];
+        let blurred = image.gaussian_blur(sigma);
+        for (row, col) in [(4, 4), (4, 6), (2, 5), (7, 4)] {
+            let want = g(row as f32 - 4.0) * g(col as f32 - 4.0) / (norm * norm);
+            let got = blurred.at(row, col);
+            assert!((got[0] - want).abs() < 1e-6 && (got[1] - 0.5 * want).abs() < 1e-6);
         }
+        // A bright left column, extended beyond the edge, stays as bright at the edge.
+        let mut edge = FloatImage::new(9, 3);
+        for row in 0..3 {
+            edge.pixels[row * 9] = [1.0; 3];
+        }
+        let blurred = edge.gaussian_blur(sigma);
+        let want: f32 = (-3..=0).map(|i| g(i as f32)).sum::<f32>() / norm;
+        assert!((blurred.at(1, 0)[0] - want).abs() < 1e-6);
     }
 
     #[test]

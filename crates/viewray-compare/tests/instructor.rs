@@ -6,7 +6,7 @@ mod scene;
 
 use image::RgbaImage;
 use scene::{Mistake, Pattern, Scene};
-use viewray_compare::{Comparison, Failure, InstructorThresholds, judge};
+use viewray_compare::{Comparison, Diagnosis, Failure, InstructorThresholds, judge};
 
 const W: u32 = 128;
 const H: u32 = 96;
@@ -53,7 +53,8 @@ fn check(mistake: Mistake, message: &str) {
         assert!(comparison.failures.contains(&Failure::CameraMistake));
         let diagnosis = comparison
             .diagnosis
-            .unwrap_or_else(|| panic!("{mistake:?} {pattern:?}: no diagnosis"));
+            .and_then(|d| d.camera_mistake().copied())
+            .unwrap_or_else(|| panic!("{mistake:?} {pattern:?}: no camera mistake"));
         assert_eq!(diagnosis.to_string(), message, "{pattern:?} {diagnosis:?}");
         assert_eq!(diagnosis.mirrored_left_right, mistake.mirror_x);
         assert_eq!(diagnosis.upside_down, mistake.mirror_y);
@@ -82,7 +83,7 @@ fn a_missing_pixel_centre_offset_is_diagnosed() {
             shift: (0.5, 0.5),
             ..Mistake::NONE
         },
-        "shifted +0.5 px in x and y: check the pixel-centre offset",
+        "shifted +0.5 px in x and y: check the pixel-centre offset (j - 1/2, i - 1/2)",
     );
 }
 
@@ -100,7 +101,7 @@ fn mirrors_are_diagnosed() {
             mirror_y: true,
             ..Mistake::NONE
         },
-        "upside down: check v = w x u and the minus sign in v = -((row + sy)/H - 1/2) vh",
+        "upside down: check v = w x u and the minus sign in v = -((i - 1/2)/H - 1/2) vh",
     );
     check(
         Mistake {
@@ -130,12 +131,12 @@ fn a_shift_with_the_wrong_sign_is_diagnosed() {
             shift: (0.0, -12.0),
             ..Mistake::NONE
         },
-        "shifted 12 px up: check the sign of the shift",
+        "shifted 12 px up: check the shift (sx, sy)",
     );
 }
 
 #[test]
-fn a_missing_object_fails_without_a_camera_diagnosis() {
+fn a_missing_object_fails_with_no_camera_transform_named() {
     let missing = Scene {
         white_disc: false,
         ..Scene::default()
@@ -147,7 +148,10 @@ fn a_missing_object_fails_without_a_camera_diagnosis() {
         "{:?}",
         comparison.failures
     );
-    assert_eq!(comparison.diagnosis, None);
+    assert_eq!(
+        comparison.diagnosis,
+        Some(Diagnosis::Unexplained { whole_view: false })
+    );
 }
 
 #[test]

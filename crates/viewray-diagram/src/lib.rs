@@ -31,6 +31,7 @@
 //! ```
 
 mod assumptions;
+mod camera_side;
 mod canonical;
 mod clip;
 mod distortions;
@@ -54,10 +55,12 @@ use std::fmt;
 use glam::{DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample};
 use viewray_draw::Figure;
+use viewray_scene::Scene;
 
 use crate::assumptions::{
     assumption_basis, assumption_distance, assumption_eye, assumption_viewport,
 };
+pub use crate::camera_side::SideViewCanvas;
 use crate::canonical::{canonical_camera, canonical_camera_square};
 use crate::distortions::{distortion_foreshortening, distortion_verticals};
 use crate::frame::{camera_frame, camera_frame_square};
@@ -222,6 +225,28 @@ pub fn all_figures() -> Vec<NamedFigure> {
             draw: thin_lens,
         },
     ]
+}
+
+/// The side view of a scene's camera (a 1600 x 900 slide, or a 1000 x 600 panel: see
+/// [`SideViewCanvas`]), the lecture's side-view
+/// figures for any camera: the scene's objects seen from the camera's right (the plane
+/// of **v** and **w**, world up kept up), the eye **e** with **v** and **w**, the image
+/// plane edge-on, the frustum's edges, and the viewing rays of five pixels of the middle
+/// column, each drawn up to the first object it hits (traced in `scene`'s world); for
+/// a thin lens, the lens and the focus plane. A caption names the projection and its
+/// parameters.
+///
+/// `camera` need not be the scene's own (a live viewer draws the camera being edited);
+/// `pixel`, a 0-based (row, col) of its image, adds that pixel's viewing ray,
+/// highlighted and labelled with the lecture's (i, j). Every ray drawn is one `camera`
+/// generates.
+pub fn camera_side_view(
+    scene: &Scene,
+    camera: &Camera,
+    pixel: Option<(u32, u32)>,
+    canvas: SideViewCanvas,
+) -> Figure {
+    camera_side::camera_side_view(scene, camera, pixel, canvas).figure
 }
 
 /// The figure called `name`, if there is one; see [`figure_names`] for the names and

@@ -113,9 +113,10 @@ pub(crate) fn draw_side_frame(
             );
         }
     }
-    // u is along x: towards the viewer of a side view from +x when u.x > 0. Its label
-    // goes in the quadrant between v (up) and w, on the side away from -w.
-    let towards_viewer = frame.u.x > 0.0;
+    // u is out of the page when it points towards the viewer of the side view (along x
+    // in the lecture's figures, seen from +x). Its label goes in the quadrant between v
+    // (up) and w, on the side away from -w.
+    let towards_viewer = frame.u.dot(view.towards_viewer()) > 0.0;
     if labels {
         let away = view.to_figure(frame.e + frame.w) - e;
         let side = if away.x <= 0.0 { -1.0 } else { 1.0 };

@@ -51,6 +51,18 @@ impl Sketch {
         }
     }
 
+    /// An empty figure of `width x height` pixels on the figures' background.
+    pub(crate) fn sized(width: u32, height: u32) -> Sketch {
+        let figure = Figure {
+            background: style::BACKGROUND,
+            ..Figure::new(width, height)
+        };
+        Sketch {
+            figure,
+            rays: Vec::new(),
+        }
+    }
+
     /// The finished figure and its rays.
     pub(crate) fn finish(self) -> Diagram {
         Diagram {

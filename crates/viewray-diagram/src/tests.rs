@@ -1,5 +1,6 @@
 //! Tests of the figures that look inside them: the rays they record, the scenes and
 //! cameras of their pictures.
 
+mod camera_side;
 mod figures;
 mod rendered;

@@ -127,42 +127,77 @@ impl CameraView {
     }
 }
 
-/// A side view: the world's y-z plane seen from `+x`, so `-z` points right and `y` up
-/// (a camera looking down `-z` looks right). `x` is dropped: a point is drawn where its
-/// orthographic projection onto the plane falls.
+/// A side view: a vertical plane of the world seen face-on, `right` pointing right and
+/// `up` up on the figure. The lecture's figures look at the y-z plane from `+x`, so `-z`
+/// points right and `y` up (a camera looking down `-z` looks right); a camera's own side
+/// view ([`SideView::of_camera`]) uses the plane through its **v** and **w**. The third
+/// coordinate, along `right x up` (towards the viewer), is dropped: a point is drawn
+/// where its orthographic projection onto the plane falls.
 ///
 /// ```text
-/// figure = mapping.to_canvas((-z, y))
+/// figure = mapping.to_canvas((p . right, p . up))
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct SideView {
-    /// From `(-z, y)` in world units to figure pixels.
+    /// From `(p . right, p . up)` in world units to figure pixels.
     pub(crate) mapping: Mapping,
-    /// The region of the y-z plane the view was fitted to, as `(-z, y)`: what it is
-    /// sure to show.
+    /// The region of the plane the view was fitted to, as `(p . right, p . up)`: what it
+    /// is sure to show.
     pub(crate) bounds: Rect,
+    /// The world direction drawn to the right, a unit vector.
+    pub(crate) right: DVec3,
+    /// The world direction drawn up, a unit vector perpendicular to `right`.
+    pub(crate) up: DVec3,
 }
 
 impl SideView {
-    /// The side view showing at least `-z` in `depth` and `y` in `height` (world units)
-    /// inside `canvas`, centred, at one scale.
+    /// The side view of the y-z plane from `+x` showing at least `-z` in `depth` and `y`
+    /// in `height` (world units) inside `canvas`, centred, at one scale.
     ///
     /// # Panics
     /// If either range or the canvas is empty: figure code passes constants.
     pub(crate) fn fit(depth: (f64, f64), height: (f64, f64), canvas: Rect) -> SideView {
+        SideView::fit_plane(DVec3::NEG_Z, DVec3::Y, depth, height, canvas)
+    }
+
+    /// The side view with `right` and `up` (unit vectors, perpendicular) showing at least
+    /// `p . right` in `across` and `p . up` in `height` inside `canvas`, centred, at one
+    /// scale.
+    ///
+    /// # Panics
+    /// If either range or the canvas is empty.
+    pub(crate) fn fit_plane(
+        right: DVec3,
+        up: DVec3,
+        across: (f64, f64),
+        height: (f64, f64),
+        canvas: Rect,
+    ) -> SideView {
         let world = Rect::from_corners(
-            Vec2::new(depth.0 as f32, height.0 as f32),
-            Vec2::new(depth.1 as f32, height.1 as f32),
+            Vec2::new(across.0 as f32, height.0 as f32),
+            Vec2::new(across.1 as f32, height.1 as f32),
         );
         SideView {
             mapping: Mapping::fit(world, canvas).expect("a side view of a non-empty region"),
             bounds: world,
+            right,
+            up,
         }
+    }
+
+    /// The plane coordinates `(p . right, p . up)` of the world point `p`.
+    pub(crate) fn plane_point(&self, p: DVec3) -> DVec2 {
+        DVec2::new(p.dot(self.right), p.dot(self.up))
+    }
+
+    /// The direction out of the figure, towards its viewer: `right x up`.
+    pub(crate) fn towards_viewer(&self) -> DVec3 {
+        self.right.cross(self.up)
     }
 
     /// The figure point of world point `p`.
     pub(crate) fn to_figure(self, p: DVec3) -> Vec2 {
-        self.mapping.to_canvas(Vec2::new(-p.z as f32, p.y as f32))
+        self.mapping.to_canvas(self.plane_point(p).as_vec2())
     }
 
     /// A world length in figure pixels.
@@ -177,17 +212,17 @@ impl SideView {
         ray: &viewray_geometry::DRay,
         t: (f64, f64),
     ) -> Option<(f64, f64)> {
-        // In side-view coordinates: x(t) = -(o.z + t d.z), y(t) = o.y + t d.y.
+        // In plane coordinates: x(t) = o . right + t d . right, y(t) = o . up + t d . up.
         let axes = [
             (
-                -ray.origin.z,
-                -ray.direction.z,
+                ray.origin.dot(self.right),
+                ray.direction.dot(self.right),
                 f64::from(self.bounds.min.x),
                 f64::from(self.bounds.max.x),
             ),
             (
-                ray.origin.y,
-                ray.direction.y,
+                ray.origin.dot(self.up),
+                ray.direction.dot(self.up),
                 f64::from(self.bounds.min.y),
                 f64::from(self.bounds.max.y),
             ),

@@ -22,6 +22,9 @@ pub enum Compression {
     /// The smallest file the encoder can make, several times slower: for files that
     /// are committed, such as golden images.
     Smallest,
+    /// The quickest encoding, a larger file: for images looked at once and thrown away,
+    /// such as the live playground's frames, where encoding time is part of the wait.
+    Fast,
 }
 
 /// Writes `image` to `out` as a PNG.
@@ -52,6 +55,7 @@ where
     let compression = match compression {
         Compression::Balanced => CompressionType::Default,
         Compression::Smallest => CompressionType::Best,
+        Compression::Fast => CompressionType::Fast,
     };
     PngEncoder::new_with_quality(out, compression, FilterType::Adaptive)
         .write_image(image.as_raw(), width, height, P::COLOR_TYPE)
@@ -100,7 +104,11 @@ mod tests {
     fn pixels_round_trip_and_only_the_three_critical_chunks_are_written() {
         let rgb = RgbImage::from_fn(5, 3, |x, y| Rgb([x as u8 * 50, y as u8 * 100, 7]));
         let rgba = RgbaImage::from_fn(4, 2, |x, y| Rgba([x as u8, y as u8, 9, 128]));
-        for compression in [Compression::Balanced, Compression::Smallest] {
+        for compression in [
+            Compression::Balanced,
+            Compression::Smallest,
+            Compression::Fast,
+        ] {
             let png = encode_png(&rgb, compression).unwrap();
             assert_eq!(chunks(&png), ["IHDR", "IDAT", "IEND"]);
             let decoded = image::load_from_memory(&png).unwrap();

@@ -97,5 +97,6 @@ mod shade;
 
 pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};
 pub use crate::render::{
-    MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, render,
+    MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, View,
+    render, render_view,
 };

@@ -45,6 +45,31 @@ impl Default for RenderSettings {
     }
 }
 
+/// What a render looks through and how: the camera (with the image size), the samples
+/// per pixel and the shading. [`View::of`] takes a scene's own; a different view renders
+/// the same loaded scene (its geometry, BVHs, materials and lights) through another
+/// camera without building anything again, as a live viewer needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// The camera, with the image size.
+    pub camera: Camera,
+    /// Samples per pixel; 0 counts as 1.
+    pub samples: u32,
+    /// How hits are coloured.
+    pub shading: Shading,
+}
+
+impl View {
+    /// The scene's own view: its camera, samples and shading, as [`render`] uses.
+    pub fn of(scene: &Scene) -> View {
+        View {
+            camera: *scene.camera(),
+            samples: scene.samples(),
+            shading: scene.shading(),
+        }
+    }
+}
+
 /// What a render counted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RenderStats {
@@ -93,8 +118,24 @@ pub fn render(
     settings: &RenderSettings,
     progress: impl Fn(u64, u64) + Sync,
 ) -> Result<Rendered, RenderError> {
+    render_view(scene, &View::of(scene), settings, progress)
+}
+
+/// Renders `scene` through `view` instead of the scene's own camera, samples and
+/// shading: the same image [`render`] gives for a scene loaded with that camera, image
+/// size, samples and shading, without loading or building the scene again.
+///
+/// # Errors
+/// [`RenderError::ThreadPool`] if `settings.threads` asks for a pool that cannot be
+/// started.
+pub fn render_view(
+    scene: &Scene,
+    view: &View,
+    settings: &RenderSettings,
+    progress: impl Fn(u64, u64) + Sync,
+) -> Result<Rendered, RenderError> {
     match settings.threads {
-        None => Ok(render_on_current_pool(scene, settings, &progress)),
+        None => Ok(render_on_current_pool(scene, view, settings, &progress)),
         Some(threads) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -104,7 +145,7 @@ pub fn render(
                     threads,
                     message: error.to_string(),
                 })?;
-            Ok(pool.install(|| render_on_current_pool(scene, settings, &progress)))
+            Ok(pool.install(|| render_on_current_pool(scene, view, settings, &progress)))
         }
     }
 }
@@ -236,18 +277,19 @@ fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
 
 fn render_on_current_pool(
     scene: &Scene,
+    view: &View,
     settings: &RenderSettings,
     progress: &(impl Fn(u64, u64) + Sync),
 ) -> Rendered {
-    let camera = &scene.camera();
+    let camera = &view.camera;
     let (width, height) = (camera.width(), camera.height());
-    let samples = scene.samples().max(1);
+    let samples = view.samples.max(1);
 
     // For depth images, find the range of depths first.
     let mut depth_map = DepthMap::new(camera);
     let mut rays = 0;
-    if scene.shading() == Shading::Depth {
-        let probe = Shader::new(scene, 0, depth_map);
+    if view.shading == Shading::Depth {
+        let probe = Shader::new(scene, view, 0, depth_map);
         // One band of block rows at a time, each block's rays traced as a packet.
         let (range, probe_rays) = (0..height.div_ceil(BLOCK_SIZE))
             .into_par_iter()
@@ -282,7 +324,7 @@ fn render_on_current_pool(
         rays += probe_rays;
     }
 
-    let shader = Shader::new(scene, settings.max_reflection_depth, depth_map);
+    let shader = Shader::new(scene, view, settings.max_reflection_depth, depth_map);
     let spacing = 1.0 / f64::from(samples).sqrt();
     let strata = Strata::new(samples);
     let total = u64::from(width) * u64::from(height);
@@ -324,7 +366,7 @@ fn render_on_current_pool(
     );
     drop(bands);
 
-    let kind = match scene.shading() {
+    let kind = match view.shading {
         Shading::Flat | Shading::Lit => PixelKind::Color,
         Shading::Normals | Shading::Depth => PixelKind::Data,
     };

@@ -8,6 +8,8 @@ use viewray_geometry::{Hit, Object, ObjectHit, Ray};
 use viewray_output::linear_to_srgb;
 use viewray_scene::{Grid, Light, Material, Scene, Shading};
 
+use crate::View;
+
 /// Where primary rays start their search: `t > 0`, as the camera contract says.
 const T_MIN: f32 = f32::MIN_POSITIVE;
 
@@ -160,6 +162,9 @@ impl DepthRange {
 /// Everything shading needs, shared read-only by every tile.
 pub(crate) struct Shader<'a> {
     scene: &'a Scene,
+    /// The camera (for ray differentials) and the shading, which may not be the scene's.
+    camera: &'a Camera,
+    shading: Shading,
     max_depth: u32,
     depth_map: DepthMap,
     /// The background as stored in the image: the colour itself for colour images,
@@ -168,13 +173,20 @@ pub(crate) struct Shader<'a> {
 }
 
 impl<'a> Shader<'a> {
-    pub(crate) fn new(scene: &'a Scene, max_depth: u32, depth_map: DepthMap) -> Self {
-        let background = match scene.shading() {
+    pub(crate) fn new(
+        scene: &'a Scene,
+        view: &'a View,
+        max_depth: u32,
+        depth_map: DepthMap,
+    ) -> Self {
+        let background = match view.shading {
             Shading::Flat | Shading::Lit => scene.background(),
             Shading::Normals | Shading::Depth => scene.background().map(linear_to_srgb),
         };
         Self {
             scene,
+            camera: &view.camera,
+            shading: view.shading,
             max_depth,
             depth_map,
             background,
@@ -210,7 +222,7 @@ impl<'a> Shader<'a> {
             return self.background;
         };
         let world = &self.scene.world();
-        match self.scene.shading() {
+        match self.shading {
             Shading::Flat => {
                 // A plain colour needs no surface details.
                 let material = self.material(object_hit.object, object_hit.primitive);
@@ -352,8 +364,7 @@ impl<'a> Shader<'a> {
     /// or `None` where a neighbouring ray does not exist (outside a fisheye's circle).
     fn differentials(&self, center: DVec2, spacing: f64) -> Option<RayDifferentials> {
         let differential =
-            self.scene
-                .camera()
+            self.camera
                 .generate_ray_differential(center, DVec2::splat(0.5), spacing)?;
         let [c, x, y] = [differential.ray, differential.rx, differential.ry].map(|r| r.as_ray());
         Some(RayDifferentials {

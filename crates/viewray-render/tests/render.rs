@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::{DVec3, Vec3};
-use viewray_render::{Image, RenderSettings, Rendered, render};
+use viewray_render::{Image, RenderSettings, Rendered, View, render, render_view};
 use viewray_scene::{LoadOptions, Scene};
 
 /// A scene from RON text.
@@ -501,4 +501,79 @@ fn every_fixture_scene_renders() {
             "{name}: an image of one colour"
         );
     }
+}
+
+#[test]
+fn a_view_renders_the_loaded_scene_as_a_scene_loaded_with_its_camera() {
+    // One scene loaded once, rendered through the cameras, sizes, samples and shadings of
+    // other scene files: each image is the one those files render.
+    let scene_with = |camera: &str, size: (u32, u32), samples: u32, shading: &str| {
+        format!(
+            "(image: (width: {}, height: {}, samples: {samples}), shading: {shading},
+              camera: {camera},
+              background: (0.2, 0.3, 0.4),
+              lights: [Point(position: (2.0, 4.0, 3.0), intensity: (10.0, 10.0, 10.0)),
+                       Ambient(intensity: (0.1, 0.1, 0.1))],
+              {GRID})",
+            size.0, size.1
+        )
+    };
+    let loaded = scene(&scene_with(
+        "(eye: (0.0, 1.0, 5.0), look_at: (0.0, 0.0, 0.0), projection: Perspective(fov_y: 40.0))",
+        (40, 30),
+        1,
+        "Lit",
+    ));
+    for (camera, size, samples, shading) in [
+        (
+            "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.3, 0.0),
+              projection: ThinLens(distance: 1.0, fov_y: 50.0, aperture: 0.1, focus: 4.0))",
+            (37, 21),
+            4,
+            "Lit",
+        ),
+        (
+            "Isometric(target: (0.0, 0.5, 0.0), size: 4.0)",
+            (30, 30),
+            1,
+            "Depth",
+        ),
+        (
+            "(eye: (0.0, 2.0, 3.0), view: (0.0, -0.5, -1.0),
+              projection: Oblique(height: 3.0, ratio: 0.5, angle: 30.0))",
+            (25, 40),
+            2,
+            "Normals",
+        ),
+        (
+            "(eye: (0.0, 0.5, 0.0), view: (0.0, 0.0, -1.0), projection: Fisheye(fov: 180.0))",
+            (20, 20),
+            1,
+            "Flat",
+        ),
+    ] {
+        let expected = render_with(
+            &scene(&scene_with(camera, size, samples, shading)),
+            RenderSettings::default(),
+        );
+        let reference = scene(&scene_with(camera, size, samples, shading));
+        let view = View {
+            camera: *reference.camera(),
+            samples,
+            shading: reference.shading(),
+        };
+        let got = render_view(&loaded, &view, &RenderSettings::default(), |_, _| {}).unwrap();
+        assert_eq!(got, expected, "{camera}");
+    }
+    // The scene's own view is what `render` uses.
+    assert_eq!(
+        render_view(
+            &loaded,
+            &View::of(&loaded),
+            &RenderSettings::default(),
+            |_, _| {}
+        )
+        .unwrap(),
+        render_with(&loaded, RenderSettings::default())
+    );
 }

@@ -54,6 +54,36 @@ pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
     mesh::parse_obj(bytes, no_mtl, &mut materials, &mut build_time).map(|m| m.mesh.triangle_count())
 }
 
+/// Parses `text` as the `camera:` value of a scene file, on its own, for an image of
+/// `width x height` pixels: an explicit camera `(eye: .., look_at: .., projection: ..)`
+/// or a taxonomy preset `Isometric(target: .., size: ..)`, exactly as a scene file
+/// writes it. Fields of view and presets follow the image's aspect ratio, as they do
+/// when a scene is loaded with [`LoadOptions::size`].
+///
+/// Error positions count from the start of `text` (line 1, column 1), and `name` names
+/// it (for example `camera`): `camera:1:9: unknown field ..`.
+///
+/// # Errors
+/// A [`SceneError`] if `text` is not a valid camera or the size is not one a scene
+/// file may have.
+pub fn parse_camera(
+    text: &str,
+    name: &Path,
+    width: u32,
+    height: u32,
+) -> Result<viewray_camera::Camera, SceneError> {
+    load::parse_camera_text(text, name, width, height)
+}
+
+/// The `camera:` value of the scene file `text` as written there, without the
+/// surrounding whitespace: what [`parse_camera`] reads back.
+///
+/// # Errors
+/// A [`SceneError`] if `text` is not a scene file (it is not checked any further).
+pub fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
+    load::camera_text(text, path)
+}
+
 /// How long loading a scene took.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LoadTimes {
@@ -66,8 +96,14 @@ pub struct LoadTimes {
 /// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
 pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 
-/// Reads a scene file, refusing directories and files too large to be a scene.
-fn read_scene_file(path: &Path) -> Result<String, SceneError> {
+/// Reads the text of the scene file at `path` as loading it would, without parsing it:
+/// for a program that keeps the text beside the loaded scene (the live playground
+/// serves it).
+///
+/// # Errors
+/// A [`SceneError`] naming `path` for a missing file, a directory, a file that is not
+/// UTF-8 text, or one larger than [`MAX_SCENE_BYTES`].
+pub fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
     let file = std::fs::File::open(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::NotFound => error("no such scene file".to_owned()),
@@ -82,9 +118,13 @@ fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     read_scene_text(file, path)
 }
 
-/// Reads scene text from `reader`, refusing text that is not UTF-8 or too large to be a
-/// scene; `path` names it in errors.
-fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
+/// Reads scene text from `reader` (standard input, say) as [`read_scene_file`] reads a
+/// file, refusing text that is not UTF-8 or too large to be a scene; `path` names it in
+/// errors.
+///
+/// # Errors
+/// A [`SceneError`] naming `path`.
+pub fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
     let mut text = String::new();
     let read = reader

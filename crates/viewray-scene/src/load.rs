@@ -512,6 +512,38 @@ fn check_image(
     Ok((width, height, image.samples))
 }
 
+/// Parses `text` as a scene file's `camera:` value on its own (an explicit camera or a
+/// preset) for a `width x height` image; positions in errors count from the start of
+/// `text`, and `path` names it.
+pub(crate) fn parse_camera_text(
+    text: &str,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<Camera, SceneError> {
+    let image = ImageDef {
+        width,
+        height,
+        samples: 1,
+    };
+    let (width, height, _) = check_image(&image, path, Origin::FILE)?;
+    let raw: &RawValue = ron_options()
+        .from_str(text)
+        .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;
+    let origin = LineIndex::new(text).origin_of(raw.get_ron());
+    parse_camera(raw, origin, path, width, height)
+}
+
+/// The `camera:` value of the scene file `text`, as written there (comments inside it
+/// included).
+pub(crate) fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let file: SceneFile<'a> = ron_options()
+        .from_str(text)
+        .map_err(|e| ron_error(path, text, Origin::FILE, &e))?;
+    Ok(file.camera.get_ron().trim())
+}
+
 /// Parses the camera, an explicit `( .. )` or a preset `Name( .. )`.
 fn parse_camera(
     raw: &RawValue,

@@ -103,6 +103,42 @@ pub enum Shading {
     Lit,
 }
 
+impl Shading {
+    /// Every shading, in the order scene files list them.
+    pub const ALL: [Shading; 4] = [
+        Shading::Flat,
+        Shading::Normals,
+        Shading::Depth,
+        Shading::Lit,
+    ];
+
+    /// The name a scene file writes: `Flat`, `Normals`, `Depth` or `Lit`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "Flat",
+            Shading::Normals => "Normals",
+            Shading::Depth => "Depth",
+            Shading::Lit => "Lit",
+        }
+    }
+}
+
+impl std::str::FromStr for Shading {
+    type Err = String;
+
+    /// The shading a scene file names `text`; the error says which names there are.
+    fn from_str(text: &str) -> Result<Shading, String> {
+        Shading::ALL
+            .into_iter()
+            .find(|shading| shading.name() == text)
+            .ok_or_else(|| {
+                format!(
+                    "unknown shading `{text}`, expected one of `Flat`, `Normals`, `Depth` or `Lit`"
+                )
+            })
+    }
+}
+
 /// A surface's appearance. Colours are linear RGB.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {

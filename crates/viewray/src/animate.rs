@@ -17,7 +17,7 @@ use viewray_scene::{LoadOptions, Scene};
 use crate::cli::{AnimateArgs, is_standard_stream};
 use crate::output::Output;
 use crate::render::{available_memory, gib, progress_bar, seconds, stretched_pixels};
-use crate::{json, style};
+use crate::style;
 
 /// `viewray animate`.
 pub(crate) fn animate(args: &AnimateArgs) -> Result<()> {
@@ -188,7 +188,7 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
             "encode_s": seconds(encode_time),
         });
         let mut out = std::io::stdout().lock();
-        json::write_line(&mut out, &line)?;
+        viewray_json::write_line(&mut out, &line)?;
         out.flush()?;
     }
     Ok(())

@@ -134,14 +134,20 @@ pub(crate) enum Command {
     /// EXPECTED and ACTUAL are two PNG files, or two folders whose *.png files are paired
     /// by name. Antialiasing and sample count are not errors: both images are blurred by
     /// 2 px before NVIDIA's FLIP compares them, so a correct one-sample render passes.
-    /// Camera mistakes are errors, and are named from the transform between the images:
-    /// mirrored ("check u = up x w"), upside down, scaled ("check vw, vh or d"), shifted by
-    /// half a pixel ("check the pixel-centre offset") or more ("check the sign of the
-    /// shift"); moves are in pixels, x right and y down.
+    /// Camera mistakes are errors, and are named from the transform between the images,
+    /// measured on the part both show: mirrored ("check u = up x w"), upside down,
+    /// rotated ("check the up vector"), scaled ("check vw, vh or d"), shifted by half a
+    /// pixel ("check the pixel-centre offset") or more ("check the shift (sx, sy)"); moves
+    /// are in pixels, x right and y down. When no transform explains the difference, the
+    /// diagnosis says so. With --scene, the diagnosis speaks the lecture's terms: "the
+    /// sign of the shift is flipped", "the shift is missing", "your field of view is 1.25
+    /// times too wide".
     ///
     /// Prints a table (NAME, VERDICT, PEAK FLIP, DIAGNOSIS) and a summary line, or with
     /// --json one JSON line per pair ({"name", "verdict": "pass" | "fail" | "error",
-    /// "peak_flip", "mean_flip", "threshold", "diagnosis", "transform", "reasons", "error"})
+    /// "peak_flip", "mean_flip", "threshold", "diagnosis", "transform": {"mirrored_left_right",
+    /// "upside_down", "rotation" (degrees counterclockwise), "scale", "about", "shift"},
+    /// "reasons", "error"})
     /// and a last line {"summary": {"total", "passed", "failed", "errors"}}. Images of
     /// different sizes fail. A pair that cannot be compared (a file on one side only, an
     /// unreadable file, not a PNG) is reported as an error, and every other pair is still
@@ -158,6 +164,25 @@ pub(crate) enum Command {
     Figure(crate::figures::FigureArgs),
     /// Draw every lecture figure into a folder, as NAME.png and NAME.svg.
     Figures(crate::figures::FiguresArgs),
+    /// Draw the side view of a scene's camera to a PNG or SVG.
+    ///
+    /// The scene seen from the camera's right (the plane of v and w, world up kept up):
+    /// its objects, the eye e with v and w, the image plane edge-on, the frustum's top
+    /// and bottom edges, and the viewing rays of five pixels of the middle column, each
+    /// drawn to the first object it hits; for a thin lens, the lens and the focus plane.
+    /// Every ray drawn is one the camera generates. Writes a .png or an .svg as OUT's
+    /// extension says, atomically.
+    Diagram(crate::diagram::DiagramArgs),
+    /// Serve the live playground: the scene's render, the side view of its camera and
+    /// the numbers, in a browser, live as the camera changes.
+    ///
+    /// Loads the scene once (without SCENE, the built-in default scene) and prints the
+    /// page's URL, http://HOST:PORT/, as the first line on standard output. The page
+    /// has a control for every projection family and parameter and every taxonomy
+    /// preset; its URL holds the camera, so a link reopens it exactly. Everything the
+    /// page needs is inside viewray: no network, no CDN. Listens on 127.0.0.1 (this
+    /// machine only) unless --host says otherwise; Ctrl-C stops it.
+    Serve(crate::serve::ServeArgs),
     /// Print a scene file to start from: the built-in default scene.
     ///
     /// `viewray scene --default > scene.ron` writes the scene `viewray render` renders
@@ -411,7 +436,7 @@ fn parse_offset(text: &str) -> Result<DVec2, String> {
     Ok(offset)
 }
 
-fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
+pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
     let wrong = || "expected a pixel as two whole numbers ROW,COL, like 2,3".to_owned();
     let (row, col) = text.split_once(',').ok_or_else(wrong)?;
     let row = row.trim().parse().map_err(|_| wrong())?;

@@ -3,7 +3,7 @@
 //! Output: a table on stdout, one row per pair as it is judged, then a summary line; with
 //! `--json`, JSON lines instead: one object per pair, then one `{"summary":{..}}` object.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,10 +11,12 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde_json::{Value, json};
+use viewray_camera::Projection;
 use viewray_compare::{
-    Comparison, InstructorThresholds, Report, ReportEntry, RgbaImage, Rules, Verdict, judge,
-    load_png, write_report,
+    CameraKind, Comparison, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry,
+    RgbaImage, Rules, Verdict, judge_with, load_png, write_report,
 };
+use viewray_scene::{LoadOptions, Scene};
 
 use crate::EXIT_BAD_INPUT;
 
@@ -42,6 +44,12 @@ pub(crate) struct CompareArgs {
     /// Print JSON lines instead of a table: one object per pair, then a summary object.
     #[arg(long)]
     pub(crate) json: bool,
+    /// The scene the reference was rendered from: the diagnosis then speaks the lecture's
+    /// terms ("the sign of the shift is flipped", "the shift is missing", "your field of
+    /// view is 1.25 times too wide"). With folders, a folder of scenes matched to the
+    /// images by file stem (a.png <-> a.ron), or one scene for every image.
+    #[arg(long, value_name = "SCENE")]
+    pub(crate) scene: Option<PathBuf>,
 }
 
 fn parse_threshold(text: &str) -> Result<f32, String> {
@@ -57,11 +65,13 @@ fn parse_threshold(text: &str) -> Result<f32, String> {
     Ok(value)
 }
 
-/// One pair to judge: a name and the two files (`None` when one side lacks it).
+/// One pair to judge: a name and the two files (`None` when one side lacks it), and the
+/// reference's scene file when `--scene` names one.
 struct Pair {
     name: String,
     expected: Option<PathBuf>,
     actual: Option<PathBuf>,
+    scene: Option<PathBuf>,
 }
 
 /// What became of one pair.
@@ -123,7 +133,13 @@ impl Tally {
 
 /// Runs `viewray compare`; prints its own errors and returns the exit code.
 pub(crate) fn run(args: &CompareArgs) -> ExitCode {
-    let pairs = match pairs(&args.expected, &args.actual) {
+    let pairs = pairs(&args.expected, &args.actual).and_then(|mut pairs| {
+        if let Some(scene) = &args.scene {
+            assign_scenes(&mut pairs, scene)?;
+        }
+        Ok(pairs)
+    });
+    let pairs = match pairs {
         Ok(pairs) => pairs,
         Err(error) => return crate::failure(&error),
     };
@@ -154,6 +170,7 @@ fn pairs(expected: &Path, actual: &Path) -> Result<Vec<Pair>> {
                 name,
                 expected: Some(expected.to_owned()),
                 actual: Some(actual.to_owned()),
+                scene: None,
             }])
         }
         (true, true) => {
@@ -172,6 +189,7 @@ fn pairs(expected: &Path, actual: &Path) -> Result<Vec<Pair>> {
                     name: name.clone(),
                     expected: expected_names.contains(name).then(|| expected.join(name)),
                     actual: actual_names.contains(name).then(|| actual.join(name)),
+                    scene: None,
                 })
                 .collect())
         }
@@ -186,6 +204,74 @@ fn pairs(expected: &Path, actual: &Path) -> Result<Vec<Pair>> {
             actual.display()
         ),
     }
+}
+
+/// Gives each pair with a reference image its scene: `scene` itself when it is a file,
+/// else the file of `scene` (a folder) with the image's stem and the extension `.ron`.
+/// Every scene is loaded once here, so that a bad one is bad input before anything is
+/// judged.
+///
+/// # Errors
+/// A scene that does not exist or is not a valid scene file; a folder without the scene
+/// of some reference image.
+fn assign_scenes(pairs: &mut [Pair], scene: &Path) -> Result<()> {
+    if !scene.exists() {
+        bail!("SCENE `{}` does not exist", scene.display());
+    }
+    let mut checked = BTreeSet::new();
+    for pair in pairs.iter_mut().filter(|p| p.expected.is_some()) {
+        let path = if scene.is_dir() {
+            let stem = Path::new(&pair.name)
+                .file_stem()
+                .map_or_else(|| pair.name.clone(), |s| s.to_string_lossy().into_owned());
+            let path = scene.join(format!("{stem}.ron"));
+            if !path.is_file() {
+                bail!(
+                    "no scene for {} in `{}` (looked for `{}`)",
+                    pair.name,
+                    scene.display(),
+                    path.display()
+                );
+            }
+            path
+        } else {
+            scene.to_owned()
+        };
+        if checked.insert(path.clone()) {
+            Scene::load(&path)?;
+        }
+        pair.scene = Some(path);
+    }
+    Ok(())
+}
+
+/// What a scene says camera mistakes look like, for a reference of `width` x `height`
+/// (the scene is loaded at that size, so that fields of view in degrees follow its
+/// aspect ratio): the principal point, the lens shift and the kind of projection.
+/// `None` for a panoramic camera, whose mistakes are not transforms of the picture.
+fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectations>> {
+    let options = LoadOptions {
+        size: Some((width, height)),
+        samples: None,
+    };
+    let scene = Scene::load_with(path, options)?;
+    // The principal point, where u + sx = 0 and v + sy = 0: x = W (1/2 - sx/vw),
+    // y = H (1/2 + sy/vh).
+    let perspective = |viewport: glam::DVec2, shift: glam::DVec2| Expectations {
+        principal_point: (0.5 - shift.x / viewport.x, 0.5 + shift.y / viewport.y),
+        shift: (shift.x, shift.y),
+        camera: CameraKind::Perspective,
+    };
+    Ok(match scene.camera().projection() {
+        Projection::Perspective(p) => Some(perspective(p.viewport, p.shift)),
+        Projection::ThinLens(p) => Some(perspective(p.viewport, p.shift)),
+        Projection::Orthographic(_) | Projection::Oblique(_) => Some(Expectations {
+            principal_point: (0.5, 0.5),
+            shift: (0.0, 0.0),
+            camera: CameraKind::Parallel,
+        }),
+        Projection::Equirectangular | Projection::Fisheye(_) => None,
+    })
 }
 
 /// The names of the files in `folder` ending in `.png` (any case), sorted.
@@ -227,10 +313,11 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         out.flush()?;
     }
     let mut results = Vec::new();
+    let mut scenes = HashMap::new();
     for pair in pairs {
-        let judged = judge_pair(pair, &thresholds);
+        let judged = judge_pair(pair, &thresholds, &mut scenes);
         if args.json {
-            crate::json::write_line(&mut out, &json_line(&judged, args.threshold))?;
+            viewray_json::write_line(&mut out, &json_line(&judged, args.threshold))?;
         } else {
             writeln!(out, "{}", table_row(&judged, name_width))?;
         }
@@ -255,7 +342,7 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
             "failed": tally.failed,
             "errors": tally.errors,
         }});
-        crate::json::write_line(&mut out, &summary)?;
+        viewray_json::write_line(&mut out, &summary)?;
     } else {
         writeln!(out, "{summary_line}")?;
     }
@@ -293,8 +380,11 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
     Ok(tally)
 }
 
+/// The expectations of the scenes already loaded, by scene file and image size.
+type Scenes = HashMap<(PathBuf, (u32, u32)), Option<Expectations>>;
+
 /// Loads and judges one pair; a missing side or an unreadable file is the pair's error.
-fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds) -> Judged {
+fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, scenes: &mut Scenes) -> Judged {
     let mut errors = Vec::new();
     let mut load = |path: &Option<PathBuf>| match path.as_ref().map(load_png).transpose() {
         Ok(image) => image,
@@ -307,7 +397,21 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds) -> Judged {
     let actual = load(&pair.actual);
     let outcome = match (&expected, &actual) {
         _ if !errors.is_empty() => Err(errors.join("; ")),
-        (Some(e), Some(a)) => Ok(judge(e, a, thresholds)),
+        (Some(e), Some(a)) => match &pair.scene {
+            None => Ok(judge_with(e, a, thresholds, None)),
+            Some(path) => {
+                let key = (path.clone(), e.dimensions());
+                let known = match scenes.get(&key) {
+                    Some(known) => Ok(*known),
+                    None => expectations(path, e.width(), e.height())
+                        .inspect(|known| {
+                            scenes.insert(key, *known);
+                        })
+                        .map_err(|error| format!("{error:#}")),
+                };
+                known.map(|known| judge_with(e, a, thresholds, known.as_ref()))
+            }
+        },
         (Some(_), None) => Err(format!("only in EXPECTED: ACTUAL has no {}", pair.name)),
         (None, _) => Err(format!("only in ACTUAL: EXPECTED has no {}", pair.name)),
     };
@@ -382,11 +486,13 @@ fn json_line(judged: &Judged, threshold: f32) -> Value {
         "mean_flip": metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
         "threshold": figure(threshold),
         "diagnosis": diagnosis.map_or(Value::Null, |d| json!(d.messages())),
-        "transform": diagnosis.map_or(Value::Null, |d| json!({
-            "mirrored_left_right": d.mirrored_left_right,
-            "upside_down": d.upside_down,
-            "scale": [figure(d.scale.0 as f32), figure(d.scale.1 as f32)],
-            "shift": [figure(d.shift.0 as f32), figure(d.shift.1 as f32)],
+        "transform": diagnosis.as_ref().and_then(Diagnosis::camera_mistake).map_or(Value::Null, |m| json!({
+            "mirrored_left_right": m.mirrored_left_right,
+            "upside_down": m.upside_down,
+            "rotation": figure(m.rotation as f32),
+            "scale": [figure(m.scale.0 as f32), figure(m.scale.1 as f32)],
+            "about": [figure(m.about.0 as f32), figure(m.about.1 as f32)],
+            "shift": [figure(m.shift.0 as f32), figure(m.shift.1 as f32)],
         })),
         "reasons": reasons,
         "error": match &judged.outcome {

@@ -61,14 +61,14 @@ fn figure_list() -> String {
 
 /// The formats a figure can be written in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Format {
+pub(crate) enum Format {
     Png,
     Svg,
 }
 
 impl Format {
     /// The format named by `path`'s extension (any case).
-    fn from_path(path: &Path) -> Option<Format> {
+    pub(crate) fn from_path(path: &Path) -> Option<Format> {
         let extension = path.extension()?.to_str()?.to_ascii_lowercase();
         match extension.as_str() {
             "png" => Some(Format::Png),
@@ -80,7 +80,7 @@ impl Format {
 
 /// Writes `figure` to `path` in `format`, atomically (a temporary file renamed into
 /// place); an error names `path`.
-fn write(figure: &Figure, path: &Path, format: Format) -> Result<()> {
+pub(crate) fn write(figure: &Figure, path: &Path, format: Format) -> Result<()> {
     match format {
         Format::Png => viewray_draw::write_png(figure, path)?,
         Format::Svg => viewray_draw::write_svg(figure, path)?,

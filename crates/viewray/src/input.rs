@@ -13,7 +13,7 @@ use crate::cli::is_standard_stream;
 pub(crate) const DEFAULT_SCENE: &str = include_str!("../../../fixtures/default.ron");
 
 /// The name the default scene goes by in error messages.
-const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
+pub(crate) const DEFAULT_SCENE_PATH: &str = "fixtures/default.ron";
 
 /// The name standard input goes by in error messages. Meshes it names are found
 /// relative to the current folder (the folder of a bare name).

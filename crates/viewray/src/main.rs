@@ -16,12 +16,13 @@ mod animate;
 mod cli;
 mod commands;
 mod compare;
+mod diagram;
 mod figures;
 mod input;
 mod interop;
-mod json;
 mod output;
 mod render;
+mod serve;
 mod style;
 
 use std::process::ExitCode;
@@ -56,6 +57,8 @@ fn main() -> ExitCode {
         Command::Figures(args) => figures::figures(&args),
         Command::Export(args) => interop::export(&args),
         Command::Import(args) => interop::import(&args),
+        Command::Diagram(args) => diagram::diagram(&args),
+        Command::Serve(args) => serve::serve(&args),
         Command::Scene(args) => commands::scene(&args),
         Command::Completions(args) => commands::completions(&args),
         Command::Man(args) => commands::man(&args),

@@ -13,7 +13,7 @@ use viewray_scene::LoadOptions;
 
 use crate::cli::{RenderArgs, is_standard_stream, usage_error};
 use crate::output::Output;
-use crate::{json, style};
+use crate::style;
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
 ///
@@ -151,7 +151,7 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
             "rays": rendered.stats.rays,
         });
         let mut out = std::io::stdout().lock();
-        json::write_line(&mut out, &line)?;
+        viewray_json::write_line(&mut out, &line)?;
         out.flush()?;
     }
     Ok(())

@@ -127,7 +127,7 @@ fn folders_are_paired_by_name_and_every_problem_is_a_row() {
     assert!(row("correct.png").contains("PASS"));
     assert!(row("mirrored.png").contains("FAIL"));
     assert!(row("mirrored.png").ends_with("mirrored left-right: check u = up x w"));
-    assert!(row("moved.png").ends_with("shifted 12 px right: check the sign of the shift"));
+    assert!(row("moved.png").ends_with("shifted 12 px right: check the shift (sx, sy)"));
     assert!(row("small.png").ends_with("sizes differ: expected 96x72, actual 48x36"));
     assert!(row("notes.png").contains("ERROR"));
     assert!(row("notes.png").contains("notes.png: not a PNG file"));

@@ -27,7 +27,7 @@ fn diagrams() -> Vec<(NamedFigure, Diagram)> {
         .collect()
 }
 
-fn labels(figure: &Figure) -> Vec<&Label> {
+pub(super) fn labels(figure: &Figure) -> Vec<&Label> {
     figure
         .items
         .iter()
@@ -39,7 +39,7 @@ fn labels(figure: &Figure) -> Vec<&Label> {
 }
 
 /// The end points of every line and arrow.
-fn segments(figure: &Figure) -> Vec<(Vec2, Vec2, viewray_draw::Color)> {
+pub(super) fn segments(figure: &Figure) -> Vec<(Vec2, Vec2, viewray_draw::Color)> {
     figure
         .items
         .iter()
@@ -143,46 +143,53 @@ fn assert_close(a: DVec3, b: DVec3, what: &str) {
 #[test]
 fn drawn_rays_are_the_rays_the_cameras_generate() {
     for (named, diagram) in diagrams() {
-        let figure = &diagram.figure;
-        let drawn_segments = segments(figure);
-        for ray in &diagram.rays {
-            let what = format!("{} ray ({}, {})", named.name, ray.row, ray.col);
-            let generated = ray
-                .camera
-                .generate_ray(ray.row, ray.col, ray.sample)
-                .expect("a ray");
-            assert!(ray.t.0 >= 0.0 && ray.t.1 > ray.t.0, "{what}: t {:?}", ray.t);
-            assert_close(generated.at(ray.t.0), ray.from, &what);
-            assert_close(generated.at(ray.t.1), ray.to, &what);
-            let from_px = ray.view.to_figure(ray.from).expect("in view");
-            let to_px = ray.view.to_figure(ray.to).expect("in view");
+        assert_drawn_rays_are_generated(named.name, &diagram);
+    }
+}
+
+/// Every ray recorded on `diagram` is the ray its camera generates, drawn where the
+/// view puts its ends, as a line of the figure; and every line in the ray colour is a
+/// recorded ray.
+#[track_caller]
+pub(super) fn assert_drawn_rays_are_generated(name: &str, diagram: &Diagram) {
+    let figure = &diagram.figure;
+    let drawn_segments = segments(figure);
+    for ray in &diagram.rays {
+        let what = format!("{name} ray ({}, {})", ray.row, ray.col);
+        let generated = ray
+            .camera
+            .generate_ray(ray.row, ray.col, ray.sample)
+            .expect("a ray");
+        assert!(ray.t.0 >= 0.0 && ray.t.1 > ray.t.0, "{what}: t {:?}", ray.t);
+        assert_close(generated.at(ray.t.0), ray.from, &what);
+        assert_close(generated.at(ray.t.1), ray.to, &what);
+        let from_px = ray.view.to_figure(ray.from).expect("in view");
+        let to_px = ray.view.to_figure(ray.to).expect("in view");
+        assert!(
+            from_px.abs_diff_eq(ray.from_px, 1e-3),
+            "{what}: drawn elsewhere"
+        );
+        assert!(
+            to_px.abs_diff_eq(ray.to_px, 1e-3),
+            "{what}: drawn elsewhere"
+        );
+        assert!(
+            drawn_segments
+                .iter()
+                .any(|(a, b, _)| *a == ray.from_px && *b == ray.to_px),
+            "{what}: no line on the figure"
+        );
+    }
+    // Conversely, every line in the ray colour is one of the recorded rays.
+    for (a, b, color) in &drawn_segments {
+        if *color == style::RAY {
             assert!(
-                from_px.abs_diff_eq(ray.from_px, 1e-3),
-                "{what}: drawn elsewhere"
-            );
-            assert!(
-                to_px.abs_diff_eq(ray.to_px, 1e-3),
-                "{what}: drawn elsewhere"
-            );
-            assert!(
-                drawn_segments
+                diagram
+                    .rays
                     .iter()
-                    .any(|(a, b, _)| *a == ray.from_px && *b == ray.to_px),
-                "{what}: no line on the figure"
+                    .any(|ray| ray.from_px == *a && ray.to_px == *b),
+                "{name}: a ray-coloured line {a} -> {b} that no camera generated"
             );
-        }
-        // Conversely, every line in the ray colour is one of the recorded rays.
-        for (a, b, color) in &drawn_segments {
-            if *color == style::RAY {
-                assert!(
-                    diagram
-                        .rays
-                        .iter()
-                        .any(|ray| ray.from_px == *a && ray.to_px == *b),
-                    "{}: a ray-coloured line {a} -> {b} that no camera generated",
-                    named.name
-                );
-            }
         }
     }
 }

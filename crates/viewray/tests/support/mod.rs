@@ -91,3 +91,5 @@ fn bad_input(args: &[&str], out: Output) -> String {
     assert!(!stderr.contains("panicked"), "{stderr}");
     stderr.trim_end().to_owned()
 }
+
+pub(crate) mod http;

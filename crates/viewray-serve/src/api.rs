@@ -1,0 +1,281 @@
+//! The endpoints: a request path and query in, a status, content type and body out.
+//! Nothing here touches the network or the file system; the served scene is in memory.
+
+use std::path::Path;
+use std::time::Instant;
+
+use serde_json::json;
+use viewray_camera::{Camera, CameraSample};
+use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
+use viewray_output::Compression;
+use viewray_render::{RenderSettings, View, render_view};
+use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, parse_camera};
+
+use crate::params::{self, BadRequest, Query};
+use crate::{Limits, ServedScene};
+
+/// What to send back.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Reply {
+    /// The HTTP status.
+    pub(crate) status: u16,
+    /// The `Content-Type`.
+    pub(crate) content_type: &'static str,
+    /// The body.
+    pub(crate) body: Vec<u8>,
+    /// A `Server-Timing` header's value, for renders.
+    pub(crate) timing: Option<String>,
+}
+
+impl Reply {
+    fn ok(content_type: &'static str, body: impl Into<Vec<u8>>) -> Reply {
+        Reply {
+            status: 200,
+            content_type,
+            body: body.into(),
+            timing: None,
+        }
+    }
+
+    /// An error as `{"error": message}` with `status`.
+    pub(crate) fn error(status: u16, message: &str) -> Reply {
+        let mut body = json!({ "error": message }).to_string();
+        body.push('\n');
+        Reply {
+            status,
+            content_type: JSON,
+            body: body.into_bytes(),
+            timing: None,
+        }
+    }
+}
+
+impl From<BadRequest> for Reply {
+    fn from(bad: BadRequest) -> Reply {
+        Reply::error(400, &bad.0)
+    }
+}
+
+const JSON: &str = "application/json";
+const JSON_LINES: &str = "application/x-ndjson";
+
+/// A request after its parameters were checked: answered at once, or a render that
+/// waits for a free render slot.
+pub(crate) enum Route {
+    /// The reply, computed.
+    Now(Reply),
+    /// A render, its parameters valid and within the limits.
+    Render(View),
+}
+
+/// The parameters of each endpoint.
+const RENDER: [&str; 5] = ["camera", "width", "height", "samples", "shading"];
+const FRAME: [&str; 3] = ["camera", "width", "height"];
+const RAYS: [&str; 7] = ["camera", "width", "height", "row", "col", "i", "j"];
+const PROJECT: [&str; 4] = ["camera", "width", "height", "point"];
+const DIAGRAM: [&str; 5] = ["camera", "width", "height", "row", "col"];
+
+/// Routes a `GET` of `path` with `query` (the text after `?`, possibly empty).
+pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &str) -> Route {
+    let result = match path {
+        "/" => Ok(Route::Now(Reply::ok(
+            "text/html; charset=utf-8",
+            served.page.as_bytes(),
+        ))),
+        "/api/scene" => Ok(Route::Now(Reply::ok(
+            "text/plain; charset=utf-8",
+            served.text.as_bytes(),
+        ))),
+        "/api/render" => render_view_of(served, limits, query).map(Route::Render),
+        "/api/frame" => frame(served, limits, query).map(Route::Now),
+        "/api/rays" => rays(served, limits, query).map(Route::Now),
+        "/api/project" => project(served, limits, query).map(Route::Now),
+        "/api/diagram.svg" => diagram(served, limits, query).map(Route::Now),
+        _ => {
+            return Route::Now(Reply::error(
+                404,
+                &format!(
+                    "no such page: {path} (the playground serves /, /api/render, /api/frame, \
+                     /api/rays, /api/project, /api/diagram.svg and /api/scene)"
+                ),
+            ));
+        }
+    };
+    result.unwrap_or_else(|bad| Route::Now(bad.into()))
+}
+
+/// The camera of `query` (the served scene's when it has none) for a `width x height`
+/// image.
+fn camera(
+    served: &ServedScene,
+    limits: &Limits,
+    query: &Query,
+    (width, height): (u32, u32),
+) -> Result<Camera, BadRequest> {
+    let text = query.get("camera").unwrap_or(&served.camera_text);
+    if text.len() > limits.max_camera_bytes {
+        return Err(BadRequest(format!(
+            "camera: {} bytes is too long for a camera (at most {})",
+            text.len(),
+            limits.max_camera_bytes
+        )));
+    }
+    parse_camera(text, Path::new("camera"), width, height)
+        .map_err(|error| BadRequest(error.to_string()))
+}
+
+/// The served scene's image size.
+fn scene_size(served: &ServedScene) -> (u32, u32) {
+    let camera = served.scene.camera();
+    (camera.width(), camera.height())
+}
+
+/// The size of a request that renders nothing (rays, frames, projections, diagrams): as
+/// large as a scene file may say.
+fn geometry_size(served: &ServedScene, query: &Query) -> Result<(u32, u32), BadRequest> {
+    params::size(query, scene_size(served), MAX_IMAGE_SIDE, MAX_IMAGE_PIXELS)
+}
+
+/// `/api/render`: checks everything a render needs, before anything is allocated.
+fn render_view_of(served: &ServedScene, limits: &Limits, query: &str) -> Result<View, BadRequest> {
+    let query = Query::parse(query, &RENDER, &[])?;
+    let size = params::size(
+        &query,
+        scene_size(served),
+        limits.max_side,
+        limits.max_pixels,
+    )?;
+    let samples = params::samples(&query, served.scene.samples(), size, limits)?;
+    let shading = params::shading(&query, served.scene.shading())?;
+    let camera = camera(served, limits, &query, size)?;
+    Ok(View {
+        camera,
+        samples,
+        shading,
+    })
+}
+
+/// Renders the served scene through `view` and encodes it as a PNG: the bytes `viewray
+/// render` writes for the same scene, camera, size, samples and shading.
+pub(crate) fn render(served: &ServedScene, view: &View) -> Reply {
+    let started = Instant::now();
+    let rendered = match render_view(&served.scene, view, &RenderSettings::default(), |_, _| {}) {
+        Ok(rendered) => rendered,
+        Err(error) => return Reply::error(500, &error.to_string()),
+    };
+    let rendered_at = Instant::now();
+    let mut png = Vec::new();
+    // The same pixels as `viewray render` writes, encoded for speed rather than size.
+    if let Err(error) = rendered
+        .image
+        .write_png_compressed(&mut png, Compression::Fast)
+    {
+        return Reply::error(500, &format!("cannot encode the image: {error}"));
+    }
+    let ms = |from: Instant, to: Instant| (to - from).as_secs_f64() * 1e3;
+    Reply {
+        timing: Some(format!(
+            "render;dur={:.1}, png;dur={:.1}",
+            ms(started, rendered_at),
+            ms(rendered_at, Instant::now())
+        )),
+        ..Reply::ok("image/png", png)
+    }
+}
+
+/// `/api/frame`: the line of `viewray frame`.
+fn frame(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &FRAME, &[])?;
+    let size = geometry_size(served, &query)?;
+    let camera = camera(served, limits, &query, size)?;
+    Ok(json_lines(&[frame_line(camera.frame())]))
+}
+
+/// `/api/rays`: the line of `viewray rays --pixel R,C` (or `--one-based --pixel I,J`).
+fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &RAYS, &[])?;
+    let (width, height) = geometry_size(served, &query)?;
+    let camera = camera(served, limits, &query, (width, height))?;
+    let (first, second, one_based) = params::pixel(&query)?;
+    let indices = PixelIndices::one_based_if(one_based);
+    let pixel = indices
+        .pixel((first, second), width, height)
+        .map_err(|message| {
+            let name = if one_based { "i" } else { "row" };
+            BadRequest(format!("{name}: {message}"))
+        })?;
+    Ok(json_lines(&[ray_line(
+        &camera,
+        pixel,
+        CameraSample::CENTER,
+        indices,
+    )]))
+}
+
+/// `/api/project`: the lines of `viewray project --point X,Y,Z...`.
+fn project(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &PROJECT, &["point"])?;
+    let size = geometry_size(served, &query)?;
+    let camera = camera(served, limits, &query, size)?;
+    let points = query.all("point");
+    if points.is_empty() {
+        return Err(BadRequest::new(
+            "point: missing: give a world point as point=X,Y,Z (repeat it for several)",
+        ));
+    }
+    if points.len() > limits.max_points {
+        return Err(BadRequest(format!(
+            "point: {} points is too many for one request (at most {})",
+            points.len(),
+            limits.max_points
+        )));
+    }
+    let lines = points
+        .into_iter()
+        .map(|text| {
+            Ok(project_line(
+                &camera,
+                params::point(text)?,
+                PixelIndices::ZeroBased,
+            ))
+        })
+        .collect::<Result<Vec<_>, BadRequest>>()?;
+    Ok(json_lines(&lines))
+}
+
+/// `/api/diagram.svg`: the side view of the camera over the served scene.
+fn diagram(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &DIAGRAM, &[])?;
+    let (width, height) = geometry_size(served, &query)?;
+    let camera = camera(served, limits, &query, (width, height))?;
+    let pixel = match (query.get("row"), query.get("col")) {
+        (None, None) => None,
+        _ => {
+            let (row, col, _) = params::pixel(&query)?;
+            Some(
+                PixelIndices::ZeroBased
+                    .pixel((row, col), width, height)
+                    .map_err(|message| BadRequest(format!("row: {message}")))?,
+            )
+        }
+    };
+    let figure = viewray_diagram::camera_side_view(
+        &served.scene,
+        &camera,
+        pixel,
+        viewray_diagram::SideViewCanvas::Panel,
+    );
+    let svg = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
+    Ok(Reply::ok("image/svg+xml", svg))
+}
+
+/// `lines` as JSON lines, each ended by a newline, as the command line prints them.
+fn json_lines(lines: &[serde_json::Value]) -> Reply {
+    let mut body = Vec::new();
+    for line in lines {
+        // Writing to a Vec cannot fail.
+        let _ = viewray_json::write_line(&mut body, line);
+    }
+    let content_type = if lines.len() == 1 { JSON } else { JSON_LINES };
+    Reply::ok(content_type, body)
+}

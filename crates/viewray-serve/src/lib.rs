@@ -1,0 +1,130 @@
+//! The live playground behind `viewray serve`: an HTTP server that renders one loaded
+//! scene through whatever camera the page sends, draws that camera's side view, prints
+//! its numbers, and serves the page that drives it.
+//!
+//! The scene is loaded, and its BVHs built, once ([`ServedScene`]); every request
+//! brings a camera as the text of a scene file's `camera:` value, which is parsed alone
+//! ([`viewray_scene::parse_camera`]) and rendered through
+//! [`viewray_render::render_view`], so a new camera costs a render and nothing else.
+//!
+//! # Endpoints (GET)
+//! `camera` is URL-encoded RON (default: the served scene's); `width`, `height`,
+//! `samples` and `shading` override the served scene's.
+//!
+//! | path | reply |
+//! |---|---|
+//! | `/` | the page (HTML, CSS and JavaScript compiled in; the URL fragment holds its state) |
+//! | `/api/render?camera&width&height&samples&shading` | `image/png`: pixel for pixel what `viewray render` writes for the scene with that camera and settings |
+//! | `/api/frame?camera` | the line of `viewray frame` |
+//! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
+//! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
+//! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::camera_side_view`]) |
+//! | `/api/scene` | the served scene's RON text |
+//!
+//! Bad parameters are `400` with `{"error": "..."}`, the command line's words, starting
+//! with the parameter's name (`width: ...`, `camera:1:9: ...`); an unknown path is
+//! `404`; a method other than GET or HEAD `405`. Sizes and samples are bounded
+//! ([`Limits`]) and checked before anything is allocated, so a 100000 x 100000 request
+//! is refused at once. Renders take one of a few render slots; a request that finds none
+//! free within [`ServeOptions::slot_wait`] (or too many requests already waiting) is
+//! `503`, so a room of laptops dragging sliders is answered or told to retry, never
+//! queued without bound. No request reaches the file system: the scene and its meshes
+//! were read when the server started.
+//!
+//! This crate owns the HTTP server and the page; it knows nothing of the command line.
+
+mod api;
+mod http;
+mod page;
+mod params;
+
+use std::path::Path;
+
+use viewray_scene::{Scene, SceneError};
+
+pub use crate::http::{ServeOptions, Server, Stopper};
+
+/// How much work one request may ask for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// The largest side of a rendered image, in pixels.
+    pub max_side: u32,
+    /// The most pixels of a rendered image.
+    pub max_pixels: u64,
+    /// The most samples per pixel of a render.
+    pub max_samples: u32,
+    /// The most samples of one render in all: pixels x samples per pixel.
+    pub max_frame_samples: u64,
+    /// The longest camera text, in bytes.
+    pub max_camera_bytes: usize,
+    /// The most points of one `/api/project` request.
+    pub max_points: usize,
+}
+
+impl Default for Limits {
+    /// Up to 4096 pixels a side and 4 Mpixels (2048 x 2048), 1024 samples per pixel and
+    /// 2^26 samples a frame (1920 x 1080 at 32): a few seconds of work at most, and a few
+    /// hundred megabytes.
+    fn default() -> Self {
+        Self {
+            max_side: 4096,
+            max_pixels: 1 << 22,
+            max_samples: 1024,
+            max_frame_samples: 1 << 26,
+            max_camera_bytes: 16 << 10,
+            max_points: 256,
+        }
+    }
+}
+
+/// The scene a server serves, loaded once: its text, its camera's text, the runtime
+/// scene with its BVHs, and the page.
+#[derive(Debug)]
+pub struct ServedScene {
+    /// What the page calls the scene (its file name, or "the default scene").
+    name: String,
+    /// The scene file's text.
+    text: String,
+    /// The text of its `camera:` value: the camera a request without one uses, and the
+    /// page's starting state.
+    camera_text: String,
+    /// The loaded scene.
+    scene: Scene,
+    /// The page, with the scene's starting state in it.
+    page: String,
+}
+
+impl ServedScene {
+    /// Loads the scene file `text` (read from `path`: meshes are found beside it), to be
+    /// called `name` on the page.
+    ///
+    /// # Errors
+    /// The scene's error, naming `path`, line and column.
+    pub fn parse(name: &str, text: String, path: &Path) -> Result<ServedScene, SceneError> {
+        let scene = Scene::parse(&text, path)?;
+        let camera_text = viewray_scene::camera_text(&text, path)?.to_owned();
+        let page = page::page(name, &camera_text, &scene);
+        Ok(ServedScene {
+            name: name.to_owned(),
+            text,
+            camera_text,
+            scene,
+            page,
+        })
+    }
+
+    /// What the page calls the scene.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The loaded scene.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The text of the scene file's `camera:` value.
+    pub fn camera_text(&self) -> &str {
+        &self.camera_text
+    }
+}

@@ -1,0 +1,339 @@
+//! A request's query parameters: decoded, checked against the endpoint's list, and
+//! turned into values with the command line's words for what is wrong.
+//!
+//! Every error message starts with the parameter's name (`width: ...`, and for the
+//! camera the position in its text, `camera:1:9: ...`), so the page can show it next
+//! to the control that caused it.
+
+use glam::DVec3;
+use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, Shading};
+
+use crate::Limits;
+
+/// A request refused for its parameters: HTTP 400 with this sentence.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct BadRequest(pub(crate) String);
+
+impl BadRequest {
+    pub(crate) fn new(message: impl Into<String>) -> BadRequest {
+        BadRequest(message.into())
+    }
+}
+
+/// The decoded `name=value` pairs of a query string.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Query {
+    pairs: Vec<(String, String)>,
+}
+
+impl Query {
+    /// The pairs of `query` (the part after `?`, percent- and `+`-decoded), checked:
+    /// each name is one of `allowed` and appears once, or is in `repeatable`.
+    pub(crate) fn parse(
+        query: &str,
+        allowed: &[&str],
+        repeatable: &[&str],
+    ) -> Result<Query, BadRequest> {
+        let pairs: Vec<(String, String)> = form_urlencoded::parse(query.as_bytes())
+            .map(|(name, value)| (name.into_owned(), value.into_owned()))
+            .collect();
+        for (k, (name, _)) in pairs.iter().enumerate() {
+            if !allowed.contains(&name.as_str()) {
+                return Err(BadRequest(format!(
+                    "unknown parameter `{name}`: this endpoint takes {}",
+                    list(allowed)
+                )));
+            }
+            if !repeatable.contains(&name.as_str()) && pairs[..k].iter().any(|(n, _)| n == name) {
+                return Err(BadRequest(format!("{name}: given twice")));
+            }
+        }
+        Ok(Query { pairs })
+    }
+
+    /// The value of `name`, if given.
+    pub(crate) fn get(&self, name: &str) -> Option<&str> {
+        self.pairs
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, value)| value.as_str())
+    }
+
+    /// Every value of `name`, in order.
+    pub(crate) fn all(&self, name: &str) -> Vec<&str> {
+        self.pairs
+            .iter()
+            .filter(|(n, _)| n == name)
+            .map(|(_, value)| value.as_str())
+            .collect()
+    }
+}
+
+/// `a`, `b` or `c`.
+fn list(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match quoted.as_slice() {
+        [] => "no parameters".to_owned(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+/// A whole number parameter, `name`, from `text`.
+fn whole(name: &str, text: &str, what: &str) -> Result<u64, BadRequest> {
+    text.trim()
+        .parse::<u64>()
+        .map_err(|_| BadRequest(format!("{name}: expected {what}, found `{text}`")))
+}
+
+/// The image size from `width` and `height` (each defaulting to `default`'s), within the
+/// scene format's limits and `max_side` a side.
+pub(crate) fn size(
+    query: &Query,
+    default: (u32, u32),
+    max_side: u32,
+    max_pixels: u64,
+) -> Result<(u32, u32), BadRequest> {
+    let side = |name: &str, default: u32| match query.get(name) {
+        None => Ok(u64::from(default)),
+        Some(text) => whole(name, text, "a whole number of pixels"),
+    };
+    let (width, height) = (side("width", default.0)?, side("height", default.1)?);
+    // The parameter to blame: the one that is out of range (width when both are).
+    let blame = |bad_width: bool| if bad_width { "width" } else { "height" };
+    if width == 0 || height == 0 {
+        return Err(BadRequest(format!(
+            "{}: the image must be at least 1 x 1 pixels, found {width} x {height}",
+            blame(width == 0)
+        )));
+    }
+    let max_side = u64::from(max_side.min(MAX_IMAGE_SIDE));
+    if width > max_side || height > max_side {
+        return Err(BadRequest(format!(
+            "{}: {width} x {height} is too large: each side can be at most {max_side} pixels",
+            blame(width > max_side)
+        )));
+    }
+    let max_pixels = max_pixels.min(MAX_IMAGE_PIXELS);
+    if width * height > max_pixels {
+        return Err(BadRequest(format!(
+            "{}: {width} x {height} is too large: at most {max_pixels} pixels",
+            blame(width >= height)
+        )));
+    }
+    // Both are at most MAX_IMAGE_SIDE, which fits a u32.
+    Ok((
+        u32::try_from(width).unwrap_or(u32::MAX),
+        u32::try_from(height).unwrap_or(u32::MAX),
+    ))
+}
+
+/// Samples per pixel from `samples` (default `default`), 1 to the limit, and at most
+/// `limits.max_frame_samples` for the whole `width x height` frame.
+pub(crate) fn samples(
+    query: &Query,
+    default: u32,
+    (width, height): (u32, u32),
+    limits: &Limits,
+) -> Result<u32, BadRequest> {
+    let max = limits.max_samples.min(MAX_SAMPLES);
+    let wrong = || {
+        BadRequest(format!(
+            "samples: expected a whole number of samples from 1 to {max}"
+        ))
+    };
+    let samples = match query.get("samples") {
+        None => u64::from(default),
+        Some(text) => text.trim().parse::<u64>().map_err(|_| wrong())?,
+    };
+    let samples = u32::try_from(samples)
+        .ok()
+        .filter(|s| (1..=max).contains(s))
+        .ok_or_else(wrong)?;
+    let total = u64::from(width) * u64::from(height) * u64::from(samples);
+    if total > limits.max_frame_samples {
+        return Err(BadRequest(format!(
+            "samples: {width} x {height} at {samples} samples per pixel is too much for one \
+             frame: at most {} samples in all (pixels x samples)",
+            limits.max_frame_samples
+        )));
+    }
+    Ok(samples)
+}
+
+/// The shading named by `shading`, or `default`.
+pub(crate) fn shading(query: &Query, default: Shading) -> Result<Shading, BadRequest> {
+    match query.get("shading") {
+        None => Ok(default),
+        Some(text) => text
+            .parse::<Shading>()
+            .map_err(|message| BadRequest(format!("shading: {message}"))),
+    }
+}
+
+/// The pixel of a rays request: `row` and `col` (0-based), or `i` and `j` (1-based, the
+/// lecture's); `(first, second, one_based)`.
+pub(crate) fn pixel(query: &Query) -> Result<(i64, i64, bool), BadRequest> {
+    let index = |name: &str| -> Result<Option<i64>, BadRequest> {
+        query
+            .get(name)
+            .map(|text| {
+                text.trim().parse::<i64>().map_err(|_| {
+                    BadRequest(format!("{name}: expected a whole number, found `{text}`"))
+                })
+            })
+            .transpose()
+    };
+    match (index("row")?, index("col")?, index("i")?, index("j")?) {
+        (Some(row), Some(col), None, None) => Ok((row, col, false)),
+        (None, None, Some(i), Some(j)) => Ok((i, j, true)),
+        (None, None, None, None) => Err(BadRequest::new(
+            "row: missing: give the pixel as row=R&col=C (0-based from the top-left) or \
+             i=I&j=J (the lecture's, 1-based)",
+        )),
+        (Some(_), None, _, _) | (None, None, Some(_), None) => Err(BadRequest::new(
+            "col: missing: give the pixel as row=R&col=C or i=I&j=J",
+        )),
+        (None, Some(_), _, _) | (None, None, None, Some(_)) => Err(BadRequest::new(
+            "row: missing: give the pixel as row=R&col=C or i=I&j=J",
+        )),
+        _ => Err(BadRequest::new(
+            "row: give the pixel as row=R&col=C or as i=I&j=J, not both",
+        )),
+    }
+}
+
+/// A world point `X,Y,Z`, in the command line's words.
+pub(crate) fn point(text: &str) -> Result<DVec3, BadRequest> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let wrong = || BadRequest::new("point: expected 3 numbers separated by commas, like 0,1.5,-2");
+    if parts.len() != 3 {
+        return Err(wrong());
+    }
+    let mut numbers = [0.0; 3];
+    for (number, part) in numbers.iter_mut().zip(parts) {
+        *number = part.parse::<f64>().map_err(|_| wrong())?;
+        if !number.is_finite() {
+            return Err(BadRequest(format!(
+                "point: `{part}` is not a finite number"
+            )));
+        }
+    }
+    Ok(DVec3::from(numbers))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn query(text: &str) -> Query {
+        Query::parse(
+            text,
+            &[
+                "camera", "width", "height", "samples", "shading", "row", "col", "i", "j", "point",
+            ],
+            &["point"],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn values_are_decoded_and_names_checked() {
+        let q = query("camera=Top(target%3A+(0.0%2C0.0%2C0.0))&point=1,2,3&point=-4,5,6");
+        assert_eq!(q.get("camera"), Some("Top(target: (0.0,0.0,0.0))"));
+        assert_eq!(q.all("point"), ["1,2,3", "-4,5,6"]);
+        let allowed = ["camera", "width"];
+        assert_eq!(
+            Query::parse("wdth=3", &allowed, &[]).unwrap_err().0,
+            "unknown parameter `wdth`: this endpoint takes `camera` or `width`"
+        );
+        assert_eq!(
+            Query::parse("width=3&width=4", &allowed, &[])
+                .unwrap_err()
+                .0,
+            "width: given twice"
+        );
+    }
+
+    #[test]
+    fn sizes_are_checked_before_anything_is_allocated() {
+        let limits = Limits::default();
+        let check = |text: &str| size(&query(text), (640, 360), limits.max_side, limits.max_pixels);
+        assert_eq!(check(""), Ok((640, 360)));
+        assert_eq!(check("width=320&height=180"), Ok((320, 180)));
+        assert_eq!(
+            check("width=100000&height=100000").unwrap_err().0,
+            "width: 100000 x 100000 is too large: each side can be at most 4096 pixels"
+        );
+        assert_eq!(
+            check("height=0").unwrap_err().0,
+            "height: the image must be at least 1 x 1 pixels, found 640 x 0"
+        );
+        assert_eq!(
+            check("width=4096&height=4096").unwrap_err().0,
+            "width: 4096 x 4096 is too large: at most 4194304 pixels"
+        );
+        assert_eq!(
+            check("width=-3").unwrap_err().0,
+            "width: expected a whole number of pixels, found `-3`"
+        );
+        assert_eq!(
+            check("height=99999999999999999999999").unwrap_err().0,
+            "height: expected a whole number of pixels, found `99999999999999999999999`"
+        );
+    }
+
+    #[test]
+    fn samples_are_bounded_per_pixel_and_per_frame() {
+        let limits = Limits::default();
+        let check = |text: &str, size| samples(&query(text), 4, size, &limits);
+        assert_eq!(check("", (640, 360)), Ok(4));
+        assert_eq!(check("samples=16", (640, 360)), Ok(16));
+        assert_eq!(
+            check("samples=0", (640, 360)).unwrap_err().0,
+            "samples: expected a whole number of samples from 1 to 1024"
+        );
+        assert_eq!(
+            check("samples=1024", (2048, 2048)).unwrap_err().0,
+            "samples: 2048 x 2048 at 1024 samples per pixel is too much for one frame: at \
+             most 67108864 samples in all (pixels x samples)"
+        );
+    }
+
+    #[test]
+    fn shadings_pixels_and_points_use_the_command_lines_words() {
+        assert_eq!(
+            shading(&query("shading=Depth"), Shading::Lit),
+            Ok(Shading::Depth)
+        );
+        assert_eq!(
+            shading(&query("shading=depth"), Shading::Lit)
+                .unwrap_err()
+                .0,
+            "shading: unknown shading `depth`, expected one of `Flat`, `Normals`, `Depth` or `Lit`"
+        );
+        assert_eq!(pixel(&query("row=3&col=4")), Ok((3, 4, false)));
+        assert_eq!(pixel(&query("i=3&j=4")), Ok((3, 4, true)));
+        assert!(
+            pixel(&query("row=3"))
+                .unwrap_err()
+                .0
+                .starts_with("col: missing")
+        );
+        assert!(pixel(&query("")).unwrap_err().0.starts_with("row: missing"));
+        assert!(pixel(&query("row=1&col=2&i=1&j=1")).is_err());
+        assert_eq!(
+            pixel(&query("row=x&col=1")).unwrap_err().0,
+            "row: expected a whole number, found `x`"
+        );
+        assert_eq!(point("1, -2.5,3"), Ok(DVec3::new(1.0, -2.5, 3.0)));
+        assert_eq!(
+            point("1,2").unwrap_err().0,
+            "point: expected 3 numbers separated by commas, like 0,1.5,-2"
+        );
+        assert_eq!(
+            point("1,2,inf").unwrap_err().0,
+            "point: `inf` is not a finite number"
+        );
+    }
+}

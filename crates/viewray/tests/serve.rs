@@ -1,0 +1,523 @@
+//! `viewray serve` as a class uses it: the real binary on a free port, every endpoint
+//! checked against what the command line prints or writes for the same camera.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use tempfile::TempDir;
+use viewray_diagram::SideViewCanvas;
+use viewray_scene::{Scene, camera_text, parse_camera};
+
+mod support;
+use support::http::{Served, get, request};
+use support::{error_line, viewray};
+
+const BINARY: &str = env!("CARGO_BIN_EXE_viewray");
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
+}
+
+fn default_text() -> String {
+    std::fs::read_to_string(fixtures().join("default.ron")).unwrap()
+}
+
+/// `value` URL-encoded for a query string.
+fn encode(value: &str) -> String {
+    value
+        .bytes()
+        .map(|b| match b {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'_' | b'.' | b'~' => {
+                (b as char).to_string()
+            }
+            _ => format!("%{b:02X}"),
+        })
+        .collect()
+}
+
+/// The scene file `text` with its camera replaced by `camera` and, if given, its shading.
+fn with_camera(text: &str, camera: &str, shading: Option<&str>) -> String {
+    let old = camera_text(text, Path::new("scene.ron")).unwrap();
+    let start = old.as_ptr() as usize - text.as_ptr() as usize;
+    let mut scene = format!("{}{camera}{}", &text[..start], &text[start + old.len()..]);
+    if let Some(shading) = shading {
+        scene = scene.replacen("shading: Lit", &format!("shading: {shading}"), 1);
+    }
+    scene
+}
+
+/// Runs `viewray args`, which must succeed; returns its standard output.
+#[track_caller]
+fn cli(args: &[&str]) -> String {
+    let out = viewray(args);
+    assert!(
+        out.status.success(),
+        "viewray {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn the_first_line_is_the_url_on_loopback_and_the_page_is_served() {
+    let served = Served::start(BINARY, &[]);
+    assert!(
+        served.url.starts_with("http://127.0.0.1:"),
+        "{}",
+        served.url
+    );
+    assert!(!served.url.ends_with(":0/"), "{}", served.url);
+    let page = served.get("/");
+    assert_eq!(page.status, 200);
+    assert_eq!(
+        page.header("content-type"),
+        Some("text/html; charset=utf-8")
+    );
+    let html = page.text();
+    // Everything inline: no script, style or image is fetched from anywhere.
+    for outside in [
+        "src=\"http",
+        "href=\"http",
+        "<script src",
+        "<link rel=\"stylesheet\"",
+    ] {
+        assert!(!html.contains(outside), "the page loads {outside}");
+    }
+    assert!(html.contains("the default scene"));
+    // The page starts from the served scene's camera, as its RON text.
+    let camera = camera_text(&default_text(), Path::new("x"))
+        .unwrap()
+        .to_owned();
+    let state_json = serde_json::to_string(&camera).unwrap();
+    assert!(
+        html.contains(&state_json),
+        "the page's state holds the camera"
+    );
+
+    let scene = served.get("/api/scene");
+    assert_eq!(scene.status, 200);
+    assert_eq!(scene.text(), default_text());
+}
+
+#[test]
+fn renders_are_pixel_for_pixel_what_viewray_render_writes() {
+    let dir = TempDir::new().unwrap();
+    let served = Served::start(BINARY, &[]);
+    let text = default_text();
+    let cases = [
+        // The served camera at another size and sample count.
+        (None, 96, 54, 2, None),
+        (
+            Some(
+                "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: ThinLens(fov_y: 45.0, aperture: 0.08, focus: 5.0))",
+            ),
+            80,
+            60,
+            3,
+            Some("Lit"),
+        ),
+        (
+            Some("Cabinet(target: (0.0, 0.5, 0.0), size: 5.0, angle: 30.0)"),
+            64,
+            48,
+            1,
+            Some("Depth"),
+        ),
+        (
+            Some("(eye: (0.0, 1.0, 3.0), view: (0.0, 0.0, -1.0), projection: Fisheye(fov: 200.0))"),
+            50,
+            50,
+            1,
+            Some("Normals"),
+        ),
+    ];
+    for (k, (camera, width, height, samples, shading)) in cases.into_iter().enumerate() {
+        let mut target = format!("/api/render?width={width}&height={height}&samples={samples}");
+        if let Some(camera) = camera {
+            target.push_str(&format!("&camera={}", encode(camera)));
+        }
+        if let Some(shading) = shading {
+            target.push_str(&format!("&shading={shading}"));
+        }
+        let response = served.get(&target);
+        assert_eq!(
+            response.status,
+            200,
+            "{target}: {}",
+            String::from_utf8_lossy(&response.body)
+        );
+        assert_eq!(response.header("content-type"), Some("image/png"));
+
+        let scene_text = match camera {
+            Some(camera) => with_camera(&text, camera, shading),
+            None => text.clone(),
+        };
+        let scene = dir.path().join(format!("scene{k}.ron"));
+        std::fs::write(&scene, scene_text).unwrap();
+        let out = dir.path().join(format!("cli{k}.png"));
+        cli(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--size",
+            &format!("{width}x{height}"),
+            "--samples",
+            &samples.to_string(),
+        ]);
+        let expected = image::open(&out).unwrap().to_rgb8();
+        let got = image::load_from_memory(&response.body).unwrap().to_rgb8();
+        assert_eq!((got.width(), got.height()), (width, height));
+        assert!(
+            got == expected,
+            "{target}: not the pixels viewray render writes"
+        );
+    }
+}
+
+#[test]
+fn frames_rays_and_projections_are_the_command_lines_lines() {
+    let dir = TempDir::new().unwrap();
+    let served = Served::start(BINARY, &[]);
+    let cameras = [
+        "(eye: (1.0, 2.0, 3.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), projection: Perspective(distance: 1.5, viewport: (1.2, 0.9), shift: (0.1, -0.2)))",
+        "Isometric(target: (0.0, 0.5, 0.0), size: 4.0)",
+        "(eye: (0.0, 2.0, 3.0), view: (0.0, -0.5, -1.0), projection: Oblique(height: 3.0, ratio: 0.5, angle: 30.0))",
+        "(eye: (0.0, 1.0, 0.0), view: (0.0, 0.0, -1.0), projection: Equirectangular)",
+    ];
+    for (k, camera) in cameras.into_iter().enumerate() {
+        let (width, height) = (7, 5);
+        let scene = dir.path().join(format!("camera{k}.ron"));
+        std::fs::write(
+            &scene,
+            format!("(image: (width: {width}, height: {height}), camera: {camera})"),
+        )
+        .unwrap();
+        let scene = scene.to_str().unwrap();
+        let query = format!("camera={}&width={width}&height={height}", encode(camera));
+
+        let frame = served.get(&format!("/api/frame?{query}"));
+        assert_eq!(frame.status, 200);
+        assert_eq!(frame.header("content-type"), Some("application/json"));
+        assert_eq!(frame.text(), cli(&["frame", scene]), "{camera}");
+
+        for (row, col) in [(0, 0), (2, 3), (4, 6)] {
+            let rays = served.get(&format!("/api/rays?{query}&row={row}&col={col}"));
+            assert_eq!(rays.status, 200);
+            assert_eq!(
+                rays.text(),
+                cli(&["rays", scene, "--pixel", &format!("{row},{col}")]),
+                "{camera} ({row}, {col})"
+            );
+            let (i, j) = (row + 1, col + 1);
+            let rays = served.get(&format!("/api/rays?{query}&i={i}&j={j}"));
+            assert_eq!(
+                rays.text(),
+                cli(&["rays", scene, "--one-based", "--pixel", &format!("{i},{j}")]),
+                "{camera} (i, j) = ({i}, {j})"
+            );
+        }
+
+        let points = ["0,0,0", "1,0.5,-2", "-3,1,4"];
+        let project_query: String = points.iter().map(|p| format!("&point={p}")).collect();
+        let projected = served.get(&format!("/api/project?{query}{project_query}"));
+        assert_eq!(projected.status, 200);
+        let mut args = vec!["project", scene, "--point"];
+        args.extend(points);
+        assert_eq!(projected.text(), cli(&args), "{camera}");
+    }
+}
+
+#[test]
+fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
+    let served = Served::start(BINARY, &[]);
+    let text = default_text();
+    let scene = Scene::parse(&text, Path::new("default.ron")).unwrap();
+    let camera_ron =
+        "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: Perspective(fov_y: 40.0))";
+    let response = served.get(&format!(
+        "/api/diagram.svg?camera={}&width=320&height=180&row=90&col=100",
+        encode(camera_ron)
+    ));
+    assert_eq!(response.status, 200);
+    assert_eq!(response.header("content-type"), Some("image/svg+xml"));
+    let camera = parse_camera(camera_ron, Path::new("camera"), 320, 180).unwrap();
+    let figure =
+        viewray_diagram::camera_side_view(&scene, &camera, Some((90, 100)), SideViewCanvas::Panel);
+    let expected = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
+    let got = response.text();
+    if got != expected {
+        let at = got
+            .bytes()
+            .zip(expected.bytes())
+            .position(|(a, b)| a != b)
+            .unwrap_or(got.len().min(expected.len()));
+        let context = |s: &str| s[at.saturating_sub(80)..(at + 80).min(s.len())].to_owned();
+        panic!(
+            "not the library's side view at byte {at}:\n{}\n---\n{}",
+            context(&got),
+            context(&expected)
+        );
+    }
+    roxmltree::Document::parse(&expected).unwrap();
+}
+
+#[test]
+fn a_scene_file_is_served_with_its_meshes() {
+    let path = fixtures().join("scenes/mesh_houses.ron");
+    let served = Served::start(BINARY, &[path.to_str().unwrap()]);
+    assert_eq!(
+        served.get("/api/scene").text(),
+        std::fs::read_to_string(&path).unwrap()
+    );
+    let response = served.get("/api/render?width=48&height=36&samples=1");
+    assert_eq!(response.status, 200);
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("houses.png");
+    cli(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "48x36",
+        "--samples",
+        "1",
+    ]);
+    let expected = image::open(&out).unwrap().to_rgb8();
+    assert!(image::load_from_memory(&response.body).unwrap().to_rgb8() == expected);
+}
+
+#[test]
+fn bad_requests_are_refused_with_the_command_lines_words() {
+    let served = Served::start(BINARY, &[]);
+    let check = |target: &str, status: u16, expected: &str| {
+        let response = served.get(target);
+        assert_eq!(response.status, status, "{target}: {}", response.text());
+        let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+        assert_eq!(body["error"], expected, "{target}");
+    };
+    // Far too large: refused before anything is allocated, at once.
+    let started = Instant::now();
+    check(
+        "/api/render?width=100000&height=100000",
+        400,
+        "width: 100000 x 100000 is too large: each side can be at most 4096 pixels",
+    );
+    assert!(started.elapsed() < Duration::from_secs(5));
+    check(
+        "/api/render?width=0",
+        400,
+        "width: the image must be at least 1 x 1 pixels, found 0 x 480",
+    );
+    check(
+        "/api/render?samples=0",
+        400,
+        "samples: expected a whole number of samples from 1 to 1024",
+    );
+    check(
+        "/api/render?width=2048&height=2048&samples=1024",
+        400,
+        "samples: 2048 x 2048 at 1024 samples per pixel is too much for one frame: at most \
+         67108864 samples in all (pixels x samples)",
+    );
+    check(
+        "/api/render?shading=Shiny",
+        400,
+        "shading: unknown shading `Shiny`, expected one of `Flat`, `Normals`, `Depth` or `Lit`",
+    );
+    check(
+        "/api/render?zoom=2",
+        400,
+        "unknown parameter `zoom`: this endpoint takes `camera`, `width`, `height`, `samples` or \
+         `shading`",
+    );
+    check(
+        "/api/rays?row=480&col=0",
+        400,
+        "row: pixel 480,0 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
+         (0-based; --one-based for the lecture's i, j)",
+    );
+    check(
+        "/api/project?point=1,2",
+        400,
+        "point: expected 3 numbers separated by commas, like 0,1.5,-2",
+    );
+
+    // A camera error is the one the command line gives for the same camera in a file,
+    // placed in the camera's own text.
+    let camera =
+        "(eye: (0.0, 1.0, 2.0), look_at: (0.0, 1.0, 2.0), projection: Perspective(fov_y: 40.0))";
+    let response = served.get(&format!("/api/render?camera={}", encode(camera)));
+    assert_eq!(response.status, 400);
+    let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+    let server_error = body["error"].as_str().unwrap();
+    let dir = TempDir::new().unwrap();
+    let scene = dir.path().join("bad.ron");
+    std::fs::write(&scene, format!("(camera: {camera})")).unwrap();
+    let cli_error = error_line(&["render", scene.to_str().unwrap(), "-o", "x.png"]);
+    // What follows the first `:LINE:COLUMN: `.
+    let message = |line: &str| -> String {
+        let parts: Vec<&str> = line.split(':').collect();
+        let k = (1..parts.len() - 1)
+            .find(|&k| {
+                [parts[k], parts[k + 1]]
+                    .iter()
+                    .all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_digit()))
+            })
+            .expect("a line and column");
+        parts[k + 2..].join(":").trim().to_owned()
+    };
+    assert!(server_error.starts_with("camera:1:1: "), "{server_error}");
+    assert_eq!(message(server_error), message(&cli_error));
+
+    // Unknown paths, other methods, and no way out to the file system.
+    for target in [
+        "/nope",
+        "/index.html",
+        "/../../etc/passwd",
+        "/api/scene/../../../etc/passwd",
+        "/%2e%2e/etc/passwd",
+    ] {
+        let response = served.get(target);
+        assert_eq!(response.status, 404, "{target}");
+        assert!(!response.text().contains("root:"), "{target}");
+    }
+    let post = request(&served.address, "POST", "/api/render").unwrap();
+    assert_eq!(post.status, 405);
+    assert_eq!(post.header("allow"), Some("GET, HEAD"));
+    let head = request(&served.address, "HEAD", "/api/scene").unwrap();
+    assert_eq!(head.status, 200);
+    assert!(head.body.is_empty());
+}
+
+/// The number of threads of process `pid` (Linux).
+fn threads(pid: u32) -> Option<usize> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    let line = status.lines().find(|l| l.starts_with("Threads:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Thirty laptops, each asking for four renders and four rays at once; returns the
+/// numbers answered (200) and told to retry (503). Any other answer fails.
+fn class_of_laptops(address: &str) -> (usize, usize) {
+    let (mut answered, mut busy) = (0, 0);
+    std::thread::scope(|scope| {
+        let laptops: Vec<_> = (0..30)
+            .map(|laptop| {
+                scope.spawn(move || {
+                    let mut statuses = Vec::new();
+                    for k in 0..4 {
+                        let camera = format!(
+                            "(eye: ({}, 1.5, 5.0), look_at: (0.0, 0.5, 0.0), \
+                             projection: Perspective(fov_y: 40.0))",
+                            f64::from(k) * 0.5
+                        );
+                        let target = format!(
+                            "/api/render?width={}&height=90&samples=1&camera={}",
+                            120 + laptop,
+                            encode(&camera)
+                        );
+                        statuses.push(get(address, &target).expect("answered").status);
+                        let rays = get(address, "/api/rays?row=1&col=2").expect("answered");
+                        statuses.push(rays.status);
+                    }
+                    statuses
+                })
+            })
+            .collect();
+        for laptop in laptops {
+            for status in laptop.join().unwrap() {
+                match status {
+                    200 => answered += 1,
+                    503 => busy += 1,
+                    other => panic!("status {other}"),
+                }
+            }
+        }
+    });
+    (answered, busy)
+}
+
+/// The threads of process `pid` once their number has stopped changing (idle
+/// connection threads end a few seconds after their last request).
+fn settled_threads(pid: u32) -> Option<usize> {
+    let deadline = Instant::now() + Duration::from_secs(40);
+    let mut last = threads(pid)?;
+    let mut since = Instant::now();
+    while Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(250));
+        let now = threads(pid)?;
+        if now != last {
+            (last, since) = (now, Instant::now());
+        } else if since.elapsed() > Duration::from_secs(7) {
+            break;
+        }
+    }
+    Some(last)
+}
+
+#[test]
+fn a_class_of_laptops_is_answered_or_told_to_retry_and_nothing_leaks() {
+    let served = Served::start(BINARY, &[]);
+    let pid = served.child.id();
+    // Every request is answered (200) or told to retry (503); how many of each depends on
+    // how busy the machine is, so only "some were answered" is asserted of the split.
+    let (answered, busy) = class_of_laptops(&served.address);
+    assert!(
+        answered > 0 && answered + busy == 240,
+        "{answered} answered, {busy} busy"
+    );
+    let after_one = settled_threads(pid);
+    // A second class: still serving, and no thread left behind by either.
+    let (answered, busy) = class_of_laptops(&served.address);
+    assert!(
+        answered > 0 && answered + busy == 240,
+        "{answered} answered, {busy} busy"
+    );
+    assert_eq!(served.get("/api/render?width=32&height=18").status, 200);
+    if let (Some(one), Some(two)) = (after_one, settled_threads(pid)) {
+        assert!(
+            two <= one,
+            "{two} threads after two classes, {one} after one"
+        );
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_server_cleanly() {
+    let mut served = Served::start(BINARY, &[]);
+    assert_eq!(served.get("/api/frame").status, 200);
+    let pid = served.child.id().to_string();
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let exit = loop {
+        if let Some(exit) = served.child.try_wait().unwrap() {
+            break exit;
+        }
+        assert!(Instant::now() < deadline, "still running after Ctrl-C");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(exit.code(), Some(0));
+    assert!(get(&served.address, "/").is_err(), "still listening");
+}
+
+#[test]
+fn serve_refuses_a_bad_scene_and_a_port_in_use_with_one_line() {
+    let dir = TempDir::new().unwrap();
+    let missing = dir.path().join("missing.ron");
+    let line = error_line(&["serve", missing.to_str().unwrap(), "--port", "0"]);
+    assert!(line.ends_with("missing.ron: no such scene file"), "{line}");
+    let served = Served::start(BINARY, &[]);
+    let port = served.address.rsplit(':').next().unwrap().to_owned();
+    let line = error_line(&["serve", "--port", &port]);
+    assert!(
+        line.starts_with(&format!("error: cannot listen on 127.0.0.1:{port}: ")),
+        "{line}"
+    );
+}
