@@ -491,10 +491,14 @@ impl Projection {
                     return None;
                 }
                 let r = theta / half_fov;
+                // On the axis the way out from the centre is undefined. Straight ahead
+                // (r = 0) that is the centre itself; straight back (r = 1, only a
+                // 360-degree fisheye sees it) it is the whole circle, and the point taken
+                // is its rightmost, where the ray through (W, H/2) looks.
                 let (a, b) = if radial > 0.0 {
                     (r * q.x / radial, r * q.y / radial)
                 } else {
-                    (0.0, 0.0)
+                    (r, 0.0)
                 };
                 let x = (a + 1.0) * size.x / 2.0;
                 let y = size.y / 2.0 - b * size.x / 2.0;
