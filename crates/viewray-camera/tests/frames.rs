@@ -111,3 +111,60 @@ proptest! {
         prop_assert!(back.abs_diff_eq(p, 1e-9));
     }
 }
+
+#[test]
+fn up_counts_as_parallel_to_view_below_a_sine_of_1e_9() {
+    // view = -z, up = (s, 0, 1): |up x w| = s (up is normalized to itself: |up| rounds to
+    // 1). At s = 1e-9 the roll is still defined: u = up x w / s = -y, v = w x u = x.
+    let frame =
+        Frame::from_eye_view_up(DVec3::ZERO, DVec3::NEG_Z, DVec3::new(1e-9, 0.0, 1.0)).unwrap();
+    check(
+        frame,
+        [0.0; 3],
+        [0.0, -1.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+    );
+    // Just below it is parallel.
+    assert_eq!(
+        Frame::from_eye_view_up(DVec3::ZERO, DVec3::NEG_Z, DVec3::new(0.9e-9, 0.0, 1.0)),
+        Err(viewray_camera::CameraError::UpParallelToView)
+    );
+}
+
+#[test]
+fn look_at_means_view_is_target_minus_eye() {
+    // eye (1, 2, 3), look_at (1, 2, 1): view = (0, 0, -2), the canonical orientation.
+    let frame = Frame::from_eye_look_at_up(
+        DVec3::new(1.0, 2.0, 3.0),
+        DVec3::new(1.0, 2.0, 1.0),
+        DVec3::Y,
+    )
+    .unwrap();
+    check(
+        frame,
+        [1.0, 2.0, 3.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    );
+    // Camera coordinates (a, b, c) are e + a u + b v + c w, and back.
+    let frame = Frame::from_eye_view_up(DVec3::new(1.0, 2.0, 3.0), DVec3::X, DVec3::Y).unwrap();
+    // w = -x, u = y x -x = z, v = -x x z = y.
+    let p = frame.world_from_camera_point(DVec3::new(2.0, 3.0, 5.0));
+    assert!(
+        p.abs_diff_eq(DVec3::new(1.0 - 5.0, 2.0 + 3.0, 3.0 + 2.0), 1e-12),
+        "{p}"
+    );
+    let c = frame.camera_from_world_point(DVec3::new(-4.0, 5.0, 5.0));
+    assert!(c.abs_diff_eq(DVec3::new(2.0, 3.0, 5.0), 1e-12), "{c}");
+    let v = frame.world_from_camera_vector(DVec3::new(2.0, 3.0, 5.0));
+    assert!(v.abs_diff_eq(DVec3::new(-5.0, 3.0, 2.0), 1e-12), "{v}");
+    assert_eq!(
+        Frame::from_eye_look_at_up(DVec3::ZERO, DVec3::new(0.0, f64::INFINITY, 0.0), DVec3::Y),
+        Err(viewray_camera::CameraError::NotFinite {
+            name: "look_at",
+            value: "(0, inf, 0)".into()
+        })
+    );
+}

@@ -135,3 +135,162 @@ fn bad_values_are_errors() {
         })
     );
 }
+
+#[test]
+fn fov_reads_back_wide_and_narrow_angles_on_every_axis() {
+    // 120 degrees across x, d = 1: vw = 2 tan 60 = 2 sqrt 3, wider than 2 d.
+    let p = Perspective::from_fov(FovAxis::X, 120f64.to_radians(), 2.0).unwrap();
+    close(p.viewport.x, 2.0 * 3f64.sqrt());
+    close(p.fov(FovAxis::X).to_degrees(), 120.0);
+    close(p.fov(FovAxis::Larger).to_degrees(), 120.0);
+    // vh = sqrt 3: 2 atan(sqrt 3 / 2).
+    close(p.fov(FovAxis::Y), 2.0 * (3f64.sqrt() / 2.0).atan());
+    close(p.fov(FovAxis::Smaller), 2.0 * (3f64.sqrt() / 2.0).atan());
+    // The diagonal: sqrt(12 + 3) = sqrt 15.
+    close(p.fov(FovAxis::Diagonal), 2.0 * (15f64.sqrt() / 2.0).atan());
+
+    // Blender's 50 mm lens on 36 x 24 mm: d = 0.05, a landscape viewport 0.036 x 0.024.
+    let p =
+        Perspective::from_focal_length(50.0, DVec2::new(36.0, 24.0), SensorFit::Horizontal, 1.5)
+            .unwrap();
+    close(p.fov(FovAxis::Larger), 2.0 * (18.0f64 / 50.0).atan());
+    close(p.fov(FovAxis::Smaller), 2.0 * (12.0f64 / 50.0).atan());
+    close(p.fov(FovAxis::Y), 2.0 * (12.0f64 / 50.0).atan());
+    close(
+        p.fov(FovAxis::Diagonal),
+        2.0 * (36f64.hypot(24.0) / 100.0).atan(),
+    );
+    // Portrait, 24 x 36 mm of sensor (Auto fit, aspect 2/3): the larger side is y.
+    let p =
+        Perspective::from_focal_length(50.0, DVec2::new(36.0, 24.0), SensorFit::Auto, 2.0 / 3.0)
+            .unwrap();
+    close(p.viewport.x, 0.024);
+    close(p.viewport.y, 0.036);
+    close(p.fov(FovAxis::Larger), 2.0 * (18.0f64 / 50.0).atan());
+    close(p.fov(FovAxis::Smaller), 2.0 * (12.0f64 / 50.0).atan());
+}
+
+#[test]
+fn a_field_of_view_lies_strictly_between_0_and_180_degrees() {
+    let check = |axis: FovAxis, fov: f64, name: &'static str| {
+        assert_eq!(
+            Perspective::from_fov(axis, fov, 1.5),
+            Err(CameraError::OutOfRange {
+                name,
+                expected: "between 0 and 180 degrees",
+                value: fov.to_degrees(),
+            })
+        );
+    };
+    check(FovAxis::X, 0.0, "fov_x");
+    check(FovAxis::Y, -0.5, "fov_y");
+    check(FovAxis::Smaller, std::f64::consts::PI, "fov_smaller");
+    check(FovAxis::Larger, 4.0, "fov_larger");
+    check(FovAxis::Diagonal, 0.0, "fov_diagonal");
+    assert_eq!(
+        Perspective::from_fov(FovAxis::X, f64::NAN, 1.0),
+        Err(CameraError::NotFinite {
+            name: "fov_x",
+            value: "NaN".into()
+        })
+    );
+    assert_eq!(
+        Perspective::from_fov(FovAxis::Y, 1.0, 0.0),
+        Err(CameraError::NotPositive {
+            name: "aspect",
+            value: 0.0
+        })
+    );
+    // Just inside both ends is fine: 2 tan(fov / 2) of a tiny and of a huge angle.
+    let tiny = Perspective::from_fov(FovAxis::Y, 1e-6, 1.0).unwrap();
+    assert!((tiny.viewport.y - 1e-6).abs() < 1e-15);
+    let wide = Perspective::from_fov(FovAxis::Y, std::f64::consts::PI - 1e-6, 1.0).unwrap();
+    assert!((wide.viewport.y - 2.0 / (0.5e-6f64).tan()).abs() < 1.0);
+}
+
+#[test]
+fn from_fov_x_and_from_fov_y_name_their_axis() {
+    // 2 tan(30 degrees) = 2 / sqrt 3 across the named side, the other from a = 16/9.
+    let t = 2.0 / 3f64.sqrt();
+    let a = 16.0 / 9.0;
+    let x = Perspective::from_fov_x(60f64.to_radians(), a).unwrap();
+    close(x.viewport.x, t);
+    close(x.viewport.y, t / a);
+    let y = Perspective::from_fov_y(60f64.to_radians(), a).unwrap();
+    close(y.viewport.x, a * t);
+    close(y.viewport.y, t);
+    assert_eq!((x.distance, y.distance), (1.0, 1.0));
+}
+
+#[test]
+fn axes_and_fits_are_spelled_as_scene_files_spell_them() {
+    let axes = [
+        (FovAxis::X, "x"),
+        (FovAxis::Y, "y"),
+        (FovAxis::Diagonal, "diagonal"),
+        (FovAxis::Smaller, "smaller"),
+        (FovAxis::Larger, "larger"),
+    ];
+    for (axis, name) in axes {
+        assert_eq!(axis.name(), name);
+    }
+    let fits = [
+        (SensorFit::Auto, "Auto"),
+        (SensorFit::Horizontal, "Horizontal"),
+        (SensorFit::Vertical, "Vertical"),
+    ];
+    for (fit, name) in fits {
+        assert_eq!(fit.name(), name);
+    }
+    assert_eq!(SensorFit::default(), SensorFit::Auto);
+    // Smaller and Larger resolve by the aspect ratio; a square counts as landscape.
+    for (aspect, smaller, larger) in [
+        (1.5, FovAxis::Y, FovAxis::X),
+        (1.0, FovAxis::Y, FovAxis::X),
+        (0.75, FovAxis::X, FovAxis::Y),
+    ] {
+        assert_eq!(FovAxis::Smaller.resolve(aspect), smaller, "{aspect}");
+        assert_eq!(FovAxis::Larger.resolve(aspect), larger, "{aspect}");
+        for axis in [FovAxis::X, FovAxis::Y, FovAxis::Diagonal] {
+            assert_eq!(axis.resolve(aspect), axis);
+        }
+    }
+}
+
+#[test]
+fn every_bad_physical_value_is_named() {
+    let sensor = DVec2::new(36.0, 24.0);
+    let check = |got: Result<Perspective, CameraError>, name: &'static str, value: f64| {
+        assert_eq!(got, Err(CameraError::NotPositive { name, value }));
+    };
+    let physical = Perspective::from_focal_length;
+    check(
+        physical(-50.0, sensor, SensorFit::Auto, 1.5),
+        "focal_length",
+        -50.0,
+    );
+    check(
+        physical(50.0, DVec2::new(0.0, 24.0), SensorFit::Auto, 1.5),
+        "sensor width",
+        0.0,
+    );
+    check(
+        physical(50.0, DVec2::new(36.0, -1.0), SensorFit::Auto, 1.5),
+        "sensor height",
+        -1.0,
+    );
+    check(
+        physical(50.0, sensor, SensorFit::Vertical, 0.0),
+        "aspect",
+        0.0,
+    );
+    assert_eq!(
+        aperture_from_f_number(0.0, 2.8),
+        Err(CameraError::NotPositive {
+            name: "focal_length",
+            value: 0.0
+        })
+    );
+    // r = f / (2 N) / 1000: 80 mm at f/4 is 10 mm.
+    close(aperture_from_f_number(80.0, 4.0).unwrap(), 0.01);
+}

@@ -2,7 +2,7 @@
 
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
-use viewray_camera::{Camera, Preset, Projection};
+use viewray_camera::{Camera, Oblique, Orthographic, Perspective, Preset, Projection};
 
 const W: u32 = 400;
 const H: u32 = 300;
@@ -181,4 +181,226 @@ fn parallel_presets_keep_every_axis_parallel() {
             }
         }
     }
+}
+
+/// Checks a preset camera's frame and projection against the numbers its definition
+/// gives, worked by hand for `target`, `size` and a 400 x 300 image.
+#[track_caller]
+fn check_preset(
+    preset: Preset,
+    eye: DVec3,
+    (u, v, w): (DVec3, DVec3, DVec3),
+    projection: Projection,
+) {
+    let got = camera(preset, DVec3::new(1.0, 2.0, 3.0), 2.0);
+    let f = got.frame();
+    let close = |a: DVec3, b: DVec3| a.abs_diff_eq(b, 1e-12);
+    assert!(
+        close(f.e, eye) && close(f.u, u) && close(f.v, v) && close(f.w, w),
+        "{}: got {f:?}, expected e = {eye}, u = {u}, v = {v}, w = {w}",
+        preset.name()
+    );
+    let same = match (got.projection(), &projection) {
+        (Projection::Perspective(a), Projection::Perspective(b)) => {
+            (a.distance - b.distance).abs() < 1e-12
+                && a.viewport.abs_diff_eq(b.viewport, 1e-12)
+                && a.shift.abs_diff_eq(b.shift, 1e-12)
+        }
+        (a, b) => a == b,
+    };
+    assert!(
+        same,
+        "{}: got {:?}, expected {projection:?}",
+        preset.name(),
+        got.projection()
+    );
+    assert_eq!((got.width(), got.height()), (W, H));
+}
+
+#[test]
+fn each_preset_is_its_definition_worked_by_hand() {
+    // Target (1, 2, 3), size 2, a 4:3 image: parallel viewports are 8/3 x 2 and their
+    // eyes 10 sizes = 20 units from the target.
+    let t = DVec3::new(1.0, 2.0, 3.0);
+    let viewport = DVec2::new(8.0 / 3.0, 2.0);
+    let ortho = Projection::Orthographic(Orthographic {
+        viewport,
+        lens: None,
+    });
+    let (x, y, z) = (DVec3::X, DVec3::Y, DVec3::Z);
+    check_preset(Preset::Front, t + 20.0 * z, (x, y, z), ortho);
+    // Top: w = +y, up = -z gives u = (-z) x y = x and v = y x x = -z.
+    check_preset(Preset::Top, t + 20.0 * y, (x, -z, y), ortho);
+    // Side: w = +x, u = y x x = -z, v = x x -z = y.
+    check_preset(Preset::Side, t + 20.0 * x, (-z, y, x), ortho);
+    // Isometric: w = (1, 1, 1)/sqrt 3, u = y x w normalized = (1, 0, -1)/sqrt 2,
+    // v = w x u = (-1, 2, -1)/sqrt 6.
+    let (s2, s3, s6) = (2f64.sqrt(), 3f64.sqrt(), 6f64.sqrt());
+    check_preset(
+        Preset::Isometric,
+        t + 20.0 * DVec3::ONE / s3,
+        (
+            DVec3::new(1.0, 0.0, -1.0) / s2,
+            DVec3::new(-1.0, 2.0, -1.0) / s6,
+            DVec3::ONE / s3,
+        ),
+        ortho,
+    );
+    // Dimetric: w = (1, 1, sqrt 7)/3, u = (sqrt 7, 0, -1)/sqrt 8,
+    // v = w x u = (-1, 8, -sqrt 7)/sqrt 72.
+    let s7 = 7f64.sqrt();
+    check_preset(
+        Preset::Dimetric,
+        t + 20.0 * DVec3::new(1.0, 1.0, s7) / 3.0,
+        (
+            DVec3::new(s7, 0.0, -1.0) / 8f64.sqrt(),
+            DVec3::new(-1.0, 8.0, -s7) / 72f64.sqrt(),
+            DVec3::new(1.0, 1.0, s7) / 3.0,
+        ),
+        ortho,
+    );
+    // Trimetric: w = (1, 2, 3)/sqrt 14 (the frame test's eye-at-(1, 2, 3) basis).
+    check_preset(
+        Preset::Trimetric,
+        t + 20.0 * DVec3::new(1.0, 2.0, 3.0) / 14f64.sqrt(),
+        (
+            DVec3::new(3.0, 0.0, -1.0) / 10f64.sqrt(),
+            DVec3::new(-2.0, 10.0, -6.0) / 140f64.sqrt(),
+            DVec3::new(1.0, 2.0, 3.0) / 14f64.sqrt(),
+        ),
+        ortho,
+    );
+
+    // Oblique at phi = 30 degrees: the eye slides along the projectors, 20 units deep,
+    // by L (cos phi, sin phi) per unit: e = t + 20 (L cos phi, L sin phi, 1).
+    let phi = 30f64.to_radians();
+    let (sin, cos) = phi.sin_cos();
+    for (preset, ratio) in [
+        (Preset::Cavalier { angle: phi }, 1.0),
+        (Preset::Cabinet { angle: phi }, 0.5),
+    ] {
+        check_preset(
+            preset,
+            t + 20.0 * DVec3::new(ratio * cos, ratio * sin, 1.0),
+            (x, y, z),
+            Projection::Oblique(Oblique {
+                viewport,
+                ratio,
+                angle: phi,
+            }),
+        );
+    }
+
+    // Perspective presets: d = 1, vh = 2 tan 25 degrees, vw = 4/3 vh, and the eye at
+    // D = size / vh from the target's plane, so the view there is `size` tall.
+    let vh = 2.0 * 25f64.to_radians().tan();
+    let depth = 2.0 / vh;
+    let perspective = |shift: DVec2| {
+        Projection::Perspective(Perspective {
+            distance: 1.0,
+            viewport: DVec2::new(4.0 / 3.0 * vh, vh),
+            shift,
+        })
+    };
+    // One-point: the eye 0.35 size right of and 0.25 size above the target, looking
+    // along -z; the target at camera (-0.7, -0.5, -D) is centred by the shift
+    // d (-0.7, -0.5) / D = -(0.35, 0.25) vh.
+    check_preset(
+        Preset::OnePoint,
+        t + DVec3::new(0.7, 0.5, depth),
+        (x, y, z),
+        perspective(-DVec2::new(0.35, 0.25) * vh),
+    );
+    // Two-point: level, turned 30 degrees about y: w = (sin 30, 0, cos 30); the eye D
+    // along w and 0.25 size = 0.5 up; the shift d tan(theta) with tan(theta) = -0.5 / D.
+    let w = DVec3::new(0.5, 0.0, s3 / 2.0);
+    check_preset(
+        Preset::TwoPoint,
+        t + depth * w + 0.5 * y,
+        (DVec3::new(s3 / 2.0, 0.0, -0.5), y, w),
+        perspective(DVec2::new(0.0, -0.5 / depth)),
+    );
+    // Three-point: 30 degrees about y and 30 up: w = (cos 30 sin 30, sin 30, cos 30 cos 30)
+    // = (sqrt 3 / 4, 1/2, 3/4), the eye D along it, looking at the target.
+    let w = DVec3::new(s3 / 4.0, 0.5, 0.75);
+    let u = DVec3::new(0.75, 0.0, -s3 / 4.0) / (0.75f64.hypot(s3 / 4.0));
+    check_preset(
+        Preset::ThreePoint,
+        t + depth * w,
+        (u, w.cross(u), w),
+        perspective(DVec2::ZERO),
+    );
+}
+
+#[test]
+fn preset_names_taxonomy_and_errors() {
+    let names = [
+        "Front",
+        "Top",
+        "Side",
+        "Isometric",
+        "Dimetric",
+        "Trimetric",
+        "Cavalier",
+        "Cabinet",
+        "OnePoint",
+        "TwoPoint",
+        "ThreePoint",
+    ];
+    let multiview: &[&str] = &["parallel", "orthographic", "multiview"];
+    let axonometric: &[&str] = &["parallel", "orthographic", "axonometric"];
+    let oblique: &[&str] = &["parallel", "oblique"];
+    let perspective: &[&str] = &["perspective"];
+    let taxonomy = [
+        multiview,
+        multiview,
+        multiview,
+        axonometric,
+        axonometric,
+        axonometric,
+        oblique,
+        oblique,
+        perspective,
+        perspective,
+        perspective,
+    ];
+    for ((preset, name), path) in Preset::ALL.into_iter().zip(names).zip(taxonomy) {
+        assert_eq!(preset.name(), name);
+        assert_eq!(preset.taxonomy(), path, "{name}");
+    }
+
+    use viewray_camera::CameraError::{EmptyImage, NotFinite, NotPositive};
+    let target = DVec3::ZERO;
+    for preset in Preset::ALL {
+        // A zero side is an empty image, whichever side and whatever the family.
+        for (width, height) in [(0, 300), (400, 0), (0, 0)] {
+            assert_eq!(
+                preset.camera(target, 1.0, width, height),
+                Err(EmptyImage { width, height }),
+                "{}",
+                preset.name()
+            );
+        }
+        assert_eq!(
+            preset.camera(target, 0.0, W, H),
+            Err(NotPositive {
+                name: "size",
+                value: 0.0
+            })
+        );
+        assert_eq!(
+            preset.camera(DVec3::new(f64::NAN, 0.0, 0.0), 1.0, W, H),
+            Err(NotFinite {
+                name: "target",
+                value: "(NaN, 0, 0)".into()
+            })
+        );
+    }
+    assert_eq!(
+        Preset::Cabinet { angle: f64::NAN }.camera(target, 1.0, W, H),
+        Err(NotFinite {
+            name: "phi",
+            value: "NaN".into()
+        })
+    );
 }

@@ -324,3 +324,165 @@ fn ray_differentials_step_by_the_lecture_pixel_size() {
         None
     );
 }
+
+#[test]
+fn lenses_and_slanted_rays_by_hand() {
+    // d = 2, vw = 4, vh = 2, W = 4, H = 2: pixel (i, j) = (1, 4) is u = 1.5, v = 0.5.
+    // The lens sample (1, 1/2) is the right edge of the unit disk, (lx, ly) = (1, 0).
+    let viewport = DVec2::new(4.0, 2.0);
+    let camera = |projection| Camera::new(Frame::CANONICAL, projection, 4, 2).unwrap();
+    let right_of_lens = CameraSample {
+        p_film: DVec2::splat(0.5),
+        p_lens: DVec2::new(1.0, 0.5),
+    };
+    #[track_caller]
+    fn check(camera: &Camera, sample: CameraSample, origin: [f64; 3], direction: [f64; 3]) {
+        let ray = camera.generate_ray(0, 3, sample).unwrap();
+        assert!(
+            ray.origin.abs_diff_eq(origin.into(), 1e-12)
+                && ray.direction.abs_diff_eq(direction.into(), 1e-12),
+            "got {ray:?}, expected {origin:?} + t {direction:?}"
+        );
+    }
+
+    // Thin lens, r = 0.1, f = 6, shift (0.5, 0): origin r (lx, ly, 0) = (0.1, 0, 0),
+    // direction (f / d)(u + sx, v + sy, -d) - (0.1, 0, 0) = 3 (2, 0.5, -2) - (0.1, 0, 0).
+    let thin_lens = camera(Projection::ThinLens(ThinLens {
+        distance: 2.0,
+        viewport,
+        shift: DVec2::new(0.5, 0.0),
+        aperture: 0.1,
+        focus: 6.0,
+    }));
+    check(&thin_lens, right_of_lens, [0.1, 0.0, 0.0], [5.9, 1.5, -6.0]);
+    check(&thin_lens, CameraSample::CENTER, [0.0; 3], [6.0, 1.5, -6.0]);
+
+    // Orthographic with a lens, r = 0.1, f = 4: origin (u, v, 0) + (0.1, 0, 0), direction
+    // -W - (r / f)(lx, ly, 0) = (-0.025, 0, -1).
+    let orthographic = camera(Projection::Orthographic(Orthographic {
+        viewport,
+        lens: Some(Lens {
+            aperture: 0.1,
+            focus: 4.0,
+        }),
+    }));
+    check(
+        &orthographic,
+        right_of_lens,
+        [1.6, 0.5, 0.0],
+        [-0.025, 0.0, -1.0],
+    );
+    check(
+        &orthographic,
+        CameraSample::CENTER,
+        [1.5, 0.5, 0.0],
+        [0.0, 0.0, -1.0],
+    );
+
+    // Oblique, L = 2, phi = 30 degrees: direction (-L cos phi, -L sin phi, -1).
+    let oblique = camera(Projection::Oblique(Oblique {
+        viewport,
+        ratio: 2.0,
+        angle: 30f64.to_radians(),
+    }));
+    let cos30 = 3f64.sqrt() / 2.0;
+    check(
+        &oblique,
+        right_of_lens,
+        [1.5, 0.5, 0.0],
+        [-2.0 * cos30, -1.0, -1.0],
+    );
+    // Cavalier and cabinet are L = 1 and L = 1/2.
+    assert_eq!(Oblique::cavalier(viewport, 0.3).ratio, 1.0);
+    assert_eq!(Oblique::cabinet(viewport, 0.3).ratio, 0.5);
+    assert_eq!(Oblique::cabinet(viewport, 0.3).angle, 0.3);
+    assert_eq!(Oblique::cavalier(viewport, 0.3).viewport, viewport);
+}
+
+#[test]
+fn a_lens_shift_centres_a_point_at_an_elevation() {
+    // sy = d tan(theta): d = 3 and 30 degrees give sqrt 3; d = 2 and 45 degrees give 2.
+    let close = |a: f64, b: f64| assert!((a - b).abs() < 1e-12, "{a} != {b}");
+    close(
+        Perspective::shift_for_elevation(3.0, 30f64.to_radians()),
+        3f64.sqrt(),
+    );
+    close(Perspective::shift_for_elevation(0.5, FRAC_PI_4), 0.5);
+    close(
+        Perspective::shift_for_elevation(2.0, -(0.25f64.atan())),
+        -0.5,
+    );
+    // The point at that elevation, at any depth, appears at the image centre.
+    let d = 3.0;
+    let theta = 30f64.to_radians();
+    let camera = Camera::new(
+        Frame::CANONICAL,
+        Projection::Perspective(Perspective {
+            distance: d,
+            viewport: DVec2::new(2.0, 2.0),
+            shift: DVec2::new(0.0, Perspective::shift_for_elevation(d, theta)),
+        }),
+        4,
+        4,
+    )
+    .unwrap();
+    let point = 7.0 * DVec3::new(0.0, theta.sin(), -theta.cos());
+    assert!(
+        camera
+            .project(point)
+            .unwrap()
+            .abs_diff_eq(DVec2::splat(2.0), 1e-12)
+    );
+}
+
+#[test]
+fn what_each_family_is() {
+    let viewport = DVec2::new(1.5, 1.0);
+    let cases = [
+        (
+            "perspective_canonical",
+            "Perspective",
+            Some(viewport),
+            false,
+            false,
+        ),
+        (
+            "perspective_general",
+            "Perspective",
+            Some(viewport),
+            false,
+            false,
+        ),
+        ("thin_lens", "ThinLens", Some(viewport), false, true),
+        ("orthographic", "Orthographic", Some(viewport), true, false),
+        (
+            "orthographic_lens",
+            "Orthographic",
+            Some(viewport),
+            true,
+            true,
+        ),
+        ("oblique_cavalier", "Oblique", Some(viewport), true, false),
+        ("oblique_cabinet", "Oblique", Some(viewport), true, false),
+        ("equirectangular", "Equirectangular", None, false, false),
+        ("fisheye", "Fisheye", None, false, false),
+    ];
+    let families = families();
+    assert_eq!(families.len(), cases.len());
+    for ((name, camera), (expected, family, viewport, parallel, lens)) in
+        families.into_iter().zip(cases)
+    {
+        assert_eq!(name, expected);
+        let projection = camera.projection();
+        // The canonical camera's viewport is 1 x 1.
+        let viewport = if name == "perspective_canonical" {
+            Some(DVec2::ONE)
+        } else {
+            viewport
+        };
+        assert_eq!(projection.family_name(), family, "{name}");
+        assert_eq!(projection.viewport(), viewport, "{name}");
+        assert_eq!(projection.is_parallel(), parallel, "{name}");
+        assert_eq!(projection.has_lens(), lens, "{name}");
+    }
+}
