@@ -1,6 +1,6 @@
 //! viewray's automation, written in Rust so it runs wherever cargo does: the golden check,
 //! the lecture figures, the benchmark's icosphere scene, the interop check against the
-//! real tools, and the live playground driven in headless Chromium.
+//! real tools, the live playground driven in headless Chromium, and mutation testing.
 //!
 //! `main.rs` is the `cargo xtask` command (an alias in `.cargo/config.toml`); the golden
 //! check is also the `golden` test target (`tests/golden.rs`), so plain `cargo test` runs
@@ -12,6 +12,7 @@ pub mod figures;
 pub mod golden;
 pub mod icosphere;
 pub mod interop;
+pub mod mutants;
 
 use std::path::{Path, PathBuf};
 

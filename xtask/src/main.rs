@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{browser, figures, golden, icosphere, interop, workspace_root};
+use xtask::{browser, figures, golden, icosphere, interop, mutants, workspace_root};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -18,7 +18,8 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Task {
     /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
-    /// test (the golden check included, as the `golden` test target), the live
+    /// test (the golden check included, as the `golden` test target), the camera crate's
+    /// mutants in lines changed since main (`mutants --in-diff`), the live
     /// playground in headless Chromium (`browser`), then the interop check against the
     /// real tools.
     Ci,
@@ -43,6 +44,10 @@ enum Task {
     /// pixel's ray as `viewray rays` prints it; screenshots in target/browser/. Installs
     /// Debian's chromium and playwright-core (into target/) when missing.
     Browser(browser::BrowserArgs),
+    /// Mutation testing: run cargo-mutants on one crate (viewray-camera by default) with
+    /// that crate's own tests, one job at a time, and print the mutants no test caught.
+    /// Installs cargo-mutants from crates.io when missing. Output in target/mutants/.
+    Mutants(mutants::MutantsArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +64,7 @@ fn main() -> ExitCode {
         Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
         Some(Task::Interop(args)) => interop::interop(&root, &args),
         Some(Task::Browser(args)) => browser::browser(&root, &args),
+        Some(Task::Mutants(args)) => mutants::mutants(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -86,6 +92,17 @@ fn ci() -> Result<()> {
         "warnings",
     ])?;
     cargo(&["test", "--workspace"])?;
+    // The whole camera crate takes about half an hour of mutants on two cores, so CI
+    // tests only the mutants in lines this change touched (none: nothing to do).
+    eprintln!("$ cargo xtask mutants viewray-camera --in-diff");
+    mutants::mutants(
+        &workspace_root(),
+        &mutants::MutantsArgs {
+            krate: "viewray-camera".to_owned(),
+            in_diff: true,
+            ..mutants::MutantsArgs::default()
+        },
+    )?;
     eprintln!("$ cargo xtask browser");
     browser::browser(&workspace_root(), &browser::BrowserArgs { out: None })?;
     // The real tools: about a minute to install them the first time (PyPI and npm), half
@@ -129,7 +146,15 @@ mod tests {
         assert!(parse(&[]).unwrap().command.is_none());
         let help = Cli::command().render_help().to_string();
         assert!(help.contains("Usage: cargo xtask [COMMAND]"), "{help}");
-        for command in ["ci", "golden", "figures", "icosphere", "interop", "browser"] {
+        for command in [
+            "ci",
+            "golden",
+            "figures",
+            "icosphere",
+            "interop",
+            "browser",
+            "mutants",
+        ] {
             assert!(
                 help.contains(&format!("\n  {command} ")),
                 "{command}: {help}"
@@ -153,7 +178,44 @@ mod tests {
             panic!("icosphere");
         };
         assert_eq!(icosphere.out, None);
+        let Some(Task::Mutants(m)) = parse(&["mutants"]).unwrap().command else {
+            panic!("mutants");
+        };
+        assert_eq!(
+            (
+                m.krate.as_str(),
+                m.in_diff,
+                m.jobs,
+                m.file.len(),
+                m.regex.len()
+            ),
+            ("viewray-camera", false, 1, 0, 0)
+        );
+        let Some(Task::Mutants(m)) = parse(&[
+            "mutants",
+            "viewray-geometry",
+            "--in-diff",
+            "-j",
+            "2",
+            "-f",
+            "aabb.rs",
+            "--file=bvh.rs",
+            "-F",
+            "slab",
+            "--re=Bvh::any",
+        ])
+        .unwrap()
+        .command
+        else {
+            panic!("mutants");
+        };
+        assert_eq!(m.krate, "viewray-geometry");
+        assert!(m.in_diff);
+        assert_eq!(m.jobs, 2);
+        assert_eq!(m.file, ["aabb.rs", "bvh.rs"]);
+        assert_eq!(m.regex, ["slab", "Bvh::any"]);
         for bad in [
+            &["mutants", "a", "b"][..],
             &["figures", "--bless"][..],
             &["figures", "--out"],
             &["golden", "a", "b"],
