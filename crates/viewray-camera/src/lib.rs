@@ -38,6 +38,33 @@
 //! - Everything is computed in `f64`; [`viewray_geometry::DRay::as_ray`] rounds a ray for
 //!   the tracer.
 //!
+//! # Boundaries
+//!
+//! What happens exactly on an edge, decided once and tested with hand-worked values:
+//!
+//! - **Pixel edges**: pixel `(row, col)` holds its left and top edges but not its right
+//!   and bottom ones. A point exactly on the image's right edge (`x = W`) or bottom edge
+//!   (`y = H`) is in no pixel: [`Camera::pixel_at`] returns `None`, while
+//!   [`Camera::project`] still gives its coordinates (`x = W`). The image is
+//!   `[0, W) x [0, H)`.
+//! - **Behind the eye**: a perspective or thin-lens camera sees a point only strictly in
+//!   front of the eye (depth `> 0`); a point in the eye's own plane is not seen. A
+//!   parallel camera's rays start on the image plane at `t = 0`, which is excluded, so a
+//!   point on the image plane itself is not seen; one just in front of it is.
+//! - **Fields of view** of a perspective camera lie strictly between 0 and 180 degrees: at
+//!   180 the viewport would be infinite.
+//! - **Fisheye**: the field of view `F` lies in `(0, 360]` degrees, so 180 and 360 are
+//!   both valid. A point exactly on the image circle (`r = 1`) has a ray (at `theta =
+//!   F/2`; sideways for 180 degrees, straight back for 360); only `r > 1` has none. A
+//!   world point exactly at `theta = F/2` projects onto the circle. Straight back, which
+//!   only a 360-degree fisheye sees, is the whole circle: [`Camera::project`] names its
+//!   rightmost point `(W, H/2)`.
+//! - **Equirectangular**: the left edge `x = 0` and the right edge `x = W` are both
+//!   longitude `pi`, straight back; [`Camera::project`] puts straight back on `x = 0` so
+//!   that every point lands in `[0, W)`. `y = 0` looks straight up and `y = H` straight
+//!   down.
+//! - **The eye itself** has no direction: panoramic cameras do not project it.
+//!
 //! # Families
 //!
 //! `(sx, sy)` is the lens shift of the perspective families (zero unless a scene sets
