@@ -149,10 +149,9 @@ impl Aabb {
                 }
                 continue;
             }
-            let (mut t0, mut t1) = ((lo - o) / d, (hi - o) / d);
-            if t0 > t1 {
-                std::mem::swap(&mut t0, &mut t1);
-            }
+            let (t_lo, t_hi) = ((lo - o) / d, (hi - o) / d);
+            let (t0, t1) = (t_lo.min(t_hi), t_lo.max(t_hi));
+            // On a tie (the ray meets an edge or a corner) the lowest axis names the face.
             if t0 > enter.0 {
                 enter = (t0, axis);
             }
@@ -178,8 +177,9 @@ impl Aabb {
             return None;
         }
         // Entering through a face whose outward normal opposes the direction: the max face
-        // when the direction is negative on that axis; leaving, the other way round.
-        let negative = ray.direction[axis] < 0.0;
+        // when the direction is negative on that axis; leaving, the other way round. (The
+        // face's axis is one the direction is not zero on.)
+        let negative = ray.direction[axis].is_sign_negative();
         Some(BoxCrossing {
             t,
             axis: axis as u32,
@@ -262,7 +262,42 @@ mod tests {
         // A ray lying in the plane of a face (o_x = max.x, d_x = 0) still gets an interval.
         let ray = Ray::new(Vec3::new(1.0, 0.0, 5.0), Vec3::new(0.0, 0.0, -2.0));
         assert_eq!(b.slab_interval(&ray), Some((2.0, 3.0)));
+        // And in the plane of the min face (o_y = min.y, d_y = 0): the slab is closed.
+        let ray = Ray::new(Vec3::new(0.0, -1.0, 5.0), Vec3::new(0.0, 0.0, -2.0));
+        assert_eq!(b.slab_interval(&ray), Some((2.0, 3.0)));
         let outside = Ray::new(Vec3::new(1.5, 0.0, 5.0), Vec3::new(0.0, 0.0, -2.0));
         assert_eq!(b.slab_interval(&outside), None);
+    }
+
+    #[test]
+    fn at_an_edge_or_a_corner_the_lowest_axis_names_the_face() {
+        let b = Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0));
+        let crossing = |origin: Vec3, direction: Vec3| {
+            let c = b
+                .intersect_solid(&Ray::new(origin, direction), 0.0, f32::INFINITY)
+                .unwrap();
+            (c.t, c.axis, c.max_face, c.entering)
+        };
+        // From (-3, -3, 0) along (1, 1, 0): x = -1 and y = -1 both at t = 2, the edge
+        // (-1, -1, 0); the x face (min side) is reported.
+        assert_eq!(
+            crossing(Vec3::new(-3.0, -3.0, 0.0), Vec3::new(1.0, 1.0, 0.0)),
+            (2.0, 0, false, true)
+        );
+        // Along (-1, -1, -1) from (3, 3, 3): the corner (1, 1, 1) at t = 2, the x face.
+        assert_eq!(
+            crossing(Vec3::splat(3.0), Vec3::splat(-1.0)),
+            (2.0, 0, true, true)
+        );
+        // From inside, along (0, 1, 1): y = 1 and z = 1 both at t = 1; leaving by y.
+        assert_eq!(
+            crossing(Vec3::ZERO, Vec3::new(0.0, 1.0, 1.0)),
+            (1.0, 1, true, false)
+        );
+        // From the centre along (0, 0, -4): out through the min z face at t = 1/4.
+        assert_eq!(
+            crossing(Vec3::ZERO, Vec3::new(0.0, 0.0, -4.0)),
+            (0.25, 2, false, false)
+        );
     }
 }
