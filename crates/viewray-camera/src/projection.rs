@@ -487,7 +487,10 @@ impl Projection {
                 let radial = q.x.hypot(q.y);
                 let theta = radial.atan2(-q.z);
                 let half_fov = p.fov / 2.0;
-                if theta > half_fov * (1.0 + 1e-12) {
+                // Seen up to theta = F/2, the image circle included, with a slack of
+                // 1e-12 for the rounding of a ray through the circle projected back.
+                let seen = theta <= half_fov * (1.0 + 1e-12);
+                if !seen {
                     return None;
                 }
                 let r = theta / half_fov;

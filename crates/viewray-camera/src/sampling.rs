@@ -9,7 +9,7 @@ use glam::DVec2;
 ///
 /// ```text
 /// (a, b) = 2 p - 1
-/// |a| > |b|:  r = a, theta = (pi/4) (b / a)
+/// |a| >= |b|: r = a, theta = (pi/4) (b / a)
 /// otherwise:  r = b, theta = pi/2 - (pi/4) (a / b)
 /// disk point = r (cos theta, sin theta)
 /// ```
@@ -20,7 +20,8 @@ pub fn sample_unit_disk_concentric(p: DVec2) -> DVec2 {
     if offset == DVec2::ZERO {
         return DVec2::ZERO;
     }
-    let (r, theta) = if offset.x.abs() > offset.y.abs() {
+    // On the diagonals (|a| = |b|) both rules give the same point.
+    let (r, theta) = if offset.x.abs() >= offset.y.abs() {
         (offset.x, FRAC_PI_4 * (offset.y / offset.x))
     } else {
         (
@@ -56,5 +57,23 @@ mod tests {
         check((1.0, 1.0), (h, h));
         check((0.0, 0.0), (-h, -h));
         check((0.75, 0.5), (0.5, 0.0));
+    }
+
+    #[test]
+    fn points_off_the_axes_and_diagonals_keep_their_angle_ratio() {
+        // cos 15 = (sqrt 6 + sqrt 2) / 4, sin 15 = (sqrt 6 - sqrt 2) / 4 (degrees).
+        let (c, s) = (
+            (6f64.sqrt() + 2f64.sqrt()) / 4.0,
+            (6f64.sqrt() - 2f64.sqrt()) / 4.0,
+        );
+        // (a, b) = (0.75, 0.25): r = 0.75, theta = (pi/4)(1/3) = 15 degrees.
+        check((0.875, 0.625), (0.75 * c, 0.75 * s));
+        // (a, b) = (0.25, 0.75): r = 0.75, theta = 90 - 45/3 = 75 degrees.
+        check((0.625, 0.875), (0.75 * s, 0.75 * c));
+        // (a, b) = (-0.75, -0.25): r = -0.75, theta = 15 degrees: the opposite point.
+        check((0.125, 0.375), (-0.75 * c, -0.75 * s));
+        // (a, b) = (0.5, -0.5), a diagonal: r = 0.5, theta = -45 degrees.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        check((0.75, 0.25), (0.5 * h, -0.5 * h));
     }
 }
