@@ -764,6 +764,45 @@ fn rays_starting_on_the_surface_report_the_next_surface() {
 }
 
 #[test]
+fn rays_parallel_to_a_slab_visit_the_boxes_they_lie_in_and_no_others() {
+    // Two unit boxes side by side along x, one leaf each.
+    let boxes = [
+        Aabb::new(Vec3::ZERO, Vec3::ONE),
+        Aabb::new(Vec3::new(3.0, 0.0, 0.0), Vec3::new(4.0, 1.0, 1.0)),
+    ];
+    let params = BuildParams {
+        max_leaf_items: 1,
+        ..BuildParams::default()
+    };
+    let bvh = Bvh::build(&boxes, params);
+    let visited = |origin: Vec3, direction: Vec3| {
+        let mut items = Vec::new();
+        bvh.any(
+            &Ray::new(origin, direction),
+            0.0,
+            f32::INFINITY,
+            |start, count| {
+                items.extend((start..start + count).map(|i| bvh.item_order()[i as usize]));
+                false
+            },
+        );
+        items.sort_unstable();
+        items
+    };
+    let none: Vec<u32> = Vec::new();
+    // Along +z (d_x = d_y = 0) at x = 0.5: inside the first box's x slab only.
+    assert_eq!(visited(Vec3::new(0.5, 0.5, -5.0), Vec3::Z), [0]);
+    // On the first box's top face, y = 1: the slab is closed, so still visited.
+    assert_eq!(visited(Vec3::new(0.5, 1.0, -5.0), Vec3::Z), [0]);
+    // Above both boxes (y = 1.5), or between them (x = 2): in no x or y slab, nothing.
+    assert_eq!(visited(Vec3::new(0.5, 1.5, -5.0), Vec3::Z), none);
+    assert_eq!(visited(Vec3::new(2.0, 0.5, -5.0), Vec3::Z), none);
+    // Along +x at y = z = 0.5: through both; along -x from x = 2, only the first.
+    assert_eq!(visited(Vec3::new(-5.0, 0.5, 0.5), Vec3::X), [0, 1]);
+    assert_eq!(visited(Vec3::new(2.0, 0.5, 0.5), Vec3::NEG_X), [0]);
+}
+
+#[test]
 fn identical_triangles_build_a_shallow_tree_and_still_hit() {
     // Every centroid is the same, so no SAH split exists and the build halves by count.
     let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
