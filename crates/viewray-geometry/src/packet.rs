@@ -658,6 +658,28 @@ mod tests {
 
     use super::*;
 
+    /// Directions `(0, 0, -2)` and `(s, 0, -2)`, gathered from a chunk that also holds
+    /// a ray of another octant, spread by `s` on x over a shortest length of 2: traced
+    /// as a packet while `s <= 0.05 * 2 = 0.1`.
+    #[test]
+    fn a_gathered_packet_is_coherent_while_its_directions_spread_at_most_a_twentieth() {
+        let coherent = |s: f32| {
+            let rays = [
+                Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -2.0)),
+                Ray::new(Vec3::ZERO, Vec3::new(s, 0.0, -2.0)),
+                Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)),
+            ];
+            let chunk = ChunkNumbers::new(&rays);
+            // Octant 0b100: negative z only.
+            assert_eq!(chunk.octants[4], 0b11);
+            let mut packet = BoxPacket::new();
+            packet.fill(&chunk, 4, chunk.octants[4]);
+            packet.coherent
+        };
+        assert!(coherent(0.09));
+        assert!(!coherent(0.11));
+    }
+
     /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
     /// and validity included, for directions with zero, negative-zero, tiny and
     /// non-finite components.
