@@ -607,6 +607,16 @@ fn flat_arrays_build_the_same_mesh_and_attributes_interpolate() {
         hit.shading_normal
     );
     assert!(hit.uv.abs_diff_eq(Vec2::new(0.0, 0.5), 1e-6), "{}", hit.uv);
+    // Inside the face, at (0.25, 0.25): weights 1/2, 1/4, 1/4 for vertices 0, 1, 2, so
+    // uv = (1/4) (1, 0) + (1/4) (0, 1).
+    let ray = Ray::new(Vec3::new(0.25, 0.25, -1.0), Vec3::new(0.0, 0.0, 2.0));
+    let hit = mesh.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+    assert_eq!((hit.t, hit.primitive), (0.5, 0));
+    assert!(
+        hit.uv.abs_diff_eq(Vec2::new(0.25, 0.25), 1e-6),
+        "{}",
+        hit.uv
+    );
 }
 
 #[test]
@@ -800,6 +810,20 @@ fn rays_parallel_to_a_slab_visit_the_boxes_they_lie_in_and_no_others() {
     // Along +x at y = z = 0.5: through both; along -x from x = 2, only the first.
     assert_eq!(visited(Vec3::new(-5.0, 0.5, 0.5), Vec3::X), [0, 1]);
     assert_eq!(visited(Vec3::new(2.0, 0.5, 0.5), Vec3::NEG_X), [0]);
+    // Bvh::closest returns the closest entry the leaves report: along +x from x = -5 the
+    // first box at t = 5, along -x from x = 10 the second at t = 6; above them, t_max.
+    let closest = |origin: Vec3, direction: Vec3| {
+        let ray = Ray::new(origin, direction);
+        bvh.closest(&ray, 0.0, f32::INFINITY, |start, count, t_max| {
+            (start..start + count)
+                .filter_map(|i| boxes[bvh.item_order()[i as usize] as usize].slab_interval(&ray))
+                .map(|(t_enter, _)| t_enter)
+                .fold(t_max, f32::min)
+        })
+    };
+    assert_eq!(closest(Vec3::new(-5.0, 0.5, 0.5), Vec3::X), 5.0);
+    assert_eq!(closest(Vec3::new(10.0, 0.5, 0.5), Vec3::NEG_X), 6.0);
+    assert_eq!(closest(Vec3::new(0.5, 1.5, -5.0), Vec3::Z), f32::INFINITY);
 }
 
 #[test]
