@@ -658,6 +658,22 @@ mod tests {
 
     use super::*;
 
+    /// The largest number among the lanes a mask selects, and only those.
+    #[test]
+    fn max_lane_reads_only_the_masked_lanes() {
+        let mut values: Lanes = [Vec4::ZERO; PACKET_GROUPS];
+        // Lane i holds 100 - i: the lowest selected lane holds the largest number.
+        for i in 0..PACKET_SIZE {
+            set_lane(&mut values, i, 100.0 - i as f32);
+        }
+        assert_eq!(max_lane(&values, 0b10), 99.0);
+        assert_eq!(max_lane(&values, 0b1000), 97.0);
+        assert_eq!(max_lane(&values, 0b1100), 98.0);
+        assert_eq!(max_lane(&values, (1 << 5) | (1 << 40)), 95.0);
+        assert_eq!(max_lane(&values, 1 << 63), 37.0);
+        assert_eq!(max_lane(&values, 0), f32::NEG_INFINITY);
+    }
+
     /// Directions `(0, 0, -2)` and `(s, 0, -2)`, gathered from a chunk that also holds
     /// a ray of another octant, spread by `s` on x over a shortest length of 2: traced
     /// as a packet while `s <= 0.05 * 2 = 0.1`.
