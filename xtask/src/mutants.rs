@@ -20,8 +20,8 @@ use clap::Args;
 /// The cargo-mutants release these figures and flags were measured with.
 const CARGO_MUTANTS_VERSION: &str = "27.1.0";
 
-/// The options of `cargo xtask mutants`.
-#[derive(Debug, Default, Args)]
+/// The options of `cargo xtask mutants`; `Default` gives the command line's defaults.
+#[derive(Debug, Args)]
 pub struct MutantsArgs {
     /// The crate to mutate; its own tests are the ones run.
     #[arg(default_value = "viewray-camera")]
@@ -42,6 +42,18 @@ pub struct MutantsArgs {
     /// How many mutants to build and test at once.
     #[arg(long, short = 'j', default_value_t = 1)]
     pub jobs: usize,
+}
+
+impl Default for MutantsArgs {
+    fn default() -> Self {
+        Self {
+            krate: "viewray-camera".to_owned(),
+            in_diff: false,
+            file: Vec::new(),
+            regex: Vec::new(),
+            jobs: 1,
+        }
+    }
 }
 
 /// What one run found, read from cargo-mutants' `mutants.out`.
@@ -273,6 +285,21 @@ fn cargo() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_default_options_are_the_command_lines() {
+        let args = MutantsArgs::default();
+        assert_eq!(
+            (
+                args.krate.as_str(),
+                args.in_diff,
+                args.jobs,
+                args.file.len(),
+                args.regex.len()
+            ),
+            ("viewray-camera", false, 1, 0, 0)
+        );
+    }
 
     #[test]
     fn the_summary_gives_the_figures_and_names_every_survivor() {
