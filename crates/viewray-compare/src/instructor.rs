@@ -268,7 +268,7 @@ impl Reference {
                 peak_flip,
             }),
             diagnosis,
-            heatmap: Some(map.heatmap()),
+            error_map: Some(map),
         }
     }
 }
