@@ -17,6 +17,7 @@ mod commands;
 mod compare;
 mod diagram;
 mod figures;
+mod folders;
 mod input;
 mod interop;
 mod render;

@@ -18,8 +18,6 @@ const NOTE: Style = AnsiColor::Cyan.on_default().bold();
 pub(crate) const PASS: Style = AnsiColor::Green.on_default().bold();
 /// A failing verdict.
 pub(crate) const FAIL: Style = AnsiColor::Red.on_default().bold();
-/// A pair that could not be compared.
-pub(crate) const BROKEN: Style = AnsiColor::Magenta.on_default().bold();
 
 /// Prints `error: message` on stderr.
 pub(crate) fn error(message: impl Display) {
