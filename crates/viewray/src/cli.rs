@@ -156,6 +156,26 @@ pub(crate) enum Command {
     /// directly that cannot be read, is bad input. Exit code 0 when every pair passes, 1
     /// when any fails, 2 on bad input or usage.
     Compare(crate::compare::CompareArgs),
+    /// Grade a class's renders against the reference images.
+    ///
+    /// REFERENCE is a folder of PNG files (the assignment); SUBMISSIONS holds one folder
+    /// per student, each judged against REFERENCE as `viewray compare` judges two
+    /// folders: the same rules, diagnoses and --threshold; a missing image, or one that
+    /// is not a PNG, fails; the student's other files are listed, not judged.
+    ///
+    /// Prints one row per student (passed of total, then each failure with its
+    /// diagnosis) and a summary: the students who passed everything, each image's pass
+    /// rate and the hardest image. --csv writes the gradebook (student, image, verdict,
+    /// peak_flip, diagnosis; one line per student and image), --report an HTML report
+    /// (the class at a glance, failures first; a page per student with the expected
+    /// image, the render and the FLIP heatmap of each failure). With --json, one JSON
+    /// line per student and image ({"student", "name", and compare's fields}) and a last
+    /// line {"summary": {"students", "images", "passed_everything", "per_image",
+    /// "hardest", "not_graded"}}. Students are graded in parallel. Exit code 0 when
+    /// every student passes everything, 1 when any image fails or is missing, 2 on bad
+    /// usage (REFERENCE missing or without PNG files, SUBMISSIONS not a folder or without
+    /// student folders).
+    Grade(crate::grade::GradeArgs),
     /// Draw one of the lecture's figures to a PNG or SVG.
     ///
     /// Every figure is computed from the camera code: each 3D point is placed by a

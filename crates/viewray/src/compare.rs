@@ -5,16 +5,13 @@
 //! files judged nowhere and a summary line; with `--json`, JSON lines instead: one object
 //! per pair, then one `{"summary":{..}}` object.
 //!
-//! Folders are paired like `diff -r` (see [`crate::folders`]): a reference image the
+//! Folders are paired like `diff -r` (see [`viewray_grade::pair`]): a reference image the
 //! ACTUAL folder lacks, or whose counterpart cannot be read, is a failing row; a problem
 //! on the EXPECTED side, a scene, or a file given directly is bad input (exit 2).
 
-use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -22,12 +19,11 @@ use rayon::prelude::*;
 use serde_json::{Map, Value, json};
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Comparison, Diagnosis, Expectations, InstructorThresholds, LoadError, Report,
-    ReportEntry, RgbaImage, Rules, Verdict, judge_with, load_png, write_report,
+    CameraKind, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry, RgbaImage,
+    Rules, Verdict, judge_with, load_png, write_report,
 };
+use viewray_grade::{Counterpart, Outcome, ReferenceImage, in_order, load_counterpart};
 use viewray_scene::{LoadOptions, Scene};
-
-use crate::folders::{self, Counterpart, ReferenceImage};
 
 /// Exit code when a render failed.
 pub(crate) const EXIT_FAILED: u8 = 1;
@@ -80,72 +76,6 @@ pub(crate) fn thresholds(threshold: f32) -> InstructorThresholds {
     InstructorThresholds {
         max_peak_flip: threshold,
         ..InstructorThresholds::default()
-    }
-}
-
-/// What became of a render: judged, or not comparable (the student's failure).
-#[derive(Clone, Debug)]
-pub(crate) enum Outcome {
-    /// Compared with the reference.
-    Judged(Box<Comparison>),
-    /// Not compared: the render is missing or cannot be read; the sentence says which.
-    Failed(String),
-}
-
-impl Outcome {
-    pub(crate) fn verdict(&self) -> Verdict {
-        match self {
-            Outcome::Judged(c) if c.passed() => Verdict::Pass,
-            Outcome::Judged(_) | Outcome::Failed(_) => Verdict::Fail,
-        }
-    }
-
-    /// The peak FLIP, when the images were compared with FLIP.
-    pub(crate) fn peak_flip(&self) -> Option<f32> {
-        match self {
-            Outcome::Judged(c) => c.metrics.map(|m| m.peak_flip),
-            Outcome::Failed(_) => None,
-        }
-    }
-
-    /// What a row says after the figures: the diagnosis, else why it failed, else nothing.
-    pub(crate) fn note(&self) -> String {
-        match self {
-            Outcome::Judged(c) => match c.diagnosis {
-                Some(d) => d.to_string(),
-                None => c.reasons(),
-            },
-            Outcome::Failed(message) => message.clone(),
-        }
-    }
-
-    /// This outcome without what only a report needs (the FLIP error map).
-    pub(crate) fn without_error_map(self) -> Self {
-        match self {
-            Outcome::Judged(c) => Outcome::Judged(Box::new(c.without_error_map())),
-            failed => failed,
-        }
-    }
-}
-
-/// Why a render that is a file could not be read, as its row says it: `cannot read: ...`
-/// or `not a PNG: ...` (the file's name is the row's).
-pub(crate) fn unreadable(error: &LoadError) -> String {
-    match error {
-        LoadError::Unreadable { source, .. } => format!("cannot read: {source}"),
-        LoadError::NotPng { .. } => {
-            "not a PNG: it does not start with the PNG signature".to_owned()
-        }
-        LoadError::Decode { source, .. } => format!("not a PNG: it does not decode: {source}"),
-    }
-}
-
-/// Loads the render `counterpart` holds for the reference image `name`: its pixels, or
-/// why it fails without being compared.
-pub(crate) fn load_counterpart(counterpart: &Counterpart, name: &str) -> Result<RgbaImage, String> {
-    match counterpart {
-        Counterpart::File(path) => load_png(path).map_err(|e| unreadable(&e)),
-        other => Err(other.problem(name).unwrap_or_default()),
     }
 }
 
@@ -243,44 +173,6 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
             camera: CameraKind::Parallel,
         }),
         Projection::Equirectangular | Projection::Fisheye(_) => None,
-    })
-}
-
-/// Runs `work` on every item in parallel and hands the results to `emit` in the items'
-/// order, each as soon as it and all before it are done. When `emit` fails (a closed
-/// pipe), the items not yet started are skipped and its error returned.
-pub(crate) fn in_order<T: Sync, R: Send>(
-    items: &[T],
-    work: impl Fn(&T) -> R + Sync,
-    mut emit: impl FnMut(R) -> Result<()>,
-) -> Result<()> {
-    let stop = AtomicBool::new(false);
-    let (sender, receiver) = mpsc::channel();
-    std::thread::scope(|scope| {
-        let (work, stop) = (&work, &stop);
-        scope.spawn(move || {
-            items
-                .par_iter()
-                .enumerate()
-                .for_each_with(sender, |sender, (index, item)| {
-                    if !stop.load(Ordering::Relaxed) {
-                        let _ = sender.send((index, work(item)));
-                    }
-                });
-        });
-        let mut waiting = BTreeMap::new();
-        let mut next = 0;
-        for (index, result) in receiver {
-            waiting.insert(index, result);
-            while let Some(result) = waiting.remove(&next) {
-                next += 1;
-                if let Err(error) = emit(result) {
-                    stop.store(true, Ordering::Relaxed);
-                    return Err(error);
-                }
-            }
-        }
-        Ok(())
     })
 }
 
@@ -396,8 +288,8 @@ fn plan(args: &CompareArgs) -> Result<(Vec<Pair>, Vec<String>)> {
             Ok((pairs, Vec::new()))
         }
         (true, true) => {
-            let images = folders::reference_images(expected, "EXPECTED")?;
-            let pairing = folders::pair(actual, &images)
+            let images = viewray_grade::reference_images(expected, "EXPECTED")?;
+            let pairing = viewray_grade::pair(actual, &images)
                 .with_context(|| format!("cannot read ACTUAL `{}`", actual.display()))?;
             let references = prepare(&images, scene)?;
             let pairs = references
@@ -461,7 +353,7 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
             }
             out.flush()?;
             results.push(judged);
-            Ok(())
+            anyhow::Ok(())
         },
     )?;
     let summary_line = format!("{} (threshold {})", tally.summary(), args.threshold);
@@ -479,7 +371,7 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
             writeln!(
                 out,
                 "not judged, only in ACTUAL: {}",
-                folders::listed(extra)
+                viewray_grade::listed(extra)
             )?;
         }
         writeln!(out, "{summary_line}")?;

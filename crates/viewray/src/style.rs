@@ -40,3 +40,10 @@ pub(crate) fn padded(style: Style, text: &str, width: usize) -> String {
     let padding = " ".repeat(width.saturating_sub(text.chars().count()));
     format!("{style}{text}{style:#}{padding}")
 }
+
+/// `text` right-aligned in `width` characters, in `style` (the padding outside the
+/// colour).
+pub(crate) fn padded_right(style: Style, text: &str, width: usize) -> String {
+    let padding = " ".repeat(width.saturating_sub(text.chars().count()));
+    format!("{padding}{style}{text}{style:#}")
+}

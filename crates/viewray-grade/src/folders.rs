@@ -7,21 +7,54 @@ use std::ffi::{OsStr, OsString};
 use std::io;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use thiserror::Error;
+
+/// A folder that cannot be graded against: bad input, not anyone's failure.
+#[derive(Debug, Error)]
+pub enum FolderError {
+    /// The folder (given as `role` on the command line) cannot be read.
+    #[error("cannot read {role} `{}`", path.display())]
+    Unreadable {
+        /// What the folder is: `EXPECTED`, `REFERENCE`, `SUBMISSIONS`.
+        role: &'static str,
+        /// The folder.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: io::Error,
+    },
+    /// The reference folder holds no `*.png` file.
+    #[error("{role} `{}` holds no *.png file", path.display())]
+    NoPng {
+        /// What the folder is.
+        role: &'static str,
+        /// The folder.
+        path: PathBuf,
+    },
+    /// The submissions folder holds no student folder.
+    #[error("{role} `{}` holds no folder: it must hold one folder per student", path.display())]
+    NoStudent {
+        /// What the folder is.
+        role: &'static str,
+        /// The folder.
+        path: PathBuf,
+    },
+}
 
 /// One reference image: a `*.png` file of the reference folder.
 #[derive(Clone, Debug)]
-pub(crate) struct ReferenceImage {
+pub struct ReferenceImage {
     /// The file name, as shown (lossy where it is not UTF-8).
-    pub(crate) name: String,
+    pub name: String,
     /// The file name as the file system holds it: what a render's name must equal.
     file_name: OsString,
-    pub(crate) path: PathBuf,
+    /// Where the file is.
+    pub path: PathBuf,
 }
 
 impl ReferenceImage {
     /// A reference image at `path`, its name the path's file name.
-    pub(crate) fn file(path: &Path) -> Self {
+    pub fn file(path: &Path) -> Self {
         let file_name = path
             .file_name()
             .map_or_else(|| path.as_os_str().to_owned(), OsStr::to_owned);
@@ -35,20 +68,26 @@ impl ReferenceImage {
 
 /// What a render folder holds for one reference image.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) enum Counterpart {
+pub enum Counterpart {
     /// The file of that name, to be read.
     File(PathBuf),
-    /// No file of that name. `near` names a file that looks meant for it: the same name
-    /// but for the case of its letters, or the same stem with another extension.
-    Missing { near: Option<String> },
+    /// No file of that name.
+    Missing {
+        /// A file that looks meant for it: the same name but for the case of its letters,
+        /// or the same stem with another extension.
+        near: Option<String>,
+    },
     /// A file of that name that is not read: a symbolic link to a file outside the folder.
-    Outside { target: PathBuf },
+    Outside {
+        /// Where the link leads.
+        target: PathBuf,
+    },
 }
 
 impl Counterpart {
     /// Why the render fails, when it cannot be judged: `missing`, with a hint when a file
     /// looks meant for the image, or why the file is not read.
-    pub(crate) fn problem(&self, name: &str) -> Option<String> {
+    pub fn problem(&self, name: &str) -> Option<String> {
         match self {
             Counterpart::File(_) => None,
             Counterpart::Missing { near: None } => Some("missing".to_owned()),
@@ -67,12 +106,12 @@ impl Counterpart {
 
 /// A render folder paired with the reference images.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Pairing {
+pub struct Pairing {
     /// One counterpart per reference image, in the reference images' order.
-    pub(crate) counterparts: Vec<Counterpart>,
+    pub counterparts: Vec<Counterpart>,
     /// The folder's other entries (hidden ones aside), sorted, folders ending in `/`: listed,
     /// not judged.
-    pub(crate) extra: Vec<String>,
+    pub extra: Vec<String>,
 }
 
 /// Whether `name` ends in `.png`, in any case.
@@ -87,11 +126,18 @@ fn is_png_name(name: &OsStr) -> bool {
 ///
 /// # Errors
 /// Bad usage: the folder cannot be read, or holds no PNG file.
-pub(crate) fn reference_images(folder: &Path, role: &str) -> Result<Vec<ReferenceImage>> {
-    let unreadable = || format!("cannot read {role} `{}`", folder.display());
+pub fn reference_images(
+    folder: &Path,
+    role: &'static str,
+) -> Result<Vec<ReferenceImage>, FolderError> {
+    let unreadable = |source| FolderError::Unreadable {
+        role,
+        path: folder.to_owned(),
+        source,
+    };
     let mut images = Vec::new();
-    for entry in std::fs::read_dir(folder).with_context(unreadable)? {
-        let entry = entry.with_context(unreadable)?;
+    for entry in std::fs::read_dir(folder).map_err(unreadable)? {
+        let entry = entry.map_err(unreadable)?;
         let file_name = entry.file_name();
         let path = entry.path();
         if is_png_name(&file_name) && !path.is_dir() {
@@ -103,7 +149,10 @@ pub(crate) fn reference_images(folder: &Path, role: &str) -> Result<Vec<Referenc
         }
     }
     if images.is_empty() {
-        bail!("{role} `{}` holds no *.png file", folder.display());
+        return Err(FolderError::NoPng {
+            role,
+            path: folder.to_owned(),
+        });
     }
     images.sort_by(|a, b| a.file_name.cmp(&b.file_name));
     Ok(images)
@@ -113,7 +162,7 @@ pub(crate) fn reference_images(folder: &Path, role: &str) -> Result<Vec<Referenc
 ///
 /// # Errors
 /// The folder cannot be read.
-pub(crate) fn pair(folder: &Path, references: &[ReferenceImage]) -> io::Result<Pairing> {
+pub fn pair(folder: &Path, references: &[ReferenceImage]) -> io::Result<Pairing> {
     let mut entries: Vec<(OsString, bool)> = Vec::new();
     for entry in std::fs::read_dir(folder)? {
         let entry = entry?;
@@ -161,6 +210,64 @@ pub(crate) fn pair(folder: &Path, references: &[ReferenceImage]) -> io::Result<P
     })
 }
 
+/// One student's folder of SUBMISSIONS.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Student {
+    /// The folder's name (lossy where it is not UTF-8): the student's name in every
+    /// output.
+    pub name: String,
+    /// The folder.
+    pub folder: PathBuf,
+}
+
+/// The folders of a class's submissions.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Submissions {
+    /// One per sub-folder (hidden ones aside; symbolic links to folders followed), sorted
+    /// by name.
+    pub students: Vec<Student>,
+    /// The other entries (files), sorted: listed, not graded.
+    pub other: Vec<String>,
+}
+
+/// The student folders of `folder` (given as `role` on the command line).
+///
+/// # Errors
+/// Bad usage: the folder cannot be read, or holds no folder.
+pub fn submissions(folder: &Path, role: &'static str) -> Result<Submissions, FolderError> {
+    let unreadable = |source| FolderError::Unreadable {
+        role,
+        path: folder.to_owned(),
+        source,
+    };
+    let mut entries = Vec::new();
+    for entry in std::fs::read_dir(folder).map_err(unreadable)? {
+        let entry = entry.map_err(unreadable)?;
+        let name = entry.file_name();
+        if name.to_string_lossy().starts_with('.') {
+            continue;
+        }
+        entries.push((name, entry.path()));
+    }
+    entries.sort();
+    let mut submissions = Submissions::default();
+    for (name, path) in entries {
+        let name = name.to_string_lossy().into_owned();
+        if path.is_dir() {
+            submissions.students.push(Student { name, folder: path });
+        } else {
+            submissions.other.push(name);
+        }
+    }
+    if submissions.students.is_empty() {
+        return Err(FolderError::NoStudent {
+            role,
+            path: folder.to_owned(),
+        });
+    }
+    Ok(submissions)
+}
+
 /// Where the symbolic link `path` leads, when that is outside the folder `canonical`
 /// (a link within the folder, a broken link and a plain file give `None`: they are read,
 /// or fail to be, as they are).
@@ -194,7 +301,7 @@ fn near_name(name: &OsStr, entries: &[(OsString, bool)]) -> Option<String> {
 
 /// `names` for a line of text: all of them when there are few, else the first few and
 /// how many more.
-pub(crate) fn listed(names: &[String]) -> String {
+pub fn listed(names: &[String]) -> String {
     const SHOWN: usize = 5;
     if names.len() <= SHOWN + 1 {
         names.join(", ")
@@ -294,6 +401,24 @@ mod tests {
         touch(&dir.path().join("scene.ron"));
         let error = reference_images(dir.path(), "REFERENCE").unwrap_err();
         assert!(error.to_string().contains("holds no *.png file"), "{error}");
+    }
+
+    #[test]
+    fn submissions_are_the_sub_folders_and_the_rest_is_listed() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["bob", "alice", ".git", "carol"] {
+            std::fs::create_dir(dir.path().join(name)).unwrap();
+        }
+        touch(&dir.path().join("grades.xlsx"));
+        let found = submissions(dir.path(), "SUBMISSIONS").unwrap();
+        let names: Vec<&str> = found.students.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["alice", "bob", "carol"]);
+        assert_eq!(found.students[1].folder, dir.path().join("bob"));
+        assert_eq!(found.other, ["grades.xlsx"]);
+        let empty = tempfile::tempdir().unwrap();
+        touch(&empty.path().join("a.png"));
+        let error = submissions(empty.path(), "SUBMISSIONS").unwrap_err();
+        assert!(error.to_string().contains("holds no folder"), "{error}");
     }
 
     #[test]
