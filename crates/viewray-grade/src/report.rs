@@ -18,7 +18,8 @@ use crate::class::{Assignment, ClassSummary, StudentGrade, thumbnail};
 pub struct ClassReport<'a> {
     /// The page's title, e.g. the command line.
     pub title: &'a str,
-    /// The summary lines, as the terminal prints them.
+    /// The summary lines, as the terminal prints them (the grid shows each image's pass
+    /// rate).
     pub summary: &'a [String],
     /// The rule renders were judged by, as a sentence (the threshold).
     pub rule: &'a str,
@@ -187,6 +188,16 @@ fn class_page(
                                 }
                             }
                         }
+                        tr.rates {
+                            th.student { "passed by" }
+                            td.count {}
+                            @for tally in &report.tally.images {
+                                td class={ "rate" @if Some(tally.name.as_str()) == hardest { " hardest" } }
+                                    title={ (tally.name) ": passed by " (tally.passed) " of " (tally.total) } {
+                                    (tally.percent()) "%"
+                                }
+                            }
+                        }
                     }
                     tbody {
                         @for index in failures_first(report.grades) {
@@ -211,18 +222,6 @@ fn class_page(
                                             a href={ (page) "#" (stem) } { "✗" }
                                         }
                                     }
-                                }
-                            }
-                        }
-                    }
-                    tfoot {
-                        tr {
-                            th.student { "passed by" }
-                            td.count {}
-                            @for tally in &report.tally.images {
-                                td class={ "rate" @if Some(tally.name.as_str()) == hardest { " hardest" } }
-                                    title={ (tally.name) ": passed by " (tally.passed) " of " (tally.total) } {
-                                    (tally.percent()) "%"
                                 }
                             }
                         }
@@ -314,15 +313,17 @@ table.grid { border-collapse: collapse; font-size: 0.9em; }
 .grid thead th.image { vertical-align: bottom; padding: 0 0.1em 0.3em; }
 .grid thead th.image .label { writing-mode: vertical-rl; transform: rotate(180deg); white-space: nowrap; font-weight: normal; }
 .grid thead a { text-decoration: none; }
-.cell { display: table-cell; width: 1.6em; min-width: 1.6em; text-align: center; color: #fff; border: 1px solid #fafafa; }
+.cell, .grid td.rate { width: 2.6em; min-width: 2.6em; box-sizing: border-box; }
+.cell { display: table-cell; text-align: center; color: #fff; border: 1px solid #fafafa; }
 span.cell { display: inline-block; height: 1.3em; line-height: 1.3em; }
 .cell a { text-decoration: none; display: block; }
 .cell.pass { background: #3a3; }
 .cell.fail { background: #c22; font-weight: bold; }
 .grid tbody tr:hover th, .grid tbody tr:hover td.count { background: #e8e8e8; }
 .grid tr.fail + tr.pass th, .grid tr.fail + tr.pass td { border-top: 2px solid #999; }
-.grid tfoot td, .grid tfoot th { border-top: 1px solid #ccc; color: #555; font-size: 0.85em; text-align: center; }
-.grid tfoot th.student { text-align: left; }
+.grid tr.rates td, .grid tr.rates th { border-bottom: 1px solid #ccc; color: #555; font-size: 0.85em; text-align: center; font-weight: normal; }
+.grid tr.rates th.student { text-align: left; }
+.grid thead th { font-weight: normal; color: #555; }
 .grid td.rate.hardest { color: #c22; font-weight: bold; }
 section { background: #fff; border: 1px solid #ddd; border-left: 6px solid #c22; padding: 0.8em 1em; margin: 1em 0; }
 .verdict { display: inline-block; padding: 0 0.4em; border-radius: 3px; color: #fff; font-weight: bold; font-size: 0.9em; }

@@ -177,9 +177,13 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
             "a render passes when its peak FLIP is at most {} and no camera mistake shows",
             args.threshold
         );
+        // The grid shows each image's pass rate: the page's summary is the rest.
+        let headline: Vec<String> = std::iter::once(lines[0].clone())
+            .chain(summary.hardest_line())
+            .collect();
         let report = ClassReport {
             title: &title,
-            summary: &lines,
+            summary: &headline,
             rule: &rule,
             assignment: &assignment,
             grades: &grades,
