@@ -291,7 +291,7 @@ fn student_page(
                     p.passed { span.verdict.pass { "PASS" } " " (passed.join(", ")) }
                 }
                 @if !grade.extra.is_empty() {
-                    p.extra { "not judged, only in the student's folder: " (grade.extra.join(", ")) }
+                    p.extra { "not judged, only in the student's folder: " (crate::folders::listed(&grade.extra)) }
                 }
             }
         }

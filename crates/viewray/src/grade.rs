@@ -92,6 +92,21 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
         }
         bail!("SUBMISSIONS `{}` does not exist", submissions.display());
     }
+    // A gradebook that could not be written is found out before the class is graded.
+    if let Some(csv) = &args.csv {
+        let folder = csv.parent().filter(|p| !p.as_os_str().is_empty());
+        if csv.is_dir() || folder.is_some_and(|f| !f.is_dir()) {
+            bail!(
+                "cannot write the gradebook `{}`: {}",
+                csv.display(),
+                if csv.is_dir() {
+                    "it is a folder"
+                } else {
+                    "its folder does not exist"
+                }
+            );
+        }
+    }
     let images = viewray_grade::reference_images(reference, "REFERENCE")?;
     let class = viewray_grade::submissions(submissions, "SUBMISSIONS")?;
     let thresholds = thresholds(args.threshold);

@@ -397,6 +397,16 @@ fn bad_usage_is_one_line_exit_code_2_and_writes_nothing() {
         assert!(line.contains(says), "{line}");
     }
     assert!(!csv.exists() && !report.exists());
+    // A gradebook whose folder does not exist is found out before grading.
+    let nowhere = dir.path().join("no-such-folder").join("book.csv");
+    let line = error_line(&[
+        "grade",
+        s(&reference),
+        s(&submissions),
+        "--csv",
+        s(&nowhere),
+    ]);
+    assert!(line.contains("its folder does not exist"), "{line}");
     // A reference image that is not a PNG is bad input too.
     std::fs::write(reference.join("broken.png"), "not a picture").unwrap();
     let line = error_line(&["grade", s(&reference), s(&submissions)]);
