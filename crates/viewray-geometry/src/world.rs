@@ -202,10 +202,9 @@ impl World {
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit per ray");
         let t_min = t_range.start;
-        let mut packet = BoxPacket::new();
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(None);
-            for_each_packet(rays, &mut packet, |packet| {
+            for_each_packet(rays, |packet| {
                 let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
                 let mut best = [None; PACKET_SIZE];
                 // Planes first, ray by ray, as `intersect` does.
@@ -335,10 +334,9 @@ impl World {
     pub fn any_hits(&self, rays: &[Ray], t_range: Range<f32>, hits: &mut [bool]) {
         assert_eq!(rays.len(), hits.len(), "one answer per ray");
         let (t_min, t_max) = (t_range.start, t_range.end);
-        let mut packet = BoxPacket::new();
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(false);
-            for_each_packet(rays, &mut packet, |packet| {
+            for_each_packet(rays, |packet| {
                 // Planes first, ray by ray, as `any_hit` does.
                 let mut searching = packet.all_lanes();
                 if !self.planes.is_empty() {
