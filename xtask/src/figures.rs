@@ -2,7 +2,8 @@
 //!
 //! The figures are drawn in-process with their pictures rendered by the ray tracer
 //! (`viewray_diagram::NamedFigure::figure`), exactly as `viewray figures`
-//! draws them and as `golden/figures/` checks them.
+//! draws them and as `golden/figures/` checks them; then every built-in animation as a
+//! GIF into `animations/`, as `viewray animate --demo NAME` writes it.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -18,7 +19,8 @@ pub struct FiguresArgs {
     pub out: Option<PathBuf>,
 }
 
-/// Writes every figure as `<name>.png` and `<name>.svg`, each atomically.
+/// Writes every figure as `<name>.png` and `<name>.svg`, and every built-in animation as
+/// `animations/<demo>.gif`, each atomically.
 ///
 /// # Errors
 /// When the folder cannot be created or a file cannot be written.
@@ -27,7 +29,13 @@ pub fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| root.join("target").join("figures"));
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    lecture_figures(&out)?;
+    animations(&out.join("animations"))
+}
+
+/// Writes every figure into `out` as `<name>.png` and `<name>.svg`.
+fn lecture_figures(out: &Path) -> Result<()> {
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let started = Instant::now();
     let figures = all_figures();
     for named in &figures {
@@ -55,6 +63,46 @@ pub fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
     Ok(())
 }
 
+/// Writes every built-in animation as `<demo>.gif`, as `viewray animate --demo <demo>
+/// -o <demo>.gif` does: its own frames, size and samples, each atomically.
+fn animations(out: &Path) -> Result<()> {
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let started = Instant::now();
+    let demos = viewray_animation::all_demos();
+    for demo in &demos {
+        let movie = viewray_animation::Movie::from_demo(
+            demo,
+            viewray_scene::LoadOptions::default(),
+            viewray_animation::MovieSettings::default(),
+        )?;
+        let path = out.join(format!("{}.gif", demo.name));
+        let (gif, timings) = viewray_animation::write_gif(
+            &movie,
+            Vec::new(),
+            &viewray_render::RenderSettings::default(),
+            || {},
+        )?;
+        crate::write_atomically(&path, &gif)?;
+        let (width, height) = movie.frame_size();
+        eprintln!(
+            "  {:<28} {} frames of {width} x {height}, {} KiB, rendered in {:.2} s, encoded in \
+             {:.2} s",
+            demo.name,
+            movie.frames(),
+            gif.len() / 1024,
+            timings.render.as_secs_f64(),
+            timings.encode.as_secs_f64()
+        );
+    }
+    eprintln!(
+        "wrote {} animations as GIF to {} in {:.2} s",
+        demos.len(),
+        out.display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,10 +111,9 @@ mod tests {
     fn writes_a_png_and_an_svg_per_figure() {
         let dir = tempfile::TempDir::new().unwrap();
         let out = dir.path().join("figures");
-        let args = FiguresArgs {
-            out: Some(out.clone()),
-        };
-        figures(dir.path(), &args).unwrap();
+        // The animations (seven GIFs of 48 frames) are left to `cargo xtask figures`
+        // itself: the command's tests write GIFs through the same code.
+        lecture_figures(&out).unwrap();
         let mut written: Vec<String> = std::fs::read_dir(&out)
             .unwrap()
             .map(|e| e.unwrap().file_name().into_string().unwrap())

@@ -3,7 +3,9 @@
 //!
 //! Each scene `fixtures/scenes/<name>.ron` (and `viewray render`'s built-in
 //! `fixtures/default.ron`, as `default`) is rendered in-process and compared with
-//! `golden/scenes/<name>.png`, and each lecture figure with `golden/figures/<name>.png`,
+//! `golden/scenes/<name>.png`, each lecture figure with `golden/figures/<name>.png`, and
+//! the first, middle and last frames of each built-in animation with
+//! `golden/animations/<demo>_{first,middle,last}.png`,
 //! by decoded pixels, never by PNG bytes, through
 //! viewray-compare's golden gates ([`Thresholds::GOLDEN`]): a per-pixel gate that absorbs
 //! last-bit floating-point differences between machines, and a perceptual (FLIP) gate that
@@ -27,7 +29,8 @@ use viewray_scene::{LoadOptions, Scene};
 /// The command line of `cargo xtask golden`.
 #[derive(Debug, Default, clap::Args)]
 pub struct GoldenArgs {
-    /// Only the images whose `scenes/<name>` or `figures/<name>` contains FILTER.
+    /// Only the images whose `scenes/<name>`, `figures/<name>` or `animations/<name>`
+    /// contains FILTER.
     pub filter: Option<String>,
     /// Rewrite the goldens whose pixels changed, add missing ones and remove those with
     /// no scene or figure (refused when CI is set).
@@ -66,6 +69,34 @@ enum Source {
     Scene(PathBuf, LoadOptions),
     /// A lecture figure by name, drawn at [`FIGURE_SCALE`].
     Figure(&'static str),
+    /// A frame of a built-in animation, as [`ANIMATION_FRAMES`] renders it.
+    Animation(&'static str, u32),
+}
+
+/// Animations are checked by their first, middle and last frames of the demo's own
+/// count, each picture at 320 x 180 with its side view beside it (so the diagram is
+/// checked too), at the demo's own samples per pixel.
+const ANIMATION_SIZE: (u32, u32) = (320, 180);
+
+/// Which frames of an animation of `frames` the check covers, with their names.
+fn animation_frames(frames: u32) -> [(&'static str, u32); 3] {
+    [("first", 0), ("middle", frames / 2), ("last", frames - 1)]
+}
+
+/// The movie whose frames the golden check compares.
+fn animation_movie(demo: &str) -> Result<viewray_animation::Movie> {
+    let demo = viewray_animation::demo_by_name(demo)?;
+    let options = LoadOptions {
+        size: Some(ANIMATION_SIZE),
+        samples: None,
+    };
+    let settings = viewray_animation::MovieSettings {
+        with_diagram: true,
+        ..viewray_animation::MovieSettings::default()
+    };
+    Ok(viewray_animation::Movie::from_demo(
+        &demo, options, settings,
+    )?)
 }
 
 /// Figures are checked at half their slide size: every item and label is still drawn
@@ -255,9 +286,19 @@ pub fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)
             source: Source::Figure(figure.name),
         });
     }
+    for demo in viewray_animation::all_demos() {
+        for (which, frame) in animation_frames(demo.frames) {
+            let name = format!("{}_{which}", demo.name);
+            cases.push(Case {
+                id: format!("animations/{name}"),
+                golden: root.join("golden/animations").join(format!("{name}.png")),
+                source: Source::Animation(demo.name, frame),
+            });
+        }
+    }
     let produced: Vec<&Path> = cases.iter().map(|c| c.golden.as_path()).collect();
     let mut orphans = Vec::new();
-    for kind in ["scenes", "figures"] {
+    for kind in ["scenes", "figures", "animations"] {
         let dir = root.join("golden").join(kind);
         if !dir.exists() {
             continue;
@@ -334,6 +375,15 @@ fn make(case: &Case) -> Result<Made> {
             let figure = viewray_diagram::figure_by_name(name)
                 .with_context(|| format!("no figure named {name}"))?;
             let pixels = viewray_draw::raster::render_scaled(&figure.figure(), FIGURE_SCALE);
+            Ok(Made {
+                pixels: pixels.clone(),
+                output: Output::Figure(pixels),
+            })
+        }
+        Source::Animation(demo, frame) => {
+            let movie = animation_movie(demo)?;
+            let rgb = movie.render_frame(*frame, &RenderSettings::default())?;
+            let pixels = image::DynamicImage::ImageRgb8(rgb).to_rgba8();
             Ok(Made {
                 pixels: pixels.clone(),
                 output: Output::Figure(pixels),

@@ -22,11 +22,13 @@ enum Task {
     /// playground in headless Chromium (`browser`), then the interop check against the
     /// real tools.
     Ci,
-    /// Render every scene in fixtures/scenes (and the default scene) and every lecture
-    /// figure, and compare each with golden/{scenes,figures}/<name>.png; a report of the
+    /// Render every scene in fixtures/scenes (and the default scene), every lecture
+    /// figure and the first, middle and last frames of every built-in animation, and
+    /// compare each with golden/{scenes,figures,animations}/<name>.png; a report of the
     /// failures goes to target/golden/index.html.
     Golden(golden::GoldenArgs),
-    /// Draw every lecture figure, pictures ray traced, as <name>.png and <name>.svg.
+    /// Draw every lecture figure, pictures ray traced, as <name>.png and <name>.svg, and
+    /// every built-in animation as animations/<demo>.gif.
     Figures(figures::FiguresArgs),
     /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
     /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.

@@ -158,6 +158,11 @@ impl ExportError {
         }
     }
 
+    /// The tool that cannot hold the scene, e.g. "Mitsuba 3".
+    pub fn target(&self) -> &str {
+        self.target
+    }
+
     /// What the target lacks, e.g. "has no oblique camera (...)".
     pub fn lacks(&self) -> &str {
         &self.lacks

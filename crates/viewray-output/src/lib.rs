@@ -3,13 +3,15 @@
 //!
 //! This crate is a leaf: it depends on no other viewray crate, so the renderer, the
 //! figures, the image comparison (which knows no other viewray crate) and the automation
-//! can all use it. It owns three things:
+//! can all use it. It owns four things:
 //!
 //! - [`color`]: the sRGB transfer function, once, and the types that say which encoding a
 //!   colour is in: [`LinearRgb`] (linear light, as scene files, the renderer and EXR hold
 //!   it) and [`Srgb8`] (8-bit sRGB, as PNG files and figures store it).
 //! - [`png`]: the one PNG encoder. Fixed settings and no ancillary chunks (no time, no
 //!   text, no gamma): the same pixels always give the same bytes.
+//! - [`animation`]: looping GIF and animated PNG, written frame by frame, with the same
+//!   promise: the same frames always give the same bytes.
 //! - [`file`]: every file viewray writes goes through [`write_atomically`] or
 //!   [`AtomicFile`]: written to a temporary file beside the target, flushed to disk, and
 //!   renamed over the target only when complete, so a reader sees the old file or the new
@@ -27,10 +29,12 @@
 //! # Ok::<(), std::io::Error>(())
 //! ```
 
+pub mod animation;
 pub mod color;
 pub mod file;
 pub mod png;
 
+pub use animation::{ApngWriter, GifPalette, GifWriter, MAX_GIF_SIDE};
 pub use color::{LinearRgb, Srgb8, linear_to_srgb, linear_to_srgb8, srgb_to_linear, unit_to_u8};
 pub use file::{AtomicFile, WriteError, write_atomically};
 pub use png::{Compression, encode_png, write_png};

@@ -24,6 +24,7 @@
 //! [`SceneDocument`] writes a scene file from plain values, for code that makes scenes.
 //! Angles are degrees in scene files.
 
+mod animation;
 mod document;
 mod error;
 mod load;
@@ -35,6 +36,7 @@ use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+pub use animation::{Animation, CameraSpec, Ease, Key, MAX_FPS, MAX_FRAMES};
 pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
@@ -166,7 +168,7 @@ impl Scene {
     pub fn load_timed(path: &Path, options: LoadOptions) -> Result<(Scene, LoadTimes), SceneError> {
         let started = Instant::now();
         let text = read_scene_file(path)?;
-        let (scene, build) = load::parse(&text, path, options)?;
+        let (scene, _animation, build) = load::parse(&text, path, options)?;
         Ok((
             scene,
             LoadTimes {
@@ -189,7 +191,7 @@ impl Scene {
     ) -> Result<(Scene, LoadTimes), SceneError> {
         let started = Instant::now();
         let text = read_scene_text(reader, path)?;
-        let (scene, build) = load::parse(&text, path, options)?;
+        let (scene, _animation, build) = load::parse(&text, path, options)?;
         Ok((
             scene,
             LoadTimes {
@@ -216,6 +218,46 @@ impl Scene {
         Self::parse_timed(text, path, options).map(|(scene, _)| scene)
     }
 
+    /// Loads the scene file at `path` like [`Scene::load_with`], with its `animation:`
+    /// section when it has one (checked either way: a scene with a bad animation does not
+    /// load).
+    ///
+    /// # Errors
+    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
+    pub fn load_animated(
+        path: &Path,
+        options: LoadOptions,
+    ) -> Result<(Scene, Option<Animation>), SceneError> {
+        let text = read_scene_file(path)?;
+        Self::parse_animated(&text, path, options)
+    }
+
+    /// Reads a scene from `reader` like [`Scene::read_timed`], with its animation.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if the text cannot be read or is not a valid scene.
+    pub fn read_animated(
+        reader: impl Read,
+        path: &Path,
+        options: LoadOptions,
+    ) -> Result<(Scene, Option<Animation>), SceneError> {
+        let text = read_scene_text(reader, path)?;
+        Self::parse_animated(&text, path, options)
+    }
+
+    /// Parses the scene `text` like [`Scene::parse_with`], with its animation.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if `text` is not a valid scene.
+    pub fn parse_animated(
+        text: &str,
+        path: &Path,
+        options: LoadOptions,
+    ) -> Result<(Scene, Option<Animation>), SceneError> {
+        let (scene, animation, _) = load::parse(text, path, options)?;
+        Ok((scene, animation))
+    }
+
     /// Parses the scene `text` like [`Scene::parse_with`], and says how long it took and
     /// how much of that was building BVHs.
     ///
@@ -227,7 +269,7 @@ impl Scene {
         options: LoadOptions,
     ) -> Result<(Scene, LoadTimes), SceneError> {
         let started = Instant::now();
-        let (scene, build) = load::parse(text, path, options)?;
+        let (scene, _animation, build) = load::parse(text, path, options)?;
         Ok((
             scene,
             LoadTimes {

@@ -16,13 +16,16 @@ use viewray_camera::{
 
 use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
 
+use crate::animation::{CameraDef, MAX_FPS, MAX_FRAMES};
 use crate::mesh::MeshCache;
 use crate::schema::{
-    ExplicitCamera, ImageDef, LightDef, MaterialDef, ObjectDef, PresetDef, ProjectionDef, Scale,
-    SceneFile, SensorFitDef, ShadingDef, Specular, TransformDef, V2, V3,
+    AnimationDef, EaseDef, ExplicitCamera, ImageDef, KeyDef, LightDef, MaterialDef, ObjectDef,
+    PresetDef, ProjectionDef, Scale, SceneFile, SensorFitDef, ShadingDef, Specular, TransformDef,
+    V2, V3,
 };
 use crate::{
-    Grid, Light, Material, ObjectMaterial, Position, Scene, SceneError, SceneParts, Shading,
+    Animation, CameraSpec, Ease, Grid, Key, Light, Material, ObjectMaterial, Position, Scene,
+    SceneError, SceneParts, Shading,
 };
 
 /// The largest image side viewray renders.
@@ -125,7 +128,7 @@ pub(crate) fn parse(
     text: &str,
     path: &Path,
     options: LoadOptions,
-) -> Result<(Scene, Duration), SceneError> {
+) -> Result<(Scene, Option<Animation>, Duration), SceneError> {
     // Windows editors may begin a UTF-8 file with a byte-order mark; it is not part of
     // the scene, and columns are counted as an editor shows them, without it.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -155,6 +158,10 @@ pub(crate) fn parse(
 
     let camera_origin = loader.lines.origin_of(file.camera.get_ron());
     let camera = parse_camera(file.camera, camera_origin, path, width, height)?;
+    let animation = match file.animation {
+        Some(raw) => Some(parse_animation(raw, &loader.lines, path, width, height)?),
+        None => None,
+    };
 
     let background = color(file.background)
         .map_err(|m| SceneError::at(path, None, format!("background: {m}")))?;
@@ -302,7 +309,7 @@ pub(crate) fn parse(
         object_materials,
     })
     .map_err(|e| SceneError::at(path, None, e.to_string()))?;
-    Ok((scene, build_time))
+    Ok((scene, animation, build_time))
 }
 
 /// Parses the values kept as raw text, placing their errors in the file.
@@ -545,21 +552,132 @@ fn parse_camera(
     width: u32,
     height: u32,
 ) -> Result<Camera, SceneError> {
-    let text = raw.get_ron();
     let camera_error = |message: String| {
         SceneError::at(path, Some(origin.position()), format!("camera: {message}"))
     };
-    if skip_whitespace_and_comments(text).starts_with('(') {
-        let def: ExplicitCamera = ron_options()
-            .from_str(text)
-            .map_err(|e| ron_error(path, text, origin, &e))?;
-        explicit_camera(&def, width, height).map_err(camera_error)
+    parse_camera_spec(raw, origin, path)?
+        .camera(width, height)
+        .map_err(camera_error)
+}
+
+/// Parses a camera as written, an explicit `( .. )` or a preset `Name( .. )`, without
+/// building it.
+fn parse_camera_spec(
+    raw: &RawValue,
+    origin: Origin,
+    path: &Path,
+) -> Result<CameraSpec, SceneError> {
+    let text = raw.get_ron();
+    let def = if skip_whitespace_and_comments(text).starts_with('(') {
+        CameraDef::Explicit(Box::new(
+            ron_options()
+                .from_str(text)
+                .map_err(|e| ron_error(path, text, origin, &e))?,
+        ))
     } else {
-        let def: PresetDef = ron_options()
-            .from_str(text)
-            .map_err(|e| ron_error(path, text, origin, &e))?;
-        preset_camera(&def, width, height).map_err(camera_error)
+        CameraDef::Preset(
+            ron_options()
+                .from_str(text)
+                .map_err(|e| ron_error(path, text, origin, &e))?,
+        )
+    };
+    Ok(CameraSpec(def))
+}
+
+/// Parses and checks the `animation:` section (`raw`, a slice of the file `lines` index): the
+/// frame count and rate, the keys' times (in `[0, 1]`, strictly increasing), and their
+/// cameras, each valid for a `width x height` image and written like its neighbours so
+/// that the two can be mixed.
+fn parse_animation(
+    raw: &RawValue,
+    lines: &LineIndex<'_>,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<Animation, SceneError> {
+    let origin = lines.origin_of(raw.get_ron());
+    let def: AnimationDef<'_> = ron_options()
+        .from_str(raw.get_ron())
+        .map_err(|e| ron_error(path, raw.get_ron(), origin, &e))?;
+    let error = |at: Origin, message: String| {
+        SceneError::at(path, Some(at.position()), format!("animation: {message}"))
+    };
+    if def.frames == 0 || def.frames > MAX_FRAMES {
+        return Err(error(
+            origin,
+            format!(
+                "frames must be between 1 and {MAX_FRAMES}, found {}",
+                def.frames
+            ),
+        ));
     }
+    if def.fps == 0 || def.fps > MAX_FPS {
+        return Err(error(
+            origin,
+            format!("fps must be between 1 and {MAX_FPS}, found {}", def.fps),
+        ));
+    }
+    if def.keys.is_empty() {
+        return Err(error(
+            origin,
+            "no keys: give at least one, `keys: [(t: 0.0, camera: (..)), (t: 1.0, camera: \
+             (..))]`"
+                .to_owned(),
+        ));
+    }
+    let mut keys: Vec<Key> = Vec::with_capacity(def.keys.len());
+    for (index, raw_key) in def.keys.iter().enumerate() {
+        let at = lines.origin_of(raw_key.get_ron());
+        let key: KeyDef<'_> = ron_options()
+            .from_str(raw_key.get_ron())
+            .map_err(|e| ron_error(path, raw_key.get_ron(), at, &e))?;
+        let camera_origin = lines.origin_of(key.camera.get_ron());
+        let number = index + 1;
+        if !(0.0..=1.0).contains(&key.t) {
+            return Err(error(
+                at,
+                format!("key {number}: t must be between 0 and 1, found {}", key.t),
+            ));
+        }
+        if let Some(previous) = keys.last()
+            && key.t <= previous.t
+        {
+            return Err(error(
+                at,
+                format!(
+                    "key {number}: times must increase from key to key, but t = {} follows \
+                     t = {}",
+                    key.t, previous.t
+                ),
+            ));
+        }
+        let camera = parse_camera_spec(key.camera, camera_origin, path)?;
+        camera
+            .camera(width, height)
+            .map_err(|m| error(at, format!("key {number}: camera: {m}")))?;
+        if let Some(previous) = keys.last() {
+            previous
+                .camera
+                .mix(&camera, 0.5)
+                .map_err(|m| error(at, format!("key {number}: {m}")))?;
+        }
+        keys.push(Key {
+            t: key.t,
+            camera,
+            position: at.position(),
+        });
+    }
+    Ok(Animation {
+        frames: def.frames,
+        fps: def.fps,
+        ease: match def.ease {
+            EaseDef::Linear => Ease::Linear,
+            EaseDef::InOut => Ease::InOut,
+        },
+        keys,
+        path: path.to_path_buf(),
+        position: origin.position(),
+    })
 }
 
 fn skip_whitespace_and_comments(mut text: &str) -> &str {
@@ -583,7 +701,11 @@ fn v2((x, y): V2) -> DVec2 {
     DVec2::new(x, y)
 }
 
-fn explicit_camera(def: &ExplicitCamera, width: u32, height: u32) -> Result<Camera, String> {
+pub(crate) fn explicit_camera(
+    def: &ExplicitCamera,
+    width: u32,
+    height: u32,
+) -> Result<Camera, String> {
     let eye = v3(def.eye);
     let up = v3(def.up);
     let frame = match (def.look_at, def.view) {
@@ -826,7 +948,7 @@ fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
     })
 }
 
-fn preset_camera(def: &PresetDef, width: u32, height: u32) -> Result<Camera, String> {
+pub(crate) fn preset_camera(def: &PresetDef, width: u32, height: u32) -> Result<Camera, String> {
     let (preset, target, size) = match *def {
         PresetDef::Front { target, size } => (Preset::Front, target, size),
         PresetDef::Top { target, size } => (Preset::Top, target, size),

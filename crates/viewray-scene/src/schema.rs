@@ -36,6 +36,50 @@ pub(crate) struct SceneFile<'a> {
     pub(crate) lights: Vec<&'a RawValue>,
     #[serde(default, borrow)]
     pub(crate) objects: Vec<&'a RawValue>,
+    /// Parsed in a second step (see [`AnimationDef`]).
+    #[serde(default, borrow)]
+    pub(crate) animation: Option<&'a RawValue>,
+}
+
+/// `animation: (frames: 48, fps: 24, ease: InOut, keys: [(t: 0.0, camera: (..)), ..])`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "animation")]
+pub(crate) struct AnimationDef<'a> {
+    #[serde(default = "default_frames")]
+    pub(crate) frames: u32,
+    #[serde(default = "default_fps")]
+    pub(crate) fps: u32,
+    #[serde(default)]
+    pub(crate) ease: EaseDef,
+    /// Each parsed in a second step, so that its errors can point at it.
+    #[serde(borrow)]
+    pub(crate) keys: Vec<&'a RawValue>,
+}
+
+fn default_frames() -> u32 {
+    48
+}
+
+fn default_fps() -> u32 {
+    24
+}
+
+/// `ease: Linear | InOut`.
+#[derive(Deserialize, Default, Clone, Copy)]
+#[serde(rename = "ease")]
+pub(crate) enum EaseDef {
+    #[default]
+    Linear,
+    InOut,
+}
+
+/// `(t: 0.5, camera: ( .. ))`: a whole camera, as the scene's `camera:` value is written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename = "key")]
+pub(crate) struct KeyDef<'a> {
+    pub(crate) t: f64,
+    #[serde(borrow)]
+    pub(crate) camera: &'a RawValue,
 }
 
 /// `shading: Flat | Normals | Depth | Lit`.
@@ -176,7 +220,7 @@ impl Default for ImageDef {
 }
 
 /// `camera: (eye: .., look_at: .. | view: .., up: .., projection: ..)`.
-#[derive(Deserialize)]
+#[derive(Deserialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields, rename = "camera")]
 pub(crate) struct ExplicitCamera {
     pub(crate) eye: V3,
@@ -194,7 +238,7 @@ fn default_up() -> V3 {
 }
 
 /// `fit: Auto | Horizontal | Vertical`, as Blender's sensor fit.
-#[derive(Deserialize, Clone, Copy)]
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
 #[serde(rename = "fit")]
 pub(crate) enum SensorFitDef {
     Auto,
@@ -204,7 +248,7 @@ pub(crate) enum SensorFitDef {
 
 /// `projection: Perspective(..) | ThinLens(..) | Orthographic(..) | Oblique(..) |
 /// Equirectangular | Fisheye(..)`.
-#[derive(Deserialize)]
+#[derive(Deserialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields, rename = "projection")]
 pub(crate) enum ProjectionDef {
     Perspective {
@@ -291,7 +335,7 @@ fn default_oblique_angle() -> f64 {
 }
 
 /// `camera: Isometric(target: (0, 0, 0), size: 4)` and the other taxonomy presets.
-#[derive(Deserialize)]
+#[derive(Deserialize, Clone, Debug, PartialEq)]
 #[serde(deny_unknown_fields, rename = "camera preset")]
 pub(crate) enum PresetDef {
     Front {

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use glam::{DVec2, DVec3};
 use viewray_render::ImageFormat;
-use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+use viewray_scene::{MAX_FPS, MAX_FRAMES, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// The conventions, after the help of the commands that print numbers. Each line fits
 /// in 80 columns, so that clap does not rewrap it.
@@ -56,6 +56,18 @@ pub(crate) enum Command {
     /// scene --default` prints it). The image is the same, byte for byte, on any number
     /// of threads. A progress bar is shown on stderr when it is a terminal.
     Render(RenderArgs),
+    /// Render an animation to a looping GIF, an animated PNG or numbered PNG frames.
+    ///
+    /// SCENE is a scene file with an `animation:` section (keyframed cameras, see the
+    /// scene format's docs); --demo NAME renders one of the lecture's moving
+    /// demonstrations on its built-in scene instead (--list names them). The output's
+    /// name says the format: OUT.gif (a looping GIF, one palette for every frame),
+    /// OUT.png (a looping animated PNG, lossless) or DIR/ (DIR/frame_0000.png, ...),
+    /// written atomically. --with-diagram puts the side view of each frame's camera
+    /// (frustum, image plane, a few rays) beside its picture. A frame's pixels depend
+    /// only on the scene and its number. A progress bar over the frames is shown on
+    /// stderr when it is a terminal.
+    Animate(AnimateArgs),
     /// Print the camera frame e, u, v, w of a scene, or of eye, view and up
     ///
     ///     e = eye,  w = -view/|view|,  u = (up x w)/|up x w|,  v = w x u
@@ -259,6 +271,51 @@ pub(crate) struct RenderArgs {
 }
 
 #[derive(Args, Debug)]
+pub(crate) struct AnimateArgs {
+    /// The scene file to animate (it needs an `animation:` section), or - to read it from
+    /// standard input.
+    #[arg(value_name = "SCENE", conflicts_with_all = ["demo", "list"],
+          required_unless_present_any = ["demo", "list"])]
+    pub(crate) scene: Option<PathBuf>,
+    /// Where to write: OUT.gif (looping GIF), OUT.png (animated PNG) or DIR/ (numbered
+    /// PNG frames, DIR/frame_0000.png, ...).
+    #[arg(short, long, value_name = "OUT", default_value = "viewray.gif")]
+    pub(crate) output: PathBuf,
+    /// Animate one of the lecture's demonstrations on its built-in scene.
+    #[arg(long, value_name = "NAME", conflicts_with = "list",
+          value_parser = clap::builder::PossibleValuesParser::new(viewray_animation::demo_names()))]
+    pub(crate) demo: Option<String>,
+    /// List the demonstrations, one line each, and exit.
+    #[arg(long)]
+    pub(crate) list: bool,
+    /// How many frames, instead of the animation's (1 to 10000).
+    #[arg(long, value_name = "N", value_parser = parse_frames)]
+    pub(crate) frames: Option<u32>,
+    /// Frames per second, instead of the animation's (1 to 100; a GIF plays at most 50).
+    #[arg(long, value_name = "N", value_parser = parse_fps)]
+    pub(crate) fps: Option<u32>,
+    /// The size of each picture as WIDTHxHEIGHT, instead of the scene's; fields of view
+    /// and presets follow the new aspect ratio, as for `render`.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// Samples per pixel, instead of the scene's.
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub(crate) samples: Option<u32>,
+    /// Put the side view of each frame's camera beside its picture.
+    #[arg(long)]
+    pub(crate) with_diagram: bool,
+    /// How many threads to render on (default: one per core).
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub(crate) threads: Option<usize>,
+    /// Print one JSON line of statistics on stdout:
+    /// {"frames":N,"width":W,"height":H,"render_s":..,"encode_s":..}. render_s is
+    /// rendering and laying out the frames; encode_s is choosing the palette, encoding
+    /// and writing them.
+    #[arg(long)]
+    pub(crate) stats: bool,
+}
+
+#[derive(Args, Debug)]
 #[command(after_help = CONVENTIONS)]
 pub(crate) struct FrameArgs {
     /// A scene file (or - for standard input) whose camera's frame to print, instead of
@@ -420,6 +477,26 @@ fn parse_samples(text: &str) -> Result<u32, String> {
     let samples: u64 = text.trim().parse().map_err(|_| wrong())?;
     match u32::try_from(samples) {
         Ok(samples) if (1..=MAX_SAMPLES).contains(&samples) => Ok(samples),
+        _ => Err(wrong()),
+    }
+}
+
+/// Parses a number of frames, 1 to [`MAX_FRAMES`].
+fn parse_frames(text: &str) -> Result<u32, String> {
+    let wrong = || format!("expected a whole number of frames from 1 to {MAX_FRAMES}");
+    let frames: u64 = text.trim().parse().map_err(|_| wrong())?;
+    match u32::try_from(frames) {
+        Ok(frames) if (1..=MAX_FRAMES).contains(&frames) => Ok(frames),
+        _ => Err(wrong()),
+    }
+}
+
+/// Parses a number of frames per second, 1 to [`MAX_FPS`].
+fn parse_fps(text: &str) -> Result<u32, String> {
+    let wrong = || format!("expected a whole number of frames per second from 1 to {MAX_FPS}");
+    let fps: u64 = text.trim().parse().map_err(|_| wrong())?;
+    match u32::try_from(fps) {
+        Ok(fps) if (1..=MAX_FPS).contains(&fps) => Ok(fps),
         _ => Err(wrong()),
     }
 }
@@ -709,6 +786,14 @@ mod tests {
         assert_eq!(parse_samples("16"), Ok(16));
         for bad in ["0", "-1", "65537", "99999999999", "x"] {
             assert!(parse_samples(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_frames("48"), Ok(48));
+        for bad in ["0", "10001", "-3", "2.5", "x"] {
+            assert!(parse_frames(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_fps("24"), Ok(24));
+        for bad in ["0", "101", "24.0"] {
+            assert!(parse_fps(bad).is_err(), "{bad}");
         }
         assert_eq!(parse_threads("2"), Ok(2));
         assert!(parse_threads("0").is_err());

@@ -56,8 +56,14 @@ pub(crate) fn export(args: &ExportArgs) -> Result<()> {
         .file_name()
         .and_then(|n| n.to_str())
         .context("the output needs a file name")?;
-    let export = viewray_interop::export(&scene, args.to, file_name)
-        .map_err(|e| anyhow!("{}: cannot export for {e}", args.scene.display()))?;
+    let export = viewray_interop::export(&scene, args.to, file_name).map_err(|e| {
+        anyhow!(
+            "{}: cannot export to {}, which {}",
+            args.scene.display(),
+            e.target(),
+            e.lacks()
+        )
+    })?;
     let folder = match args.output.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
         _ => PathBuf::from("."),

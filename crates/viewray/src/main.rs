@@ -12,6 +12,7 @@
 //! internal error. A closed standard output (`viewray rays scene.ron | head`) ends the
 //! command quietly with 0.
 
+mod animate;
 mod cli;
 mod commands;
 mod compare;
@@ -19,6 +20,7 @@ mod diagram;
 mod figures;
 mod input;
 mod interop;
+mod output;
 mod render;
 mod serve;
 mod style;
@@ -46,6 +48,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Render(args) => render::render(&args),
+        Command::Animate(args) => animate::animate(&args),
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),

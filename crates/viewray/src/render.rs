@@ -1,20 +1,18 @@
 //! `viewray render`: load a scene, render it, write the image atomically to a file or to
 //! standard output.
 
-use std::io::{BufWriter, Cursor, IsTerminal, Write};
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::io::{Cursor, IsTerminal, Write};
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use viewray_camera::{Camera, Projection};
-use viewray_output::AtomicFile;
 use viewray_render::{Image, ImageFormat, RenderSettings};
 use viewray_scene::LoadOptions;
 
 use crate::cli::{RenderArgs, is_standard_stream, usage_error};
+use crate::output::Output;
 use crate::style;
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
@@ -35,7 +33,7 @@ pub(crate) fn render(args: &RenderArgs) -> Result<()> {
 
 /// Where the image goes: a file written atomically, or standard output.
 enum Destination {
-    File(OutputFile),
+    File(Output),
     Stdout,
 }
 
@@ -94,7 +92,7 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
     } else {
         // Open the output's temporary file first, so that an unwritable path fails before
         // a long render rather than after it (Ctrl-C deletes it from then on).
-        Destination::File(OutputFile::create(&args.output)?)
+        Destination::File(Output::file(&args.output)?)
     };
 
     // Load the scene (this builds its BVHs too).
@@ -172,7 +170,7 @@ fn write_to_stdout(image: &Image, format: ImageFormat) -> Result<()> {
 /// The warning for `--size` making the pixels of an explicit viewport non-square (a
 /// field of view or a preset follows the new aspect ratio; a viewport stays as written,
 /// and the picture is stretched). `None` when the pixels are square.
-fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> Option<String> {
+pub(crate) fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> Option<String> {
     let viewport = camera.projection().viewport()?;
     let image_aspect = f64::from(width) / f64::from(height);
     let viewport_aspect = viewport.x / viewport.y;
@@ -210,12 +208,12 @@ fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> Option<Stri
 }
 
 /// A duration in seconds, to the microsecond.
-fn seconds(duration: Duration) -> f64 {
+pub(crate) fn seconds(duration: Duration) -> f64 {
     (duration.as_secs_f64() * 1e6).round() / 1e6
 }
 
 /// A progress bar on stderr, or a hidden one when stderr is not a terminal.
-fn progress_bar(interactive: bool) -> ProgressBar {
+pub(crate) fn progress_bar(interactive: bool) -> ProgressBar {
     if !interactive {
         return ProgressBar::hidden();
     }
@@ -262,117 +260,17 @@ fn check_memory_against(
     Ok(())
 }
 
-fn gib(bytes: u64) -> f64 {
+pub(crate) fn gib(bytes: u64) -> f64 {
     bytes as f64 / f64::from(1u32 << 30)
 }
 
 /// The memory the system can give this process without swapping (Linux's
 /// `MemAvailable`); `None` where the system does not say.
-fn available_memory() -> Option<u64> {
+pub(crate) fn available_memory() -> Option<u64> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-/// The output file, written atomically (viewray-output's [`AtomicFile`]: a temporary file
-/// beside it, renamed into place only when complete), and what Ctrl-C does to it.
-///
-/// Until the rename the path keeps what it held. On Ctrl-C the temporary file is deleted
-/// and the command exits with 130 (the shell's code for SIGINT), saying so on stderr. The
-/// handler is installed before the temporary file is created, and the file is handed to
-/// it under the same lock it takes: once the temporary file exists, Ctrl-C removes it.
-struct OutputFile {
-    path: PathBuf,
-    state: Arc<Mutex<OutputState>>,
-}
-
-/// Where the output file stands, as the Ctrl-C handler sees it.
-enum OutputState {
-    /// The temporary file is being created.
-    Opening,
-    /// The temporary file exists and the render is under way.
-    Pending(AtomicFile),
-    /// Written, or given up after an error: nothing left to clean up.
-    Finished,
-}
-
-impl OutputFile {
-    /// Installs the Ctrl-C handler, then creates the temporary file in the folder of
-    /// `path`.
-    fn create(path: &Path) -> Result<Self> {
-        let state = Arc::new(Mutex::new(OutputState::Opening));
-        // Held until the file is in `state`: a Ctrl-C meanwhile waits for it.
-        let mut opening = lock(&state);
-        remove_on_interrupt(Arc::clone(&state), path);
-        *opening = match AtomicFile::create(path) {
-            Ok(file) => OutputState::Pending(file),
-            Err(error) => {
-                *opening = OutputState::Finished;
-                return Err(error.into());
-            }
-        };
-        drop(opening);
-        Ok(Self {
-            path: path.to_owned(),
-            state,
-        })
-    }
-
-    /// Writes the contents with `write` and moves the finished file into place. Ctrl-C
-    /// meanwhile waits until the file is in place (or given up).
-    fn write_and_commit(
-        self,
-        write: impl FnOnce(&mut BufWriter<&mut AtomicFile>) -> Result<()>,
-    ) -> Result<()> {
-        let cannot = || format!("cannot write {}", self.path.display());
-        let mut state = lock(&self.state);
-        let OutputState::Pending(mut file) = std::mem::replace(&mut *state, OutputState::Finished)
-        else {
-            bail!(
-                "cannot write {}: the output was not open",
-                self.path.display()
-            );
-        };
-        let mut out = BufWriter::new(&mut file);
-        write(&mut out).with_context(cannot)?;
-        out.flush().with_context(cannot)?;
-        drop(out);
-        file.commit()?;
-        Ok(())
-    }
-}
-
-impl Drop for OutputFile {
-    /// An output dropped before it was written (a bad scene, a failed render) deletes its
-    /// temporary file: the Ctrl-C handler keeps the state alive, so this cannot wait for
-    /// the last reference.
-    fn drop(&mut self) {
-        let mut state = lock(&self.state);
-        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
-            let _ = file.discard();
-        }
-    }
-}
-
-/// The state, even if a thread panicked while holding it (the handler must still run).
-fn lock(state: &Mutex<OutputState>) -> MutexGuard<'_, OutputState> {
-    state.lock().unwrap_or_else(PoisonError::into_inner)
-}
-
-/// On Ctrl-C, deletes the unfinished temporary file and exits with 130: the output path
-/// keeps what it held, and no stray file is left beside it.
-fn remove_on_interrupt(state: Arc<Mutex<OutputState>>, output: &Path) {
-    let output = output.to_owned();
-    // Only a second handler fails to install, and a process renders once.
-    let _ = ctrlc::set_handler(move || {
-        let mut state = lock(&state);
-        if let OutputState::Pending(file) = std::mem::replace(&mut *state, OutputState::Finished) {
-            let _ = file.discard();
-            eprintln!("interrupted: {} was not written", output.display());
-        }
-        std::process::exit(130);
-    });
 }
 
 #[cfg(test)]

@@ -378,6 +378,7 @@ fn help_of_every_command_at_80_columns() {
     let mut commands = vec![vec!["--help"]];
     for name in [
         "render",
+        "animate",
         "frame",
         "rays",
         "project",

@@ -66,7 +66,9 @@ fn a_camera_the_tool_cannot_express_is_refused_and_nothing_is_written() {
         out.to_str().unwrap(),
     ]);
     assert!(
-        line.contains("oblique_cabinet.ron: cannot export for Mitsuba 3 has no oblique camera"),
+        line.contains(
+            "oblique_cabinet.ron: cannot export to Mitsuba 3, which has no oblique camera"
+        ),
         "{line}"
     );
     assert_eq!(files_in(dir.path()), Vec::<String>::new());
@@ -79,7 +81,10 @@ fn a_camera_the_tool_cannot_express_is_refused_and_nothing_is_written() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(line.contains("glTF has no shift"), "{line}");
+    assert!(
+        line.contains("cannot export to glTF, which has no shift"),
+        "{line}"
+    );
     assert_eq!(files_in(dir.path()), Vec::<String>::new());
 }
 

@@ -476,11 +476,21 @@ fn a_class_of_laptops_is_answered_or_told_to_retry_and_nothing_leaks() {
         "{answered} answered, {busy} busy"
     );
     assert_eq!(served.get("/api/render?width=32&height=18").status, 200);
-    if let (Some(one), Some(two)) = (after_one, settled_threads(pid)) {
-        assert!(
-            two <= one,
-            "{two} threads after two classes, {one} after one"
-        );
+    // Idle connection threads end a while after their last request, later on a busy
+    // machine: a leak is a count that never falls back, however long one waits.
+    if let Some(one) = after_one {
+        let deadline = Instant::now() + Duration::from_secs(90);
+        let mut two = threads(pid);
+        while two.is_some_and(|two| two > one) && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(250));
+            two = threads(pid);
+        }
+        if let Some(two) = two {
+            assert!(
+                two <= one,
+                "{two} threads after two classes, {one} after one"
+            );
+        }
     }
 }
 

@@ -1,0 +1,278 @@
+//! `viewray animate`: a scene file's animation or a built-in demo, rendered frame by frame
+//! into a looping GIF, an animated PNG or a folder of numbered PNGs, atomically.
+
+use std::io::{BufWriter, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow, bail};
+use serde_json::json;
+use viewray_animation::{
+    Movie, MovieSettings, all_demos, demo_by_name, write_apng, write_frames, write_gif,
+};
+use viewray_output::{Compression, MAX_GIF_SIDE};
+use viewray_render::RenderSettings;
+use viewray_scene::{LoadOptions, Scene};
+
+use crate::cli::{AnimateArgs, is_standard_stream};
+use crate::output::Output;
+use crate::render::{available_memory, gib, progress_bar, seconds, stretched_pixels};
+use crate::style;
+
+/// `viewray animate`.
+pub(crate) fn animate(args: &AnimateArgs) -> Result<()> {
+    if args.list {
+        return list();
+    }
+    match args.threads {
+        None => animate_on_current_pool(args),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("viewray-{i}"))
+            .build()
+            .map_err(|error| anyhow!("cannot start {threads} threads: {error}"))?
+            .install(|| animate_on_current_pool(args)),
+    }
+}
+
+/// `--list`: each demo's name and what it shows, one line each.
+fn list() -> Result<()> {
+    let demos = all_demos();
+    let width = demos.iter().map(|d| d.name.len()).max().unwrap_or(0);
+    let mut out = std::io::stdout().lock();
+    for demo in demos {
+        writeln!(out, "{:width$}  {}", demo.name, demo.summary)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// What the output's name asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Gif,
+    Apng,
+    Folder,
+}
+
+fn output_format(path: &Path) -> Result<Format> {
+    if is_standard_stream(path) {
+        bail!(
+            "cannot write an animation to standard output: give a .gif, a .png or a folder \
+             ending in /"
+        );
+    }
+    let text = path.to_string_lossy();
+    if text.ends_with('/') || text.ends_with(std::path::MAIN_SEPARATOR) || path.is_dir() {
+        return Ok(Format::Folder);
+    }
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+    {
+        Some(e) if e == "gif" => Ok(Format::Gif),
+        Some(e) if e == "png" => Ok(Format::Apng),
+        _ => bail!(
+            "cannot write {}: the output must be a .gif (a looping GIF), a .png (an animated \
+             PNG) or a folder ending in / (numbered PNG frames)",
+            path.display()
+        ),
+    }
+}
+
+fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
+    let format = output_format(&args.output)?;
+    let options = LoadOptions {
+        size: args.size,
+        samples: args.samples,
+    };
+    let settings = MovieSettings {
+        frames: args.frames,
+        fps: args.fps,
+        with_diagram: args.with_diagram,
+    };
+    let movie = match (&args.demo, &args.scene) {
+        (Some(name), _) => Movie::from_demo(&demo_by_name(name)?, options, settings)?,
+        (None, Some(path)) => {
+            let (scene, animation, name) = load_animated(path, options)?;
+            let animation = animation.ok_or_else(|| {
+                anyhow!(
+                    "{name}: the scene has no `animation:` section: add one (keys of cameras \
+                     at times in [0, 1], as docs/scene-format.md describes) or animate a \
+                     built-in demo (`viewray animate --list`)"
+                )
+            })?;
+            if let Some(size) = args.size
+                && let Some(warning) = stretched_pixels(scene.camera(), size)
+            {
+                style::warning(warning);
+            }
+            Movie::from_animation(scene, &animation, settings)?
+        }
+        (None, None) => bail!("give a SCENE with an animation, or --demo NAME"),
+    };
+    let (width, height) = movie.frame_size();
+    if format == Format::Gif && (width > MAX_GIF_SIDE || height > MAX_GIF_SIDE) {
+        bail!(
+            "a GIF is at most {MAX_GIF_SIDE} pixels a side, but the frames are {width} x \
+             {height}: write an animated PNG (.png) or a folder instead"
+        );
+    }
+    check_memory(width, height, available_memory())?;
+
+    // Open the output first, so that an unwritable path fails before a long render
+    // (Ctrl-C deletes it from then on).
+    let output = match format {
+        Format::Folder => Output::folder(&args.output)?,
+        Format::Gif | Format::Apng => {
+            if args.output.is_dir() {
+                bail!("cannot write {}: it is a directory", args.output.display());
+            }
+            Output::file(&args.output)?
+        }
+    };
+    let interactive = std::io::stderr().is_terminal();
+    let bar = progress_bar(interactive);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "animating {wide_bar} frame {pos}/{len} {elapsed} (eta {eta})",
+    ) {
+        bar.set_style(style);
+    }
+    bar.set_length(u64::from(movie.frames()));
+    let settings = RenderSettings::default();
+    let on_frame = || bar.inc(1);
+    let cannot = || format!("cannot write {}", args.output.display());
+    let timings = match format {
+        Format::Gif => {
+            let out = BufWriter::new(output.writer());
+            let (_, timings) = write_gif(&movie, out, &settings, on_frame).with_context(cannot)?;
+            timings
+        }
+        Format::Apng => {
+            let out = BufWriter::new(output.writer());
+            write_apng(&movie, out, &settings, on_frame).with_context(cannot)?
+        }
+        Format::Folder => {
+            let folder = output.temporary_folder()?;
+            write_frames(&movie, &settings, on_frame, |k, frame| {
+                let png = viewray_output::encode_png(frame, Compression::Balanced)?;
+                viewray_output::write_atomically(folder.join(frame_name(k)), &png)?;
+                Ok(())
+            })
+            .with_context(cannot)?
+        }
+    };
+    let started = Instant::now();
+    output.commit(is_frame_name)?;
+    let (render_time, encode_time) = (timings.render, timings.encode + started.elapsed());
+    bar.finish_and_clear();
+
+    if interactive {
+        eprintln!(
+            "wrote {}: {} frames, {width} x {height}, {} fps; rendered in {:.1} s, encoded in \
+             {:.1} s",
+            args.output.display(),
+            movie.frames(),
+            movie.fps(),
+            render_time.as_secs_f64(),
+            encode_time.as_secs_f64()
+        );
+    }
+    if args.stats {
+        let line = json!({
+            "frames": movie.frames(),
+            "width": width,
+            "height": height,
+            "render_s": seconds(render_time),
+            "encode_s": seconds(encode_time),
+        });
+        let mut out = std::io::stdout().lock();
+        viewray_json::write_line(&mut out, &line)?;
+        out.flush()?;
+    }
+    Ok(())
+}
+
+/// Loads an animated scene from a file or standard input; returns it with the name it
+/// goes by in messages.
+fn load_animated(
+    path: &Path,
+    options: LoadOptions,
+) -> Result<(Scene, Option<viewray_scene::Animation>, String)> {
+    if is_standard_stream(path) {
+        let name = PathBuf::from("<stdin>");
+        let (scene, animation) = Scene::read_animated(std::io::stdin().lock(), &name, options)?;
+        return Ok((scene, animation, name.display().to_string()));
+    }
+    let (scene, animation) = Scene::load_animated(path, options)?;
+    Ok((scene, animation, path.display().to_string()))
+}
+
+/// The file name of frame `k` in a folder: `frame_0000.png`.
+fn frame_name(k: u32) -> String {
+    format!("frame_{k:04}.png")
+}
+
+/// Whether `name` is a frame's file name (`frame_` and four or more digits, `.png`).
+fn is_frame_name(name: &str) -> bool {
+    name.strip_prefix("frame_")
+        .and_then(|rest| rest.strip_suffix(".png"))
+        .is_some_and(|digits| digits.len() >= 4 && digits.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Refuses frames whose buffers would not fit in the memory the machine has free: a
+/// frame is held as floats (12 bytes a pixel) while it renders and laid out in 8-bit RGBA
+/// twice (the pictures and the frame); a GIF keeps three frames for its palette and
+/// gives NeuQuant their pixels (4 bytes each): some 48 bytes a pixel in all.
+fn check_memory(width: u32, height: u32, available: Option<u64>) -> Result<()> {
+    let needed = u64::from(width) * u64::from(height) * 48;
+    if let Some(available) = available
+        && needed > available
+    {
+        bail!(
+            "frames of {width} x {height} need about {:.1} GiB of memory, but only {:.1} GiB \
+             is free",
+            gib(needed),
+            gib(available)
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outputs_are_told_apart_by_their_names() {
+        assert_eq!(output_format(Path::new("a.gif")).unwrap(), Format::Gif);
+        assert_eq!(output_format(Path::new("a.GIF")).unwrap(), Format::Gif);
+        assert_eq!(output_format(Path::new("a.png")).unwrap(), Format::Apng);
+        assert_eq!(output_format(Path::new("frames/")).unwrap(), Format::Folder);
+        assert!(output_format(Path::new("a.mp4")).is_err());
+        assert!(output_format(Path::new("-")).is_err());
+    }
+
+    #[test]
+    fn frame_files_are_numbered_from_zero_in_four_digits() {
+        assert_eq!(frame_name(0), "frame_0000.png");
+        assert_eq!(frame_name(9999), "frame_9999.png");
+        assert!(is_frame_name("frame_0042.png"));
+        assert!(!is_frame_name("frame_42.png"));
+        assert!(!is_frame_name("notes.txt"));
+    }
+
+    #[test]
+    fn frames_larger_than_free_memory_are_refused() {
+        let error = check_memory(4096, 4096, Some(1 << 29))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            error,
+            "frames of 4096 x 4096 need about 0.8 GiB of memory, but only 0.5 GiB is free"
+        );
+        assert!(check_memory(4096, 4096, Some(1 << 30)).is_ok());
+        assert!(check_memory(4096, 4096, None).is_ok());
+    }
+}
