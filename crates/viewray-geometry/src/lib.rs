@@ -66,6 +66,12 @@
 //!   a block repeats, are walked once. Packets whose unit directions spread more than
 //!   0.05 (random rays) are traced ray by ray. A packet's slab numbers are set up four
 //!   rays at a time, bit for bit as for single rays.
+//! - **Packets for shadow rays.** [`World::any_hits`] traces up to 64 rays of one octant
+//!   (a block's shadow rays toward one light) together: the packet's interval test walks
+//!   the top-level BVH once, each leaf goes to the rays whose own box test enters it,
+//!   and a ray that hits stops searching; every ray gets the answer [`World::any_hit`]
+//!   gives it. The numbers a packet is set up from (seven kilobytes) are reused from a
+//!   thread-local: zeroing them for each batch of shadow rays cost more than tracing it.
 //! - **Short cuts for simple worlds.** A world with one bounded object skips its
 //!   top-level BVH (whose one box only repeats the object's own first test), and an
 //!   instance with the identity transform does not carry rays into object space.
