@@ -339,7 +339,7 @@ fn render_on_current_pool(
 
     let shader = Shader::new(scene, view, settings.max_reflection_depth, depth_map);
     let spacing = 1.0 / f64::from(samples).sqrt();
-    let strata = Strata::new(samples);
+    let strata = Strata::new(samples).with_lens(view.camera.projection().has_lens());
     let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
     let traced = AtomicU64::new(0);

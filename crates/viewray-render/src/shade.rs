@@ -318,8 +318,10 @@ impl<'a> Shader<'a> {
             })
             .collect();
 
-        // Cast the shadow rays, light by light: `blocked[light * n + sample]`.
-        let mut blocked = vec![false; lights.len() * n];
+        // Cast the shadow rays, light by light; `lit[light * n + sample]` is what the
+        // light gives the sample, `None` where it is ambient, behind the surface or
+        // blocked.
+        let mut lit: Vec<Option<Lighting>> = vec![None; lights.len() * n];
         let mut shadow_rays = Vec::with_capacity(n);
         let mut shadow_samples = Vec::with_capacity(n);
         let mut answers = Vec::with_capacity(n);
@@ -332,18 +334,22 @@ impl<'a> Shader<'a> {
             };
             shadow_rays.clear();
             shadow_samples.clear();
+            let lit = &mut lit[k * n..(k + 1) * n];
             for (i, (sample, hit)) in samples.iter().zip(hits).enumerate() {
-                if let Some((ray, _)) = toward_light(light, sample.origin, hit.normal) {
+                if let Some((ray, lighting)) = toward_light(light, sample.origin, hit.normal) {
                     shadow_rays.push(ray);
                     shadow_samples.push(i);
+                    lit[i] = Some(lighting);
                 }
             }
             *count += shadow_rays.len() as u64;
             answers.clear();
             answers.resize(shadow_rays.len(), false);
             world.any_hits(&shadow_rays, t_range, &mut answers);
-            for (&i, &answer) in shadow_samples.iter().zip(&answers) {
-                blocked[k * n + i] = answer;
+            for (&i, &blocked) in shadow_samples.iter().zip(&answers) {
+                if blocked {
+                    lit[i] = None;
+                }
             }
         }
 
@@ -353,7 +359,7 @@ impl<'a> Shader<'a> {
                 material,
                 base,
                 view,
-                origin,
+                ..
             } = *sample;
             let n_shading = hit.shading_normal;
             let mut color = Vec3::ZERO;
@@ -368,12 +374,9 @@ impl<'a> Shader<'a> {
                     color += base * intensity;
                     continue;
                 }
-                let Some((_, lighting)) = toward_light(light, origin, hit.normal) else {
+                let Some(lighting) = lit[k * n + i] else {
                     continue;
                 };
-                if blocked[k * n + i] {
-                    continue;
-                }
                 color += match lighting {
                     Lighting::Point {
                         l,
