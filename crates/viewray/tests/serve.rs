@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use tempfile::TempDir;
-use viewray_diagram::SideViewCanvas;
+use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 use viewray_scene::{Scene, camera_text, parse_camera};
 
 mod support;
@@ -242,8 +242,14 @@ fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
     assert_eq!(response.status, 200);
     assert_eq!(response.header("content-type"), Some("image/svg+xml"));
     let camera = parse_camera(camera_ron, Path::new("camera"), 320, 180).unwrap();
-    let figure =
-        viewray_diagram::camera_side_view(&scene, &camera, Some((90, 100)), SideViewCanvas::Panel);
+    let window = SideWindow::fit(&scene, &[camera]);
+    let figure = side_view(
+        &scene,
+        &camera,
+        &window,
+        SideViewCanvas::Panel,
+        Some((90, 100)),
+    );
     let expected = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
     let got = response.text();
     if got != expected {
