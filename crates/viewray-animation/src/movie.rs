@@ -3,7 +3,7 @@
 use glam::Vec2;
 use image::{RgbImage, RgbaImage};
 use viewray_camera::Camera;
-use viewray_diagram::{SideWindow, side_view};
+use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 use viewray_draw::{Anchor, Baseline, Color, Figure, Item, Label, Rect, Sampling, raster};
 use viewray_render::{RenderError, RenderSettings, render};
 use viewray_scene::{Animation, LoadOptions, MAX_FPS, MAX_FRAMES, Scene, SceneError};
@@ -216,10 +216,15 @@ impl Movie {
             }
             x += width;
             if let Some((window, diagram_width)) = &self.diagram {
-                let diagram =
-                    side_view(&self.scene, &shot.camera, window, (*diagram_width, height));
+                let diagram = side_view(
+                    &self.scene,
+                    &shot.camera,
+                    window,
+                    SideViewCanvas::Beside,
+                    None,
+                );
                 figure.push(Item::Image {
-                    pixels: raster::render(&diagram),
+                    pixels: raster::render_scaled(&diagram, diagram_scale(height)),
                     rect: Rect::from_xywh(x as f32, 0.0, *diagram_width as f32, height as f32),
                     sampling: Sampling::Nearest,
                 });
@@ -240,9 +245,16 @@ fn rgba(rgb: &RgbImage) -> RgbaImage {
     image::DynamicImage::ImageRgb8(rgb.clone()).to_rgba8()
 }
 
-/// A side view's width beside a picture `height` pixels tall: 16:9, a slide's shape.
+/// How much a side view's canvas ([`SideViewCanvas::Beside`]) is scaled to stand beside
+/// a picture `height` pixels tall.
+fn diagram_scale(height: u32) -> f32 {
+    height as f32 / SideViewCanvas::Beside.size().1 as f32
+}
+
+/// A side view's width beside a picture `height` pixels tall: its canvas's (16:9) at
+/// [`diagram_scale`], rounded as `render_scaled` rounds it.
 fn diagram_width(height: u32) -> u32 {
-    (u64::from(height) * 16).div_ceil(9) as u32
+    (SideViewCanvas::Beside.size().0 as f32 * diagram_scale(height)).round() as u32
 }
 
 /// Writes `caption` over the top-left corner of `rect`, on a translucent white band so

@@ -1,6 +1,8 @@
 //! How long the instructor's judgement takes per pair of 320 x 240 renders: a correct
 //! one-sample render (a pass, which must need no transform search), and failures with and
-//! without a camera mistake to name.
+//! without a camera mistake to name; each with the reference prepared for the pair
+//! (`judge`, as `viewray compare` judges a pair) and prepared beforehand
+//! (`Reference::judge`, as `viewray grade` judges a class).
 //!
 //! `cargo bench -p viewray-compare --features bench`. The renders come from the planted
 //! mistakes of `tests/planted` (rendered once, before timing). Before criterion's wall
@@ -12,7 +14,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::Criterion;
-use viewray_compare::{InstructorThresholds, judge};
+use viewray_compare::{InstructorThresholds, Reference, judge};
 
 #[path = "../tests/planted/mod.rs"]
 mod planted;
@@ -78,8 +80,20 @@ fn main() {
                 cpu * 1e3
             );
         }
+        let prepared = Reference::new(reference.clone(), thresholds, None);
+        if let Some(cpu) = cpu_time_per_call(|| {
+            black_box(prepared.judge(&student));
+        }) {
+            println!(
+                "{name}: {:.1} ms of processor time per judgement against a prepared reference",
+                cpu * 1e3
+            );
+        }
         group.bench_function(name, |b| {
             b.iter(|| judge(black_box(&reference), black_box(&student), &thresholds))
+        });
+        group.bench_function(format!("{name}, prepared reference"), |b| {
+            b.iter(|| prepared.judge(black_box(&student)))
         });
     }
     group.finish();

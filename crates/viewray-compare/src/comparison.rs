@@ -6,6 +6,7 @@ use std::fmt;
 use image::{RgbImage, RgbaImage};
 
 use crate::diagnosis::Diagnosis;
+use crate::flip::ErrorMap;
 
 /// Which rules judged a comparison.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -135,9 +136,8 @@ pub struct Comparison {
     pub metrics: Option<Metrics>,
     /// The camera mistake that explains the difference, if one does (instructor mode).
     pub diagnosis: Option<Diagnosis>,
-    /// The FLIP error map in the magma colour map (black: no difference; pale yellow: the
-    /// largest); `None` when the sizes differ.
-    pub heatmap: Option<RgbImage>,
+    /// The FLIP error map, for [`Comparison::heatmap`]; `None` when the sizes differ.
+    pub(crate) error_map: Option<ErrorMap>,
 }
 
 impl Comparison {
@@ -149,6 +149,21 @@ impl Comparison {
     /// `PASS` or `FAIL`.
     pub fn verdict(&self) -> &'static str {
         if self.passed() { "PASS" } else { "FAIL" }
+    }
+
+    /// The FLIP error map in the magma colour map (black: no difference; pale yellow: the
+    /// largest), made when asked for; `None` when the sizes differ.
+    pub fn heatmap(&self) -> Option<RgbImage> {
+        self.error_map.as_ref().map(ErrorMap::heatmap)
+    }
+
+    /// This comparison without the FLIP error map [`Comparison::heatmap`] draws from (a
+    /// float per pixel), for keeping many comparisons: its heatmap is then `None`.
+    pub fn without_error_map(self) -> Self {
+        Self {
+            error_map: None,
+            ..self
+        }
     }
 
     /// The reasons for failing, as one line (`""` when it passed).
@@ -169,7 +184,7 @@ impl Comparison {
             }],
             metrics: None,
             diagnosis: None,
-            heatmap: None,
+            error_map: None,
         }
     }
 }

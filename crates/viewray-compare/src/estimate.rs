@@ -29,6 +29,7 @@
 //!    move) is removed in turn and the rest refitted; a component stays only if removing
 //!    it clearly raises the residual on the overlap.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use rustfft::num_complex::Complex32;
@@ -176,19 +177,66 @@ impl Free {
     }
 }
 
-/// One level of the image pyramids: `factor` full-resolution pixels per level pixel.
-pub(crate) struct Level {
+/// One level of the expected image's pyramid: `factor` full-resolution pixels per level
+/// pixel.
+#[derive(Clone, Debug)]
+pub(crate) struct ExpectedLevel {
     factor: f64,
-    expected: FloatImage,
-    /// The expected image's colour and its x and y derivatives, per pixel: one bilinear
-    /// lookup serves a fit's residual and its Jacobian.
-    expected_fused: Vec<[f32; 9]>,
-    actual: FloatImage,
+    image: FloatImage,
+    /// The image's colour and its x and y derivatives, per pixel: one bilinear lookup
+    /// serves a fit's residual and its Jacobian.
+    fused: Vec<[f32; 9]>,
+}
+
+/// The expected image's side of the pyramids, down to the search level: it depends on
+/// the expected image alone, so one serves every actual image judged against it.
+#[derive(Clone, Debug)]
+pub(crate) struct ExpectedPyramid {
+    levels: Vec<ExpectedLevel>,
+}
+
+impl ExpectedPyramid {
+    /// The pyramid of the blurred, sRGB-encoded expected image: each level blurred by 1
+    /// level pixel and halved, down to the search level.
+    pub(crate) fn new(expected: &FloatImage) -> Self {
+        let mut levels = Vec::new();
+        let (mut image, mut factor) = (expected.clone(), 1.0);
+        loop {
+            let (dx, dy) = image.gradients();
+            let fused = image
+                .pixels
+                .iter()
+                .zip(&dx.pixels)
+                .zip(&dy.pixels)
+                .map(|((v, x), y)| [v[0], v[1], v[2], x[0], x[1], x[2], y[0], y[1], y[2]])
+                .collect();
+            let next_side = image.width.min(image.height) / 2;
+            let next = (next_side >= SEARCH_SIDE).then(|| image.gaussian_blur(1.0).downsample_2x());
+            levels.push(ExpectedLevel {
+                factor,
+                image,
+                fused,
+            });
+            let Some(next) = next else { break };
+            image = next;
+            factor *= 2.0;
+        }
+        Self { levels }
+    }
+}
+
+/// One level of the image pyramids: `factor` full-resolution pixels per level pixel.
+pub(crate) struct Level<'a> {
+    factor: f64,
+    expected: &'a FloatImage,
+    /// The expected image's colour and its derivatives (see [`ExpectedLevel`]).
+    expected_fused: &'a [[f32; 9]],
+    actual: Cow<'a, FloatImage>,
 }
 
 /// The two images, blurred and sRGB-encoded, as pyramids.
-pub(crate) struct Pyramid {
-    levels: Vec<Level>,
+pub(crate) struct Pyramid<'a> {
+    levels: Vec<Level<'a>>,
     /// The full-resolution size.
     size: [f64; 2],
     /// How far from the borders a point must lie to count (full-resolution pixels, at
@@ -200,47 +248,33 @@ pub(crate) struct Pyramid {
 /// smaller), and halving once more would make it shorter.
 const SEARCH_SIDE: usize = 16;
 
-impl Pyramid {
+impl<'a> Pyramid<'a> {
     /// Builds the pyramids of two images of the same size, blurred by `blur_sigma` pixels,
-    /// down to the search level or to at most `max_levels` levels.
+    /// down to the search level or to at most `max_levels` levels: the expected image's
+    /// from its prepared pyramid, the actual image's here, the same way.
     pub(crate) fn new(
-        expected: &FloatImage,
-        actual: &FloatImage,
+        expected: &'a ExpectedPyramid,
+        actual: &'a FloatImage,
         blur_sigma: f32,
         max_levels: usize,
     ) -> Self {
-        let mut levels = Vec::new();
-        let (mut e, mut a, mut factor) = (expected.clone(), actual.clone(), 1.0);
-        loop {
-            let (dx, dy) = e.gradients();
-            let expected_fused = e
-                .pixels
-                .iter()
-                .zip(&dx.pixels)
-                .zip(&dy.pixels)
-                .map(|((v, x), y)| [v[0], v[1], v[2], x[0], x[1], x[2], y[0], y[1], y[2]])
-                .collect();
-            let next_side = e.width.min(e.height) / 2;
-            let last = next_side < SEARCH_SIDE || levels.len() + 1 >= max_levels;
-            let next = (!last).then(|| {
-                (
-                    e.gaussian_blur(1.0).downsample_2x(),
-                    a.gaussian_blur(1.0).downsample_2x(),
-                )
-            });
+        let count = expected.levels.len().min(max_levels.max(1));
+        let mut levels: Vec<Level<'a>> = Vec::with_capacity(count);
+        for e in &expected.levels[..count] {
+            let actual = match levels.last() {
+                None => Cow::Borrowed(actual),
+                Some(previous) => Cow::Owned(previous.actual.gaussian_blur(1.0).downsample_2x()),
+            };
             levels.push(Level {
-                factor,
-                expected: e,
-                expected_fused,
-                actual: a,
+                factor: e.factor,
+                expected: &e.image,
+                expected_fused: &e.fused,
+                actual,
             });
-            let Some((next_e, next_a)) = next else { break };
-            (e, a) = (next_e, next_a);
-            factor *= 2.0;
         }
         Self {
             levels,
-            size: [expected.width as f64, expected.height as f64],
+            size: [actual.width as f64, actual.height as f64],
             margin: (2.5 * f64::from(blur_sigma)).max(1.0),
         }
     }
@@ -418,7 +452,7 @@ pub(crate) fn evaluate(pyramid: &Pyramid, level: usize, model: &Model, stride: u
     let l = &pyramid.levels[level];
     let mut fit = Fit::default();
     fit.total = for_each_overlap(pyramid, level, model, stride, |[row, col], _, e| {
-        let expected = sample(&l.expected, e[0] / l.factor, e[1] / l.factor);
+        let expected = sample(l.expected, e[0] / l.factor, e[1] / l.factor);
         let actual = l.actual.at(row, col);
         fit.count += 1;
         for c in 0..3 {
@@ -492,7 +526,7 @@ pub(crate) fn refine(
         let mut jtj = [[0.0f64; 5]; 5];
         let mut jtr = [0.0f64; 5];
         for_each_overlap(pyramid, level, &model, stride, |[row, col], x, e| {
-            let fused = sample_n(&l.expected_fused, w, h, e[0] / l.factor, e[1] / l.factor);
+            let fused = sample_n(l.expected_fused, w, h, e[0] / l.factor, e[1] / l.factor);
             let actual = l.actual.at(row, col);
             // Z = R(-theta) (X - p - t); X_e = p + M S^-1 Z.
             let y = [
@@ -942,7 +976,7 @@ pub(crate) fn texture(pyramid: &Pyramid, level: usize, model: &Model, stride: us
     let mut sums = [0.0f64; 2];
     let mut count = 0usize;
     for_each_overlap(pyramid, level, model, stride, |_, _, e| {
-        let fused = sample_n(&l.expected_fused, w, h, e[0] / l.factor, e[1] / l.factor);
+        let fused = sample_n(l.expected_fused, w, h, e[0] / l.factor, e[1] / l.factor);
         for c in 0..3 {
             sums[0] += f64::from(fused[3 + c]).powi(2);
             sums[1] += f64::from(fused[6 + c]).powi(2);
@@ -950,7 +984,7 @@ pub(crate) fn texture(pyramid: &Pyramid, level: usize, model: &Model, stride: us
         count += 1;
     });
     let mut whole = [0.0f64; 2];
-    for p in &l.expected_fused {
+    for p in l.expected_fused {
         for c in 0..3 {
             whole[0] += f64::from(p[3 + c]).powi(2);
             whole[1] += f64::from(p[6 + c]).powi(2);
@@ -1371,7 +1405,7 @@ pub(crate) fn select(
     let l = &pyramid.levels[0];
     let mut identity_fit = Fit::default();
     for_each_overlap(pyramid, 0, &model, stride, |[row, col], x, _| {
-        let e = sample(&l.expected, x[0], x[1]);
+        let e = sample(l.expected, x[0], x[1]);
         let a = l.actual.at(row, col);
         identity_fit.count += 1;
         for c in 0..3 {

@@ -140,6 +140,6 @@ pub fn compare(expected: &RgbaImage, actual: &RgbaImage, thresholds: &Thresholds
             peak_flip,
         }),
         diagnosis: None,
-        heatmap: Some(map.heatmap()),
+        error_map: Some(map),
     }
 }

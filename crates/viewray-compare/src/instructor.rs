@@ -4,8 +4,8 @@ use image::RgbaImage;
 
 use crate::comparison::{Comparison, Failure, Metrics, Mode, count_bad_pixels, is_nearly_blank};
 use crate::diagnosis::{CameraMistake, Diagnosis, Expectations, Significant};
-use crate::estimate::{self, Estimate, Pyramid};
-use crate::flip::{self, PEAK_WINDOW};
+use crate::estimate::{self, Estimate, ExpectedPyramid, Pyramid};
+use crate::flip::{FlipReference, PEAK_WINDOW};
 use crate::golden::Thresholds;
 use crate::raster::FloatImage;
 
@@ -117,86 +117,159 @@ pub fn judge(
 /// field of view is 1.25 times too wide"), a scale or turn about the principal point is
 /// no move, and the moves the scene's shift predicts are tried even when little of the
 /// picture is left in common. The verdict is the same as without them.
+///
+/// To judge many renders against one reference, prepare it once with [`Reference::new`]:
+/// the same judgement, without redoing the reference's half of the work.
 pub fn judge_with(
     expected: &RgbaImage,
     actual: &RgbaImage,
     thresholds: &InstructorThresholds,
     expectations: Option<&Expectations>,
 ) -> Comparison {
-    if expected.dimensions() != actual.dimensions() {
-        return Comparison::size_mismatch(Mode::Instructor, expected, actual);
-    }
-    let mut failures = Vec::new();
-    let pixel_count = u64::from(expected.width()) * u64::from(expected.height());
-    let golden = Thresholds::GOLDEN;
-    if is_nearly_blank(
-        expected,
-        golden.channel_tolerance,
-        golden.max_bad_pixels(pixel_count),
-    ) {
-        failures.push(Failure::UniformExpected);
-    }
-    let (bad_pixels, max_channel_difference) =
-        count_bad_pixels(expected, actual, golden.channel_tolerance);
+    Reference::new(expected.clone(), *thresholds, expectations.copied()).judge(actual)
+}
 
-    // Blur in linear light, where a pixel's samples are averaged, then encode for FLIP.
-    let (expected_linear, actual_linear) = (
-        FloatImage::linear_from_rgba8(expected),
-        FloatImage::linear_from_rgba8(actual),
-    );
-    let blurred = |image: &FloatImage| image.gaussian_blur(thresholds.blur_sigma).encoded_as_srgb();
-    let (expected_blurred, actual_blurred) = (blurred(&expected_linear), blurred(&actual_linear));
-    let map = flip::flip(
-        &expected_blurred.to_rgb8_bytes(),
-        &actual_blurred.to_rgb8_bytes(),
-        expected_blurred.width,
-        expected_blurred.height,
-    );
-    let (mean_flip, peak_flip) = (map.mean(), map.peak(PEAK_WINDOW));
-    let flip_failed = peak_flip > thresholds.max_peak_flip;
-    if flip_failed {
-        failures.push(Failure::PeakFlip {
-            peak: peak_flip,
-            threshold: thresholds.max_peak_flip,
-        });
-    }
+/// A reference image prepared for judging renders against it: everything [`judge_with`]
+/// computes from the reference alone (its blur, its half of FLIP, its image pyramid),
+/// computed once. A class of students judged against one reference shares it, across
+/// threads too.
+///
+/// [`Reference::judge`] gives exactly what [`judge_with`] gives for the same images,
+/// thresholds and expectations, bit for bit.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    expected: RgbaImage,
+    thresholds: InstructorThresholds,
+    expectations: Option<Expectations>,
+    /// Whether the image is (nearly) one flat colour.
+    uniform: bool,
+    /// In linear light, before and after the blur, and the blurred image sRGB-encoded.
+    linear: FloatImage,
+    blurred_linear: FloatImage,
+    blurred: FloatImage,
+    flip: FlipReference,
+    pyramid: ExpectedPyramid,
+}
 
-    let mut mistake = find_mistake(
-        &expected_blurred,
-        &actual_blurred,
-        flip_failed,
-        thresholds,
-        expectations,
-    );
-    if mistake.is_none()
-        && flip_failed
-        && let Some(expectations) = expectations
-    {
-        mistake = find_predicted_move(&expected_linear, &actual_linear, expectations);
-    }
-    let diagnosis = match mistake {
-        Some(mistake) => {
-            failures.push(Failure::CameraMistake);
-            Some(Diagnosis::Camera(mistake))
+impl Reference {
+    /// Prepares `expected` for judging renders against it with `thresholds`, and the
+    /// reference scene's `expectations` when they are known (see [`judge_with`]).
+    pub fn new(
+        expected: RgbaImage,
+        thresholds: InstructorThresholds,
+        expectations: Option<Expectations>,
+    ) -> Self {
+        let pixel_count = u64::from(expected.width()) * u64::from(expected.height());
+        let golden = Thresholds::GOLDEN;
+        let uniform = is_nearly_blank(
+            &expected,
+            golden.channel_tolerance,
+            golden.max_bad_pixels(pixel_count),
+        );
+        let linear = FloatImage::linear_from_rgba8(&expected);
+        let blurred_linear = linear.gaussian_blur(thresholds.blur_sigma);
+        let blurred = blurred_linear.encoded_as_srgb();
+        let flip = FlipReference::new(&blurred.to_rgb8_bytes(), blurred.width, blurred.height);
+        let pyramid = ExpectedPyramid::new(&blurred);
+        Self {
+            expected,
+            thresholds,
+            expectations,
+            uniform,
+            linear,
+            blurred_linear,
+            blurred,
+            flip,
+            pyramid,
         }
-        None if flip_failed => Some(Diagnosis::Unexplained {
-            whole_view: differs_everywhere(&expected_blurred, &actual_blurred),
-        }),
-        None => None,
-    };
+    }
 
-    Comparison {
-        mode: Mode::Instructor,
-        failures,
-        metrics: Some(Metrics {
-            pixel_count,
-            bad_pixels,
-            max_channel_difference,
-            mean_flip,
-            peak_flip,
-        }),
-        diagnosis,
-        heatmap: Some(map.heatmap()),
+    /// The reference image.
+    pub fn image(&self) -> &RgbaImage {
+        &self.expected
+    }
+
+    /// The thresholds renders are judged by.
+    pub fn thresholds(&self) -> &InstructorThresholds {
+        &self.thresholds
+    }
+
+    /// The reference scene's expectations, when they are known.
+    pub fn expectations(&self) -> Option<&Expectations> {
+        self.expectations.as_ref()
+    }
+
+    /// Judges a student's render (`actual`) against this reference, as [`judge_with`]
+    /// does. Never panics.
+    pub fn judge(&self, actual: &RgbaImage) -> Comparison {
+        let expected = &self.expected;
+        let thresholds = &self.thresholds;
+        if expected.dimensions() != actual.dimensions() {
+            return Comparison::size_mismatch(Mode::Instructor, expected, actual);
+        }
+        let mut failures = Vec::new();
+        let pixel_count = u64::from(expected.width()) * u64::from(expected.height());
+        if self.uniform {
+            failures.push(Failure::UniformExpected);
+        }
+        let golden = Thresholds::GOLDEN;
+        let (bad_pixels, max_channel_difference) =
+            count_bad_pixels(expected, actual, golden.channel_tolerance);
+
+        // Blur in linear light, where a pixel's samples are averaged, then encode for FLIP.
+        let actual_linear = FloatImage::linear_from_rgba8(actual);
+        let actual_blurred = actual_linear
+            .gaussian_blur(thresholds.blur_sigma)
+            .encoded_as_srgb_reusing(&self.blurred_linear, &self.blurred);
+        let map = self.flip.compare(&actual_blurred.to_rgb8_bytes());
+        let (mean_flip, peak_flip) = (map.mean(), map.peak(PEAK_WINDOW));
+        let flip_failed = peak_flip > thresholds.max_peak_flip;
+        if flip_failed {
+            failures.push(Failure::PeakFlip {
+                peak: peak_flip,
+                threshold: thresholds.max_peak_flip,
+            });
+        }
+
+        let expectations = self.expectations.as_ref();
+        let mut mistake = find_mistake(
+            &self.blurred,
+            &self.pyramid,
+            &actual_blurred,
+            flip_failed,
+            thresholds,
+            expectations,
+        );
+        if mistake.is_none()
+            && flip_failed
+            && let Some(expectations) = expectations
+        {
+            mistake = find_predicted_move(&self.linear, &actual_linear, expectations);
+        }
+        let diagnosis = match mistake {
+            Some(mistake) => {
+                failures.push(Failure::CameraMistake);
+                Some(Diagnosis::Camera(mistake))
+            }
+            None if flip_failed => Some(Diagnosis::Unexplained {
+                whole_view: differs_everywhere(&self.blurred, &actual_blurred),
+            }),
+            None => None,
+        };
+
+        Comparison {
+            mode: Mode::Instructor,
+            failures,
+            metrics: Some(Metrics {
+                pixel_count,
+                bad_pixels,
+                max_channel_difference,
+                mean_flip,
+                peak_flip,
+            }),
+            diagnosis,
+            error_map: Some(map),
+        }
     }
 }
 
@@ -208,6 +281,7 @@ const NOISE_FLOOR: f64 = (0.1 / 255.0) * (0.1 / 255.0);
 /// mistake: the search only when FLIP failed (a pass can hide only a small transform).
 fn find_mistake(
     expected: &FloatImage,
+    expected_pyramid: &ExpectedPyramid,
     actual: &FloatImage,
     flip_failed: bool,
     thresholds: &InstructorThresholds,
@@ -226,7 +300,7 @@ fn find_mistake(
     }
     // A pass is refined on the two finest levels alone.
     let max_levels = if flip_failed { usize::MAX } else { 2 };
-    let pyramid = Pyramid::new(expected, actual, thresholds.blur_sigma, max_levels);
+    let pyramid = Pyramid::new(expected_pyramid, actual, thresholds.blur_sigma, max_levels);
     let size = (expected.width as u32, expected.height as u32);
     let centre = pyramid.centre();
     let mut anchors = vec![centre];

@@ -22,7 +22,9 @@
 //!   vector`, or, when no transform explains the difference, [`Diagnosis::Unexplained`].
 //!   [`judge_with`] takes the reference scene's [`Expectations`] (its principal point and
 //!   lens shift, as plain numbers) and words the diagnosis in the lecture's terms: `shifted
-//!   64 px up: the sign of the shift is flipped`.
+//!   64 px up: the sign of the shift is flipped`. A [`Reference`] is a reference image
+//!   prepared once (its blur, its half of FLIP, its image pyramid) to judge a class of
+//!   renders against, with the same result as [`judge_with`], bit for bit.
 //!
 //! Images follow the camera crate's pixel convention: W columns by H rows, 0-based from
 //! the top-left, pixel (row, col) covering [col, col + 1) x [row, row + 1); x runs right
@@ -66,7 +68,7 @@ pub use image::{RgbImage, RgbaImage};
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use golden::{Thresholds, compare};
-pub use instructor::{InstructorThresholds, judge, judge_with};
+pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
 pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, write_report};
 

@@ -59,6 +59,38 @@ impl FloatImage {
         }
     }
 
+    /// [`FloatImage::encoded_as_srgb`], taking each channel that is the same bit for bit
+    /// as `linear_reference`'s (an image of the same size) from `encoded_reference`, its
+    /// encoding, instead of computing it again: the same result, cheaper where two images
+    /// agree (a flat background).
+    pub(crate) fn encoded_as_srgb_reusing(
+        &self,
+        linear_reference: &FloatImage,
+        encoded_reference: &FloatImage,
+    ) -> Self {
+        debug_assert_eq!(self.pixels.len(), linear_reference.pixels.len());
+        let pixels = self
+            .pixels
+            .iter()
+            .zip(&linear_reference.pixels)
+            .zip(&encoded_reference.pixels)
+            .map(|((p, reference), encoded)| {
+                std::array::from_fn(|c| {
+                    if p[c].to_bits() == reference[c].to_bits() {
+                        encoded[c]
+                    } else {
+                        linear_to_srgb(p[c].clamp(0.0, 1.0))
+                    }
+                })
+            })
+            .collect();
+        Self {
+            width: self.width,
+            height: self.height,
+            pixels,
+        }
+    }
+
     /// The channels quantized to 8 bits, RGB interleaved (channels taken as already
     /// encoded).
     pub(crate) fn to_rgb8_bytes(&self) -> Vec<u8> {
@@ -95,41 +127,38 @@ impl FloatImage {
     }
 
     /// Convolves rows (`along_rows`) or columns with a symmetric `kernel` of `radius`,
-    /// edge pixels extended.
+    /// edge pixels extended. Each output channel is the sum over the kernel's taps, in
+    /// order, of `weight * input`, starting from 0; the loops run over whole rows (taps
+    /// outside, pixels inside) so that they vectorize without changing that order.
     fn convolve(&self, kernel: &[f32], radius: isize, along_rows: bool) -> Self {
         let (w, h) = (self.width, self.height);
         let mut out = Self::new(w, h);
         let r = radius as usize;
         if along_rows {
-            // Each row padded with its edge pixels, then a contiguous dot product.
+            // Each row padded with its edge pixels, then every tap over the whole row.
             let mut padded = vec![[0.0f32; 3]; w + 2 * r];
             for row in 0..h {
                 let line = &self.pixels[row * w..(row + 1) * w];
                 for (i, slot) in padded.iter_mut().enumerate() {
                     *slot = line[i.saturating_sub(r).min(w - 1)];
                 }
-                let out_line = &mut out.pixels[row * w..(row + 1) * w];
-                for (col, pixel) in out_line.iter_mut().enumerate() {
-                    let mut sum = [0.0f32; 3];
-                    for (p, weight) in padded[col..col + 2 * r + 1].iter().zip(kernel) {
-                        for c in 0..3 {
-                            sum[c] += weight * p[c];
-                        }
+                let out_line = out.pixels[row * w..(row + 1) * w].as_flattened_mut();
+                for (k, &weight) in kernel.iter().enumerate() {
+                    let source = padded[k..k + w].as_flattened();
+                    for (o, &p) in out_line.iter_mut().zip(source) {
+                        *o += weight * p;
                     }
-                    *pixel = sum;
                 }
             }
         } else {
             // Each output row is the weighted sum of whole input rows.
             for row in 0..h {
-                let out_line = &mut out.pixels[row * w..(row + 1) * w];
+                let out_line = out.pixels[row * w..(row + 1) * w].as_flattened_mut();
                 for (k, weight) in (-radius..=radius).zip(kernel) {
                     let source = (row as isize + k).clamp(0, h as isize - 1) as usize;
-                    let line = &self.pixels[source * w..(source + 1) * w];
-                    for (o, p) in out_line.iter_mut().zip(line) {
-                        for c in 0..3 {
-                            o[c] += weight * p[c];
-                        }
+                    let line = self.pixels[source * w..(source + 1) * w].as_flattened();
+                    for (o, &p) in out_line.iter_mut().zip(line) {
+                        *o += weight * p;
                     }
                 }
             }
@@ -236,6 +265,89 @@ mod tests {
         let blurred = edge.gaussian_blur(sigma);
         let want: f32 = (-3..=0).map(|i| g(i as f32)).sum::<f32>() / norm;
         assert!((blurred.at(1, 0)[0] - want).abs() < 1e-6);
+    }
+
+    /// A deterministic image of pseudo-random channels in [0, 1.2).
+    fn noise(width: usize, height: usize, seed: u32) -> FloatImage {
+        let mut state = seed.wrapping_mul(2_654_435_761) | 1;
+        let mut image = FloatImage::new(width, height);
+        for pixel in &mut image.pixels {
+            *pixel = [0, 1, 2].map(|_| {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                (state >> 8) as f32 / (1u32 << 24) as f32 * 1.2
+            });
+        }
+        image
+    }
+
+    #[test]
+    fn blur_sums_each_pixel_as_the_direct_convolution_does_bit_for_bit() {
+        // The direct form: each output the sum over the taps, in order, from 0, of the
+        // edge-extended input, rows first.
+        let direct = |image: &FloatImage, sigma: f32| -> FloatImage {
+            let radius = (3.0 * sigma).ceil() as isize;
+            let mut kernel: Vec<f32> = (-radius..=radius)
+                .map(|i| (-(i * i) as f32 / (2.0 * sigma * sigma)).exp())
+                .collect();
+            let sum: f32 = kernel.iter().sum();
+            kernel.iter_mut().for_each(|k| *k /= sum);
+            let pass = |image: &FloatImage, along_rows: bool| {
+                let mut out = FloatImage::new(image.width, image.height);
+                for row in 0..image.height as isize {
+                    for col in 0..image.width as isize {
+                        let mut acc = [0.0f32; 3];
+                        for (k, weight) in (-radius..=radius).zip(&kernel) {
+                            let p = if along_rows {
+                                image.at_clamped(row, col + k)
+                            } else {
+                                image.at_clamped(row + k, col)
+                            };
+                            for c in 0..3 {
+                                acc[c] += weight * p[c];
+                            }
+                        }
+                        out.pixels[row as usize * image.width + col as usize] = acc;
+                    }
+                }
+                out
+            };
+            pass(&pass(image, true), false)
+        };
+        for (width, height, sigma) in [(37, 23, 2.0), (5, 40, 2.0), (64, 48, 1.0), (1, 1, 2.0)] {
+            let image = noise(width, height, width as u32);
+            let (fast, slow) = (image.gaussian_blur(sigma), direct(&image, sigma));
+            assert!(
+                fast.pixels
+                    .iter()
+                    .zip(&slow.pixels)
+                    .all(|(a, b)| (0..3).all(|c| a[c].to_bits() == b[c].to_bits())),
+                "{width}x{height}"
+            );
+        }
+    }
+
+    #[test]
+    fn encoding_that_reuses_a_references_channels_is_the_same_bit_for_bit() {
+        let reference = noise(40, 30, 7);
+        let encoded_reference = reference.encoded_as_srgb();
+        // Half the pixels the reference's, the rest other values (some out of [0, 1]).
+        let mut image = noise(40, 30, 8);
+        for (i, pixel) in image.pixels.iter_mut().enumerate() {
+            if i % 2 == 0 {
+                *pixel = reference.pixels[i];
+            }
+        }
+        let reused = image.encoded_as_srgb_reusing(&reference, &encoded_reference);
+        let plain = image.encoded_as_srgb();
+        assert!(
+            reused
+                .pixels
+                .iter()
+                .zip(&plain.pixels)
+                .all(|(a, b)| (0..3).all(|c| a[c].to_bits() == b[c].to_bits()))
+        );
     }
 
     #[test]

@@ -59,8 +59,12 @@ pub enum Outcome<'a> {
     /// The images were compared.
     Compared(&'a Comparison),
     /// They could not be compared (a missing file, a PNG that does not decode): the
-    /// message says why.
+    /// message says why. The golden check's word for a reference it lacks.
     Error(&'a str),
+    /// The actual image could not be compared because it is missing or cannot be read
+    /// (the message says which): the student's failure, as `viewray compare` judges
+    /// folders.
+    Failed(&'a str),
 }
 
 /// A pair's verdict, in the words the terminal prints: `PASS`, `FAIL` or `ERROR`.
@@ -68,9 +72,9 @@ pub enum Outcome<'a> {
 pub enum Verdict {
     /// Compared, and judged the same picture.
     Pass,
-    /// Compared, and judged different.
+    /// Judged different, or the actual image is missing or unreadable.
     Fail,
-    /// Not compared: a side missing, unreadable or not a PNG.
+    /// Not compared, and no one's failure: the golden check lacks a reference.
     Error,
 }
 
@@ -129,7 +133,7 @@ impl<'a> ReportEntry<'a> {
     pub fn verdict(&self) -> Verdict {
         match self.outcome {
             Outcome::Compared(c) if c.passed() => Verdict::Pass,
-            Outcome::Compared(_) => Verdict::Fail,
+            Outcome::Compared(_) | Outcome::Failed(_) => Verdict::Fail,
             Outcome::Error(_) => Verdict::Error,
         }
     }
@@ -183,12 +187,10 @@ pub fn write_report(directory: impl AsRef<Path>, report: &Report<'_>) -> io::Res
                 actual.width(),
             )?;
         }
-        if let Outcome::Compared(Comparison {
-            heatmap: Some(heatmap),
-            ..
-        }) = entry.outcome
+        if let Outcome::Compared(comparison) = entry.outcome
+            && let Some(heatmap) = comparison.heatmap()
         {
-            let png = encode_png(heatmap, Compression::Balanced)?;
+            let png = encode_png(&heatmap, Compression::Balanced)?;
             add(
                 Role::Difference,
                 format!("{stem}.diff.png"),
@@ -325,14 +327,17 @@ fn rules(rules: Rules) -> Markup {
                         last-bit floating-point noise.",
                 }) }
                 dt { span.verdict.fail { "FAIL" } }
-                dd { "Compared, and judged different: the reasons are under the image." }
-                dt { span.verdict.error { "ERROR" } }
                 dd { (match rules {
-                    Rules::Instructor(_) => "Not compared: a file on one side only, \
-                        unreadable, or not a PNG.",
-                    Rules::Golden(_) => "Not compared: no golden image yet, an unreadable \
-                        one, or an image that could not be made.",
+                    Rules::Instructor(_) => "Judged different, or the render is missing, \
+                        unreadable or not a PNG: the reasons are under the image.",
+                    Rules::Golden(_) => "Compared, and judged different: the reasons are \
+                        under the image.",
                 }) }
+                @if let Rules::Golden(_) = rules {
+                    dt { span.verdict.error { "ERROR" } }
+                    dd { "Not compared: no golden image yet, an unreadable one, or an image \
+                        that could not be made." }
+                }
             }
             p { (rule_sentence(rules)) }
             dl.legend {
@@ -507,7 +512,7 @@ fn entry_section(section: &Section<'_>, rules: Rules) -> Markup {
             }
             table.figures {
                 @match entry.outcome {
-                    Outcome::Error(message) => {
+                    Outcome::Error(message) | Outcome::Failed(message) => {
                         tr.error { th { "not compared" } td colspan="2" { (message) } }
                     }
                     Outcome::Compared(comparison) => {

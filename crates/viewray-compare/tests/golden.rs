@@ -153,7 +153,7 @@ fn a_different_size_fails_without_metrics() {
             actual: (W + 2, H)
         }]
     );
-    assert!(comparison.metrics.is_none() && comparison.heatmap.is_none());
+    assert!(comparison.metrics.is_none() && comparison.heatmap().is_none());
     assert_eq!(
         comparison.reasons(),
         "sizes differ: expected 128x96, actual 130x96"
@@ -182,7 +182,7 @@ fn the_heatmap_is_black_where_nothing_differs_and_bright_where_the_edge_moved() 
     }
     .render(W, H, Mistake::NONE, Pattern::Grid(4));
     let heatmap = compare(&golden(), &moved, &Thresholds::GOLDEN)
-        .heatmap
+        .heatmap()
         .unwrap();
     assert_eq!(heatmap.dimensions(), (W, H));
     let brightness = |x: u32, y: u32| {

@@ -5,8 +5,8 @@ mod scene;
 use scene::{Mistake, Pattern, Scene};
 use scraper::{ElementRef, Html, Selector};
 use viewray_compare::{
-    InstructorThresholds, Report, ReportEntry, Rules, Thresholds, compare, judge, load_png,
-    write_report,
+    InstructorThresholds, Outcome, Report, ReportEntry, Rules, Thresholds, compare, judge,
+    load_png, write_report,
 };
 
 /// The elements of `page` that `selector` selects.
@@ -53,18 +53,18 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
     let entries = [
         ReportEntry::compared("correct.png", &reference, &correct, &passed),
         ReportEntry::compared("mirrored <x>.png", &reference, &mirrored, &failed),
-        ReportEntry::error(
-            "lonely.png",
-            "lonely.png: only in EXPECTED",
-            Some(&reference),
-            None,
-        ),
+        ReportEntry {
+            name: "lonely.png",
+            expected: Some(&reference),
+            actual: None,
+            outcome: Outcome::Failed("missing"),
+        },
     ];
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("report");
     let report = Report {
         title: "viewray compare a/ b/",
-        summary: "3 images: 1 passed, 1 failed, 1 could not be compared (threshold 0.3)",
+        summary: "3 images: 1 passed, 2 failed, 1 of them missing or unreadable (threshold 0.3)",
         rules: Rules::Instructor(thresholds),
         entries: &entries,
     };
@@ -109,10 +109,10 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         texts_in(&page.root_element(), "p.summary"),
         [report.summary]
     );
-    // The index lists the failed pairs and, apart, the ones that could not be compared.
+    // The index lists the failed pairs, a missing render with them.
     assert_eq!(
         texts_in(&page.root_element(), "p.index"),
-        ["FAIL mirrored <x>.png", "ERROR lonely.png"]
+        ["FAIL mirrored <x>.png lonely.png"]
     );
     let links: Vec<&str> = select(&page, "p.index a")
         .iter()
@@ -131,7 +131,7 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         [
             "PASS correct.png",
             "FAIL mirrored <x>.png",
-            "ERROR lonely.png"
+            "FAIL lonely.png"
         ]
     );
     let ids: Vec<&str> = sections.iter().map(|s| s.value().id().unwrap()).collect();
@@ -142,7 +142,7 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         .collect();
     assert_eq!(
         classes,
-        [["entry", "pass"], ["entry", "fail"], ["entry", "error"]]
+        [["entry", "pass"], ["entry", "fail"], ["entry", "fail"]]
     );
 
     // Every figure has its meaning as title text and the rule it is held to; the ones
@@ -221,10 +221,7 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
             .iter()
             .any(|w| w.contains("camera mistake"))
     );
-    assert_eq!(
-        texts_in(&sections[2], "tr.error td"),
-        ["lonely.png: only in EXPECTED"]
-    );
+    assert_eq!(texts_in(&sections[2], "tr.error td"), ["missing"]);
     // The images, linked, with their captions.
     let images: Vec<(String, String)> = sections
         .iter()
@@ -254,7 +251,7 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
     // The legend explains each verdict and each figure.
     assert_eq!(
         texts_in(&page.root_element(), "section.rules dl:not(.legend) dt"),
-        ["PASS", "FAIL", "ERROR"]
+        ["PASS", "FAIL"]
     );
     assert_eq!(
         texts_in(&page.root_element(), "dl.legend dt"),

@@ -1,16 +1,17 @@
-//! The side view of any scene's camera: the scene's objects, the eye and its frame, the
-//! image plane seen edge-on, the frustum and a few viewing rays up to what they hit.
+//! The side view of any camera over a scene: the scene's objects, the eye and its frame,
+//! the image plane seen edge-on, the frustum and a few viewing rays up to what they hit,
+//! in a window on the world that is fitted to one camera or fixed for an animation.
 
 use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, Projection};
-use viewray_draw::{Anchor, Baseline, Color, Item, Label, Rect, Stroke};
-use viewray_geometry::{DRay, Object};
+use viewray_draw::{Anchor, Baseline, Color, Item, Label, Mapping, Rect, Stroke};
+use viewray_geometry::{Aabb, DRay, Object};
 use viewray_scene::Scene;
 
 use crate::Diagram;
 use crate::pictures::srgb;
 use crate::side::{draw_image_plane, draw_side_frame, viewport_edges};
-use crate::sketch::{Sketch, number};
+use crate::sketch::{LINE_SPACING, Sketch, number};
 use crate::style;
 use crate::view::{FigureView, SideView};
 
@@ -19,6 +20,182 @@ const RAY_COUNT: u32 = 5;
 
 /// Meshes with more triangles than this are drawn as the outline of their bounds.
 const MAX_DRAWN_TRIANGLES: usize = 4000;
+
+/// How far beyond the objects a camera's eye, image plane or focus point may lie and
+/// still be fitted into the window, in sizes of the objects' bounds. An eye farther out
+/// (a camera receding to infinity) is drawn as an arrow at the window's edge.
+const REACH: f64 = 3.0;
+
+/// The margin around what a window is fitted to, as a fraction of its larger side.
+const MARGIN: f64 = 0.1;
+
+/// How far past an eye along **v** and **w** a window reaches, as a fraction of what it
+/// is fitted to, so that the arrows and their names stay inside.
+const AXIS_ROOM: f64 = 0.1;
+
+/// The part of the world a side view shows: a vertical plane (world up drawn up) and a
+/// rectangle of it. [`SideWindow::fit`] fits it to one camera (`viewray diagram`, the
+/// live playground) or to every camera of an animation, so that from frame to frame only
+/// the camera moves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SideWindow {
+    /// The world direction drawn to the right, a unit vector.
+    pub(crate) right: DVec3,
+    /// The world direction drawn up, a unit vector perpendicular to `right`.
+    pub(crate) up: DVec3,
+    /// The rectangle's lower left corner in plane coordinates `(p . right, p . up)`.
+    pub(crate) min: DVec2,
+    /// Its upper right corner.
+    pub(crate) max: DVec2,
+}
+
+impl SideWindow {
+    /// The window on `scene` for `cameras` (one camera, or every frame's): the plane of
+    /// the first camera's **v** and **w**, seen from **u**'s side with world up (`+y`)
+    /// up, and the rectangle of it holding the objects' bounds, the eyes, image planes and
+    /// focus points of the cameras near them (within three times the objects' size), and
+    /// the nearest stretch of each plane seen edge-on (the ground), with a margin.
+    pub fn fit(scene: &Scene, cameras: &[Camera]) -> SideWindow {
+        let (right, up) = cameras.first().map_or((DVec3::NEG_Z, DVec3::Y), side_plane);
+        let on_plane = |p: DVec3| DVec2::new(p.dot(right), p.dot(up));
+        let objects = scene.world().objects();
+        let mut bounds = Bounds::default();
+        for object in objects {
+            if let Some(aabb) = object.bounds() {
+                for p in box_corners(aabb) {
+                    bounds.add(on_plane(p.as_dvec3()));
+                }
+            }
+        }
+        // The camera nearest the objects always, with some way in front of it when there
+        // are none; then the others near both.
+        let centre = bounds
+            .range()
+            .map_or(DVec2::ZERO, |(min, max)| (min + max) / 2.0);
+        let mut by_distance: Vec<&Camera> = cameras.iter().collect();
+        by_distance.sort_by(|a, b| {
+            let distance = |c: &Camera| (on_plane(c.frame().e) - centre).length();
+            distance(a).total_cmp(&distance(b))
+        });
+        if let Some(nearest) = by_distance.first() {
+            if bounds.range().is_none() {
+                let frame = nearest.frame();
+                bounds.add(on_plane(frame.e - frame.w * 4.0));
+            }
+            camera_points(nearest).for_each(|p| bounds.add(on_plane(p)));
+        }
+        let Some((min, max)) = bounds.range() else {
+            return SideWindow::around(right, up, DVec2::new(-1.0, 0.0), DVec2::new(1.0, 1.0));
+        };
+        let size = (max - min).max_element().max(1e-3);
+        let near = Bounds {
+            min: min - REACH * size,
+            max: max + REACH * size,
+        };
+        for camera in by_distance.iter().skip(1) {
+            camera_points(camera)
+                .map(on_plane)
+                .filter(|&p| near.holds(p))
+                .for_each(|p| bounds.add(p));
+        }
+        // The ground and walls seen edge-on: their nearest stretch.
+        let towards_viewer = right.cross(up);
+        let centre = (bounds.min + bounds.max) / 2.0;
+        for object in objects {
+            if let Object::Plane(plane) = object {
+                let normal = plane.normal.as_dvec3();
+                let n = on_plane(normal);
+                if normal.dot(towards_viewer).abs() > 1e-9 * normal.length()
+                    || n.length_squared() == 0.0
+                {
+                    continue;
+                }
+                let c = plane.point.as_dvec3().dot(normal);
+                let nearest = centre - n * ((n.dot(centre) - c) / n.length_squared());
+                if near.holds(nearest) {
+                    bounds.add(nearest);
+                }
+            }
+        }
+        // Room for v and w and their names at every eye shown.
+        let size = (bounds.max - bounds.min).max_element().max(1e-3);
+        let shown = bounds;
+        for camera in cameras {
+            let frame = camera.frame();
+            if shown.holds(on_plane(frame.e)) {
+                for axis in [frame.v, frame.w] {
+                    bounds.add(on_plane(frame.e + axis * AXIS_ROOM * size));
+                }
+            }
+        }
+        SideWindow::around(right, up, bounds.min, bounds.max)
+    }
+
+    /// The window from `min` to `max` with a margin.
+    fn around(right: DVec3, up: DVec3, min: DVec2, max: DVec2) -> SideWindow {
+        let margin = MARGIN * (max - min).max_element().max(1e-3);
+        SideWindow {
+            right,
+            up,
+            min: min - margin,
+            max: max + margin,
+        }
+    }
+
+    /// The side view showing this window inside `drawing` (figure pixels), centred at
+    /// one scale; what it shows and clips to is all of `drawing`, which may hold more of
+    /// the plane than the window on two sides.
+    fn view(&self, drawing: Rect) -> SideView {
+        let window = Rect::from_corners(self.min.as_vec2(), self.max.as_vec2());
+        let mapping = Mapping::fit(window, drawing).expect("a window and a drawing with area");
+        SideView {
+            mapping,
+            bounds: Rect::from_corners(
+                mapping.to_world(drawing.min),
+                mapping.to_world(drawing.max),
+            ),
+            right: self.right,
+            up: self.up,
+        }
+    }
+}
+
+/// A growing rectangle of plane points.
+#[derive(Clone, Copy)]
+struct Bounds {
+    min: DVec2,
+    max: DVec2,
+}
+
+impl Default for Bounds {
+    fn default() -> Bounds {
+        Bounds {
+            min: DVec2::INFINITY,
+            max: DVec2::NEG_INFINITY,
+        }
+    }
+}
+
+impl Bounds {
+    fn add(&mut self, p: DVec2) {
+        if p.is_finite() {
+            self.min = self.min.min(p);
+            self.max = self.max.max(p);
+        }
+    }
+
+    fn holds(&self, p: DVec2) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
+
+    /// The corners, once a point has been added.
+    fn range(&self) -> Option<(DVec2, DVec2)> {
+        self.min
+            .cmple(self.max)
+            .all()
+            .then_some((self.min, self.max))
+    }
+}
 
 /// The canvases a side view is drawn on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -29,78 +206,89 @@ pub enum SideViewCanvas {
     /// A panel beside a render, 1000 x 600, without a title: the same labels read
     /// larger when the panel is shown at half a screen's width (the live playground).
     Panel,
+    /// A 16:9 panel beside an animation's picture, 1280 x 720, without a title, the
+    /// drawing filling it: painted at the picture's height
+    /// ([`render_scaled`](viewray_draw::raster::render_scaled)), every line and label
+    /// shrinks with it.
+    Beside,
+}
+
+/// Where a canvas puts things.
+struct Layout {
+    /// Where the drawing goes (all of the canvas but the title and caption, if apart).
+    drawing: Rect,
+    /// Where the caption's first baseline starts.
+    caption_at: Vec2,
+    /// Whether there is a title.
+    title: bool,
 }
 
 impl SideViewCanvas {
-    /// The canvas size, where the drawing goes, where the caption's baseline starts,
-    /// and whether there is a title.
-    fn layout(self) -> ((u32, u32), Rect, Vec2, bool) {
+    /// The canvas size in pixels.
+    pub fn size(self) -> (u32, u32) {
         match self {
-            SideViewCanvas::Slide => (
-                (1600, 900),
-                Rect::from_corners(Vec2::new(40.0, 100.0), Vec2::new(1560.0, 800.0)),
-                Vec2::new(56.0, 858.0),
-                true,
-            ),
-            SideViewCanvas::Panel => (
-                (1000, 600),
-                Rect::from_corners(Vec2::new(50.0, 50.0), Vec2::new(950.0, 490.0)),
-                Vec2::new(24.0, 540.0),
-                false,
-            ),
+            SideViewCanvas::Slide => style::SLIDE,
+            SideViewCanvas::Panel => (1000, 600),
+            SideViewCanvas::Beside => (1280, 720),
+        }
+    }
+
+    fn layout(self) -> Layout {
+        match self {
+            SideViewCanvas::Slide => Layout {
+                drawing: Rect::from_corners(Vec2::new(40.0, 100.0), Vec2::new(1560.0, 800.0)),
+                caption_at: Vec2::new(56.0, 858.0),
+                title: true,
+            },
+            SideViewCanvas::Panel => Layout {
+                drawing: Rect::from_corners(Vec2::new(50.0, 50.0), Vec2::new(950.0, 490.0)),
+                caption_at: Vec2::new(24.0, 540.0),
+                title: false,
+            },
+            SideViewCanvas::Beside => Layout {
+                drawing: Rect::from_xywh(0.0, 0.0, 1280.0, 720.0),
+                caption_at: Vec2::new(20.0, 700.0),
+                title: false,
+            },
         }
     }
 }
 
-/// The side view of `camera` looking at `scene` (slide, 1600 x 900): the vertical plane
-/// through the camera's **v** and **w** seen from its right, so **u** points at the
-/// viewer; world up (`+y`) is up, so a tilted camera looks tilted and a shifted one
-/// level. It shows the scene's objects projected onto that plane (spheres as circles,
-/// boxes and meshes as their outlines, planes seen edge-on as lines), the eye **e** with
-/// **v** and **w**, the image plane edge-on, the frustum's top and bottom edges, and
-/// the viewing rays of five pixels of the middle column, each drawn to the first thing
-/// it hits, traced in the scene. `pixel` (row, col), when given, adds that pixel's ray,
-/// highlighted.
-pub(crate) fn camera_side_view(
+/// The side view of `camera` over `scene` in `window`, on `canvas`: the plane of the
+/// window seen face-on (for a window fitted to this camera, the plane of its **v** and
+/// **w**, so **u** points at the viewer; world up is up, so a tilted camera looks tilted
+/// and a shifted one level). It shows the scene's objects projected onto that plane
+/// (spheres as circles, boxes and meshes as their outlines, planes seen edge-on as
+/// lines), the eye **e** with **v** and **w** (an arrow at the edge when the eye lies
+/// beyond the window), the image plane edge-on, the frustum's top and bottom edges, a
+/// thin lens's lens and focus plane, and the viewing rays of five pixels of the middle
+/// column, each drawn to the first thing it hits, traced in the scene; a caption names
+/// the projection and its parameters. `pixel` (row, col), when given, adds that pixel's
+/// ray, highlighted.
+pub(crate) fn side_view(
     scene: &Scene,
     camera: &Camera,
-    pixel: Option<(u32, u32)>,
+    window: &SideWindow,
     canvas: SideViewCanvas,
+    pixel: Option<(u32, u32)>,
 ) -> Diagram {
-    let ((width, height), drawing, caption_at, title) = canvas.layout();
+    let layout = canvas.layout();
+    let (width, height) = canvas.size();
     let mut sketch = Sketch::sized(width, height);
-    if title {
+    if layout.title {
         sketch.title("Side view of the camera");
     }
-    // The caption: one line on a slide, two on a panel.
-    let (parameters, more) = caption(camera);
-    match canvas {
-        SideViewCanvas::Slide => sketch.text_lines(
-            caption_at,
-            &[(
-                &format!("{parameters};  {more}"),
-                style::TEXT,
-                style::SMALL_LABEL_SIZE,
-            )],
-        ),
-        SideViewCanvas::Panel => sketch.text_lines(
-            caption_at,
-            &[
-                (&parameters, style::TEXT, style::SMALL_LABEL_SIZE),
-                (&more, style::TEXT, style::SMALL_LABEL_SIZE),
-            ],
-        ),
-    };
-    let (right, up) = side_plane(camera);
-    let view = fit_view(scene, camera, right, up, drawing);
-    let figure_view = FigureView::Side(view);
-
+    let view = window.view(layout.drawing);
     draw_objects(&mut sketch, &view, scene);
+    // The caption over the drawing goes on top of the objects, before anything is placed
+    // around it.
+    draw_caption(&mut sketch, camera, canvas, layout.caption_at);
+    let figure_view = FigureView::Side(view);
 
     // The frustum's top and bottom edges, for the planar projections.
     let frame = *camera.frame();
-    let extent = f64::from(view.bounds.width().max(view.bounds.height()));
-    if camera.projection().viewport().is_some() {
+    let planar = camera.projection().viewport().is_some();
+    if planar {
         let x = f64::from(camera.width()) / 2.0;
         let stroke = Stroke::new(style::RAY, style::LINE_THIN).dashed(&style::DASH);
         for y in [0.0, f64::from(camera.height())] {
@@ -123,38 +311,32 @@ pub(crate) fn camera_side_view(
     }
 
     // The thin lens's focus plane and lens.
-    let lens = match camera.projection() {
-        Projection::ThinLens(p) => Some((p.aperture, p.focus)),
-        Projection::Orthographic(o) => o.lens.map(|l| (l.aperture, l.focus)),
-        _ => None,
-    };
-    if let Some((aperture, focus)) = lens {
+    let eye_in_view = view.bounds.contains(view.plane_point(frame.e).as_vec2());
+    if let Some((aperture, focus)) = lens(camera) {
         draw_focus_plane(&mut sketch, &view, camera, focus);
-        let e = view.to_figure(frame.e);
-        let half = view.length(aperture).max(2.0);
-        sketch.push(Item::Ellipse {
-            center: e,
-            radii: Vec2::new((half * 0.18).max(3.0), half),
-            rotation: -tilt_on_figure(&view, frame.v),
-            fill: Some(style::IMAGE_PLANE_FILL),
-            stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN)),
-        });
+        if eye_in_view {
+            let half = view.length(aperture).max(2.0);
+            sketch.push(Item::Ellipse {
+                center: view.to_figure(frame.e),
+                radii: Vec2::new((half * 0.18).max(3.0), half),
+                rotation: -tilt_on_figure(&view, frame.v),
+                fill: Some(style::IMAGE_PLANE_FILL),
+                stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN)),
+            });
+        }
     }
 
     // A few viewing rays of the middle column, each to what it hits.
     let col = camera.width() / 2;
-    let height = camera.height();
-    let rows: Vec<u32> = (0..RAY_COUNT)
-        .map(|k| {
-            let centre = (f64::from(k) + 0.5) / f64::from(RAY_COUNT) * f64::from(height);
-            // Rows are whole pixels inside the image.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let row = centre.floor() as u32;
-            row.min(height - 1)
-        })
-        .collect();
+    let rows = (0..RAY_COUNT).map(|k| {
+        let centre = (f64::from(k) + 0.5) / f64::from(RAY_COUNT) * f64::from(camera.height());
+        // Rows are whole pixels inside the image.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let row = centre.floor() as u32;
+        row.min(camera.height() - 1)
+    });
     let ray_stroke = Stroke::new(style::RAY, style::LINE_REGULAR);
-    for &row in &rows {
+    for row in rows {
         draw_traced_ray(
             &mut sketch,
             &view,
@@ -179,90 +361,36 @@ pub(crate) fn camera_side_view(
         .map(|hit| (pixel, hit))
     });
 
-    // The image plane, the frame at the eye, the eye; the plane's label where it
-    // overlaps no other.
-    let plane_ends = camera
-        .projection()
-        .viewport()
-        .map(|_| draw_image_plane(&mut sketch, &view, camera, style::IMAGE_PLANE, 0.0));
-    let axis_length = 0.09 * extent;
-    draw_side_frame(&mut sketch, &view, &frame, axis_length, false);
-    draw_frame_labels(&mut sketch, &view, &frame, axis_length);
+    // The image plane, the frame at the eye, the eye (or an arrow towards it); the
+    // plane's label where it overlaps no other.
+    let plane_ends = if planar && eye_in_view {
+        let (top, bottom) = viewport_edges(camera);
+        let (top, bottom) = (view.plane_point(top), view.plane_point(bottom));
+        (view.bounds.contains(top.as_vec2()) && view.bounds.contains(bottom.as_vec2()))
+            .then(|| draw_image_plane(&mut sketch, &view, camera, style::IMAGE_PLANE, 0.0))
+    } else {
+        None
+    };
+    if eye_in_view {
+        let axis_length = 0.09 * (window.max - window.min).max_element();
+        draw_side_frame(&mut sketch, &view, &frame, axis_length, false);
+        draw_frame_labels(&mut sketch, &view, &frame, axis_length);
+    } else {
+        draw_eye_beyond(&mut sketch, &view, frame.e);
+    }
     if let Some((top, bottom)) = plane_ends {
-        let label = match camera.projection() {
-            Projection::Perspective(p) => format!("image plane, $d$ = {}", number(p.distance)),
-            Projection::ThinLens(p) => format!("image plane, $d$ = {}", number(p.distance)),
-            _ => "image plane".to_owned(),
-        };
-        let (lower, upper) = if top.y > bottom.y {
-            (top, bottom)
-        } else {
-            (bottom, top)
-        };
-        let mut candidates = vec![
-            (
-                lower + Vec2::new(12.0, 10.0),
-                (Anchor::Start, Baseline::Top),
-            ),
-            (lower + Vec2::new(-12.0, 10.0), (Anchor::End, Baseline::Top)),
-            (
-                upper + Vec2::new(12.0, -10.0),
-                (Anchor::Start, Baseline::Bottom),
-            ),
-            (
-                upper + Vec2::new(-12.0, -10.0),
-                (Anchor::End, Baseline::Bottom),
-            ),
-        ];
-        // Farther out, around the plane's middle, if the eye's labels crowd it.
-        let middle = (lower + upper) / 2.0;
-        for distance in [70.0, 120.0, 170.0, 220.0] {
-            candidates.extend([
-                (
-                    middle + Vec2::new(0.0, distance),
-                    (Anchor::Middle, Baseline::Top),
-                ),
-                (
-                    middle + Vec2::new(distance, 0.0),
-                    (Anchor::Start, Baseline::Middle),
-                ),
-                (
-                    middle + Vec2::new(0.0, -distance),
-                    (Anchor::Middle, Baseline::Bottom),
-                ),
-                (
-                    middle + Vec2::new(-distance, 0.0),
-                    (Anchor::End, Baseline::Middle),
-                ),
-            ]);
-        }
-        place_label(
-            &mut sketch,
-            &label,
-            &candidates,
-            style::IMAGE_PLANE,
-            style::SMALL_LABEL_SIZE,
-        );
+        draw_image_plane_label(&mut sketch, camera, top, bottom);
     }
 
     if let Some((pixel, hit)) = pixel_hit {
         let text = format!("$i$ = {}, $j$ = {}", pixel.0 + 1, pixel.1 + 1);
         let candidates = [
-            (
-                hit + Vec2::new(14.0, -14.0),
-                (Anchor::Start, Baseline::Bottom),
-            ),
-            (
-                hit + Vec2::new(-14.0, -14.0),
-                (Anchor::End, Baseline::Bottom),
-            ),
-            (hit + Vec2::new(14.0, 14.0), (Anchor::Start, Baseline::Top)),
-            (hit + Vec2::new(-14.0, 14.0), (Anchor::End, Baseline::Top)),
-            (
-                hit + Vec2::new(0.0, -50.0),
-                (Anchor::Middle, Baseline::Bottom),
-            ),
-            (hit + Vec2::new(0.0, 50.0), (Anchor::Middle, Baseline::Top)),
+            beside(hit, 14.0, -14.0),
+            beside(hit, -14.0, -14.0),
+            beside(hit, 14.0, 14.0),
+            beside(hit, -14.0, 14.0),
+            beside(hit, 0.0, -50.0),
+            beside(hit, 0.0, 50.0),
         ];
         place_label(
             &mut sketch,
@@ -273,6 +401,171 @@ pub(crate) fn camera_side_view(
         );
     }
     sketch.finish()
+}
+
+/// The caption naming the projection and its parameters: one line on a slide, two on a
+/// panel; beside an animation's picture, over the drawing on a light backing, the lens
+/// on a line of its own and no image size (the picture shows it).
+fn draw_caption(sketch: &mut Sketch, camera: &Camera, canvas: SideViewCanvas, at: Vec2) {
+    let (parameters, lens, size) = caption(camera);
+    let more = if lens.is_empty() {
+        size
+    } else {
+        format!("{lens};  {size}")
+    };
+    match canvas {
+        SideViewCanvas::Slide => sketch.text_lines(
+            at,
+            &[(
+                &format!("{parameters};  {more}"),
+                style::TEXT,
+                style::SMALL_LABEL_SIZE,
+            )],
+        ),
+        SideViewCanvas::Panel => sketch.text_lines(
+            at,
+            &[
+                (&parameters, style::TEXT, style::SMALL_LABEL_SIZE),
+                (&more, style::TEXT, style::SMALL_LABEL_SIZE),
+            ],
+        ),
+        SideViewCanvas::Beside => {
+            let lines = [lens, parameters];
+            let mut baseline = at.y;
+            for line in lines.iter().filter(|line| !line.is_empty()) {
+                place_label(
+                    sketch,
+                    line,
+                    &[(
+                        Vec2::new(at.x, baseline),
+                        (Anchor::Start, Baseline::Alphabetic),
+                    )],
+                    style::TEXT,
+                    style::SMALL_LABEL_SIZE,
+                );
+                baseline -= LINE_SPACING * style::SMALL_LABEL_SIZE;
+            }
+            baseline
+        }
+    };
+}
+
+/// Names the image plane drawn from `top` to `bottom` (figure pixels) beside one of its
+/// ends, or farther out around its middle where the eye's labels crowd it.
+fn draw_image_plane_label(sketch: &mut Sketch, camera: &Camera, top: Vec2, bottom: Vec2) {
+    let label = match camera.projection() {
+        Projection::Perspective(p) => format!("image plane, $d$ = {}", parameter(p.distance)),
+        Projection::ThinLens(p) => format!("image plane, $d$ = {}", parameter(p.distance)),
+        _ => "image plane".to_owned(),
+    };
+    let (lower, upper) = if top.y > bottom.y {
+        (top, bottom)
+    } else {
+        (bottom, top)
+    };
+    let mut candidates = vec![
+        beside(lower, 12.0, 10.0),
+        beside(lower, -12.0, 10.0),
+        beside(upper, 12.0, -10.0),
+        beside(upper, -12.0, -10.0),
+    ];
+    let middle = (lower + upper) / 2.0;
+    for distance in [70.0, 120.0, 170.0, 220.0] {
+        candidates.extend([
+            beside(middle, 0.0, distance),
+            beside(middle, distance, 0.0),
+            beside(middle, 0.0, -distance),
+            beside(middle, -distance, 0.0),
+        ]);
+    }
+    place_label(
+        sketch,
+        &label,
+        &candidates,
+        style::IMAGE_PLANE,
+        style::SMALL_LABEL_SIZE,
+    );
+}
+
+/// Draws an arrow at the edge of the view pointing at the eye `e`, which lies beyond it,
+/// labelled with how far away the eye is (world units from the view's centre).
+fn draw_eye_beyond(sketch: &mut Sketch, view: &SideView, e: DVec3) {
+    let (min, max) = (view.bounds.min.as_dvec2(), view.bounds.max.as_dvec2());
+    let centre = (min + max) / 2.0;
+    let eye = view.plane_point(e);
+    let Some(towards) = (eye - centre).try_normalize() else {
+        return;
+    };
+    // Where the line from the centre to the eye leaves the view.
+    let reach = ((max - min) / 2.0 / towards.abs()).min_element();
+    let to_canvas = |p: DVec2| view.mapping.to_canvas(p.as_vec2());
+    let tip = to_canvas(centre + towards * reach * 0.96);
+    let tail = to_canvas(centre + towards * reach * 0.72);
+    sketch.arrow(tail, tip, Stroke::new(style::EYE, style::LINE_REGULAR));
+    let text = format!("*e*, {:.0} away", (eye - centre).length());
+    let along = (tip - tail).normalize_or_zero();
+    let side = along.perp() * 18.0;
+    place_label(
+        sketch,
+        &text,
+        &[
+            (tail - along * 14.0, label_anchor(-along)),
+            (tail + side, label_anchor(side)),
+            (tail - side, label_anchor(-side)),
+        ],
+        style::EYE,
+        style::SMALL_LABEL_SIZE,
+    );
+}
+
+/// A place for a label `(dx, dy)` pixels from the point `at` it names, anchored so that
+/// it grows away from it.
+fn beside(at: Vec2, dx: f32, dy: f32) -> (Vec2, (Anchor, Baseline)) {
+    let d = Vec2::new(dx, dy);
+    (at + d, label_anchor(d))
+}
+
+/// The anchor of a label placed in direction `d` from what it names, so that it grows
+/// away from it.
+fn label_anchor(d: Vec2) -> (Anchor, Baseline) {
+    let anchor = if d.x > 0.5 * d.length() {
+        Anchor::Start
+    } else if d.x < -0.5 * d.length() {
+        Anchor::End
+    } else {
+        Anchor::Middle
+    };
+    let baseline = if d.y > 0.5 * d.length() {
+        Baseline::Top
+    } else if d.y < -0.5 * d.length() {
+        Baseline::Bottom
+    } else {
+        Baseline::Middle
+    };
+    (anchor, baseline)
+}
+
+/// The points of `camera` a window shows: the eye, the image plane's top and bottom
+/// edges, the focus point.
+fn camera_points(camera: &Camera) -> impl Iterator<Item = DVec3> {
+    let frame = camera.frame();
+    let edges = camera
+        .projection()
+        .viewport()
+        .map(|_| viewport_edges(camera));
+    let focus = lens(camera).map(|(_, focus)| frame.e - frame.w * focus);
+    std::iter::once(frame.e)
+        .chain(edges.into_iter().flat_map(|(top, bottom)| [top, bottom]))
+        .chain(focus)
+}
+
+/// The aperture and focus distance of a camera with a lens.
+fn lens(camera: &Camera) -> Option<(f64, f64)> {
+    match camera.projection() {
+        Projection::ThinLens(p) => Some((p.aperture, p.focus)),
+        Projection::Orthographic(o) => o.lens.map(|l| (l.aperture, l.focus)),
+        _ => None,
+    }
 }
 
 /// Names e, v, w and u at the eye, each where it overlaps no other label: v and w past
@@ -286,26 +579,14 @@ fn draw_frame_labels(
     let e = view.to_figure(frame.e);
     let around = |at: Vec2, gap: f32| {
         [
-            (at + Vec2::new(-gap, gap), (Anchor::End, Baseline::Top)),
-            (at + Vec2::new(gap, gap), (Anchor::Start, Baseline::Top)),
-            (at + Vec2::new(-gap, -gap), (Anchor::End, Baseline::Bottom)),
-            (at + Vec2::new(gap, -gap), (Anchor::Start, Baseline::Bottom)),
-            (
-                at + Vec2::new(0.0, 1.6 * gap),
-                (Anchor::Middle, Baseline::Top),
-            ),
-            (
-                at + Vec2::new(0.0, -1.6 * gap),
-                (Anchor::Middle, Baseline::Bottom),
-            ),
-            (
-                at + Vec2::new(-1.6 * gap, 0.0),
-                (Anchor::End, Baseline::Middle),
-            ),
-            (
-                at + Vec2::new(1.6 * gap, 0.0),
-                (Anchor::Start, Baseline::Middle),
-            ),
+            beside(at, -gap, gap),
+            beside(at, gap, gap),
+            beside(at, -gap, -gap),
+            beside(at, gap, -gap),
+            beside(at, 0.0, 1.6 * gap),
+            beside(at, 0.0, -1.6 * gap),
+            beside(at, -1.6 * gap, 0.0),
+            beside(at, 1.6 * gap, 0.0),
         ]
     };
     for (axis, color, name) in [
@@ -354,50 +635,6 @@ fn side_plane(camera: &Camera) -> (DVec3, DVec3) {
 fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
     let p = view.plane_point(d);
     (-p.x).atan2(p.y) as f32
-}
-
-/// A side view fitted to the eye, the image plane, the focus point and the bounded
-/// objects of the scene, with a margin.
-fn fit_view(scene: &Scene, camera: &Camera, right: DVec3, up: DVec3, drawing: Rect) -> SideView {
-    let frame = camera.frame();
-    let mut points = vec![frame.e];
-    if camera.projection().viewport().is_some() {
-        let (top, bottom) = viewport_edges(camera);
-        points.extend([top, bottom]);
-    }
-    if let Projection::ThinLens(p) = camera.projection() {
-        points.push(frame.e - frame.w * p.focus);
-    }
-    let bounds = scene.world().bounds();
-    if bounds.min.is_finite() && bounds.max.is_finite() && bounds.min.cmple(bounds.max).all() {
-        for corner in 0..8 {
-            let pick =
-                |bit: u32, lo: f32, hi: f32| f64::from(if corner & bit == 0 { lo } else { hi });
-            points.push(DVec3::new(
-                pick(1, bounds.min.x, bounds.max.x),
-                pick(2, bounds.min.y, bounds.max.y),
-                pick(4, bounds.min.z, bounds.max.z),
-            ));
-        }
-    } else {
-        // Nothing bounded: show some way in front of the camera.
-        points.push(frame.e - frame.w * 4.0);
-    }
-    let plane: Vec<DVec2> = points
-        .iter()
-        .map(|&p| DVec2::new(p.dot(right), p.dot(up)))
-        .collect();
-    let min = plane.iter().fold(DVec2::INFINITY, |a, &b| a.min(b));
-    let max = plane.iter().fold(DVec2::NEG_INFINITY, |a, &b| a.max(b));
-    let size = (max - min).max_element().max(1e-3);
-    let margin = 0.12 * size;
-    SideView::fit_plane(
-        right,
-        up,
-        (min.x - margin, max.x + margin),
-        (min.y - margin, max.y + margin),
-        drawing,
-    )
 }
 
 /// The colour of object `object` of the scene: its material's (the first face's for a
@@ -458,7 +695,7 @@ fn draw_objects(sketch: &mut Sketch, view: &SideView, scene: &Scene) {
                 stroke: Some(outline.clone()),
             }),
             Object::Box(aabb) => sketch.push(Item::Polygon {
-                points: convex_hull(&box_corners(aabb.min, aabb.max).map(to_figure)),
+                points: convex_hull(&box_corners(*aabb).map(to_figure)),
                 fill,
                 stroke: Some(outline.clone()),
             }),
@@ -466,9 +703,8 @@ fn draw_objects(sketch: &mut Sketch, view: &SideView, scene: &Scene) {
                 let data = instance.mesh().data();
                 let transform = instance.world_from_object();
                 if data.triangles.len() > MAX_DRAWN_TRIANGLES {
-                    let bounds = instance.bounds();
                     sketch.push(Item::Polygon {
-                        points: convex_hull(&box_corners(bounds.min, bounds.max).map(to_figure)),
+                        points: convex_hull(&box_corners(instance.bounds()).map(to_figure)),
                         fill,
                         stroke: Some(outline.clone()),
                     });
@@ -490,8 +726,9 @@ fn draw_objects(sketch: &mut Sketch, view: &SideView, scene: &Scene) {
     }
 }
 
-/// The eight corners of the box from `min` to `max`.
-fn box_corners(min: glam::Vec3, max: glam::Vec3) -> [glam::Vec3; 8] {
+/// The eight corners of `aabb`.
+fn box_corners(aabb: Aabb) -> [glam::Vec3; 8] {
+    let (min, max) = (aabb.min, aabb.max);
     std::array::from_fn(|corner| {
         glam::Vec3::new(
             if corner & 1 == 0 { min.x } else { max.x },
@@ -610,22 +847,13 @@ fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus
     };
     place_label(
         sketch,
-        &format!("focus plane, $f$ = {}", number(focus)),
+        &format!("focus plane, $f$ = {}", parameter(focus)),
         &[
-            (
-                upper + Vec2::new(0.0, -10.0),
-                (Anchor::Middle, Baseline::Bottom),
-            ),
-            (
-                lower + Vec2::new(0.0, 10.0),
-                (Anchor::Middle, Baseline::Top),
-            ),
-            (upper + Vec2::new(12.0, 0.0), (Anchor::Start, Baseline::Top)),
-            (
-                lower + Vec2::new(12.0, 0.0),
-                (Anchor::Start, Baseline::Bottom),
-            ),
-            (upper + Vec2::new(-12.0, 0.0), (Anchor::End, Baseline::Top)),
+            beside(upper, 0.0, -10.0),
+            beside(lower, 0.0, 10.0),
+            beside(upper, 12.0, 12.0),
+            beside(lower, 12.0, -12.0),
+            beside(upper, -12.0, 12.0),
         ],
         style::HIGHLIGHT,
         style::SMALL_LABEL_SIZE,
@@ -734,29 +962,30 @@ fn place_label(
     }
 }
 
-/// One line naming the projection and its parameters in the lecture's notation.
-fn caption(camera: &Camera) -> (String, String) {
+/// The caption's parts: the projection and its parameters in the lecture's notation, the
+/// lens (empty without one), and the image size.
+fn caption(camera: &Camera) -> (String, String, String) {
     let size = format!("image {} × {}", camera.width(), camera.height());
-    let viewport = |v: DVec2| format!("$vw$ × $vh$ = {} × {}", number(v.x), number(v.y));
+    let viewport = |v: DVec2| format!("$vw$ × $vh$ = {} × {}", parameter(v.x), parameter(v.y));
     let shift = |s: DVec2| {
         if s == DVec2::ZERO {
             String::new()
         } else {
-            format!(",  shift ({}, {})", number(s.x), number(s.y))
+            format!(",  shift ({}, {})", parameter(s.x), parameter(s.y))
         }
     };
     let lens = |aperture: f64, focus: f64| {
         format!(
-            "aperture $r$ = {},  focus $f$ = {};  ",
-            number(aperture),
-            number(focus)
+            "aperture $r$ = {},  focus $f$ = {}",
+            parameter(aperture),
+            parameter(focus)
         )
     };
-    let (parameters, more) = match camera.projection() {
+    let (parameters, lens) = match camera.projection() {
         Projection::Perspective(p) => (
             format!(
                 "perspective:  $d$ = {},  {}{}",
-                number(p.distance),
+                parameter(p.distance),
                 viewport(p.viewport),
                 shift(p.shift)
             ),
@@ -765,7 +994,7 @@ fn caption(camera: &Camera) -> (String, String) {
         Projection::ThinLens(p) => (
             format!(
                 "thin lens:  $d$ = {},  {}{}",
-                number(p.distance),
+                parameter(p.distance),
                 viewport(p.viewport),
                 shift(p.shift)
             ),
@@ -779,7 +1008,7 @@ fn caption(camera: &Camera) -> (String, String) {
             format!(
                 "oblique:  {},  $L$ = {},  $φ$ = {}°",
                 viewport(o.viewport),
-                number(o.ratio),
+                parameter(o.ratio),
                 number(o.angle.to_degrees())
             ),
             String::new(),
@@ -790,5 +1019,45 @@ fn caption(camera: &Camera) -> (String, String) {
             String::new(),
         ),
     };
-    (parameters, format!("{more}{size}"))
+    (parameters, lens, size)
+}
+
+/// A camera parameter for a label: as [`number`] writes it, but to three significant
+/// digits below 0.1, so that a viewport of 0.0009 does not read 0.001.
+fn parameter(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || x.abs() >= 0.1 {
+        return number(x);
+    }
+    // Three significant digits: 0.0123 has two zeros after the point.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let decimals = (2.0 - x.abs().log10().floor()).clamp(3.0, 15.0) as usize;
+    let text = format!("{:.*}", decimals, x.abs());
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if x < 0.0 {
+        format!("\u{2212}{text}")
+    } else {
+        text.to_owned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parameter;
+
+    #[test]
+    fn small_parameters_keep_three_significant_digits() {
+        for (x, text) in [
+            (1.994_3, "1.994"),
+            (0.45, "0.45"),
+            (0.1, "0.1"),
+            (0.05, "0.05"),
+            (0.001_6, "0.0016"),
+            (0.000_9, "0.0009"),
+            (0.000_123_45, "0.000123"),
+            (-0.012_34, "\u{2212}0.0123"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(parameter(x), text, "{x}");
+        }
+    }
 }

@@ -37,7 +37,6 @@ mod clip;
 mod distortions;
 mod frame;
 mod image_plane;
-mod moving_side;
 mod pictures;
 mod rendered;
 mod side;
@@ -60,12 +59,11 @@ use viewray_scene::Scene;
 use crate::assumptions::{
     assumption_basis, assumption_distance, assumption_eye, assumption_viewport,
 };
-pub use crate::camera_side::SideViewCanvas;
+pub use crate::camera_side::{SideViewCanvas, SideWindow};
 use crate::canonical::{canonical_camera, canonical_camera_square};
 use crate::distortions::{distortion_foreshortening, distortion_verticals};
 use crate::frame::{camera_frame, camera_frame_square};
 use crate::image_plane::pixel_to_image_plane;
-pub use crate::moving_side::{SideWindow, side_view};
 use crate::pictures::Pictures;
 use crate::rendered::RenderedPictures;
 use crate::taxonomy::taxonomy;
@@ -227,26 +225,42 @@ pub fn all_figures() -> Vec<NamedFigure> {
     ]
 }
 
-/// The side view of a scene's camera (a 1600 x 900 slide, or a 1000 x 600 panel: see
-/// [`SideViewCanvas`]), the lecture's side-view
-/// figures for any camera: the scene's objects seen from the camera's right (the plane
-/// of **v** and **w**, world up kept up), the eye **e** with **v** and **w**, the image
-/// plane edge-on, the frustum's edges, and the viewing rays of five pixels of the middle
-/// column, each drawn up to the first object it hits (traced in `scene`'s world); for
-/// a thin lens, the lens and the focus plane. A caption names the projection and its
-/// parameters.
+/// The side view of `camera` over `scene`: the lecture's side-view figures for any camera
+/// and any scene. The scene's objects are seen from the side (`window`'s plane, world up
+/// kept up: for a window fitted to this camera, the plane of its **v** and **w**), with
+/// the eye **e** and its **v** and **w**, the image plane edge-on, the frustum's edges,
+/// and the viewing rays of five pixels of the middle column, each drawn up to the first
+/// object it hits (traced in `scene`'s world); for a thin lens, the lens and the focus
+/// plane. A caption names the projection and its parameters.
 ///
-/// `camera` need not be the scene's own (a live viewer draws the camera being edited);
-/// `pixel`, a 0-based (row, col) of its image, adds that pixel's viewing ray,
-/// highlighted and labelled with the lecture's (i, j). Every ray drawn is one `camera`
-/// generates.
-pub fn camera_side_view(
+/// `window` is [`SideWindow::fit`] to this camera alone (`viewray diagram`, the live
+/// playground) or to every camera of an animation, so that only the camera moves from
+/// frame to frame; an eye beyond the window is drawn as an arrow at its edge. `canvas`
+/// says where the figure goes ([`SideViewCanvas`]). `camera` need not be the scene's own
+/// (a live viewer draws the camera being edited); `pixel`, a 0-based (row, col) of its
+/// image, adds that pixel's viewing ray, highlighted and labelled with the lecture's
+/// (i, j). Every ray drawn is one `camera` generates.
+///
+/// ```
+/// use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
+/// # let scene = viewray_scene::Scene::parse(
+/// #     "(camera: (eye: (0.0, 1.0, 5.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), \
+/// #      projection: Perspective(fov_y: 40.0)))",
+/// #     std::path::Path::new("scene.ron"),
+/// # ).unwrap();
+/// let camera = scene.camera();
+/// let window = SideWindow::fit(&scene, std::slice::from_ref(camera));
+/// let figure = side_view(&scene, camera, &window, SideViewCanvas::Slide, Some((10, 20)));
+/// assert_eq!((figure.width, figure.height), SideViewCanvas::Slide.size());
+/// ```
+pub fn side_view(
     scene: &Scene,
     camera: &Camera,
-    pixel: Option<(u32, u32)>,
+    window: &SideWindow,
     canvas: SideViewCanvas,
+    pixel: Option<(u32, u32)>,
 ) -> Figure {
-    camera_side::camera_side_view(scene, camera, pixel, canvas).figure
+    camera_side::side_view(scene, camera, window, canvas, pixel).figure
 }
 
 /// The figure called `name`, if there is one; see [`figure_names`] for the names and

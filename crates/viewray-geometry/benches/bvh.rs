@@ -1,22 +1,27 @@
 //! Build and trace benchmarks of viewray-geometry's BVH on a 1,310,720-triangle
-//! icosphere, side by side with the obvhs crate (CWBVH) on the same mesh and rays.
+//! icosphere, side by side with the obvhs crate (CWBVH) and, with `--features embree`,
+//! Embree 3, on the same mesh and rays, in one run.
 //!
-//! `cargo bench -p viewray-geometry --features bench` prints, before criterion's timings, the memory per
-//! triangle of both structures and a check that both find the same hits. Criterion's
-//! `thrpt` lines are rays (or triangles, for the build) per second. `viewray` traces
-//! with `Mesh::closest_triangle` (t and face, as obvhs reports them); `viewray packets`
-//! with `Mesh::closest_triangles`, which traces 64 rays at a time (the primary rays in
-//! blocks of 8 x 8 pixels, as the renderer does); `viewray full Hit` with
-//! `Mesh::closest_hit`, which also interpolates normals and uv.
+//! `cargo bench -p viewray-geometry --features bench` prints the memory per triangle of
+//! both structures, a check that they find the same hits, then one table: each case
+//! (build; coherent primary rays; primary and incoherent rays ray by ray; on 1 thread
+//! and on all) with viewray's line first, then its peers' with the ratio of viewray's
+//! speed to theirs (above 1: viewray is faster). Each figure is the median of
+//! `VIEWRAY_BENCH_RUNS` runs (default 5) after a warm-up run, with the spread (slowest
+//! to fastest) beside it.
 //!
-//! With `--features embree` (needs the system's Embree 3, e.g. Debian's
-//! `libembree-dev`), Embree joins the comparison: build and single-ray queries. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a
-//! smaller icosphere (default 8: 20 * 4^8 triangles).
+//! viewray traces coherent rays with `Mesh::closest_triangles`, 64 at a time (the
+//! primary rays in tiles of 8 x 8 pixels, as the renderer does), and single rays with
+//! `Mesh::closest_triangle` (t and face, as the peers report them). With `--features
+//! embree` (needs the system's Embree 3, e.g. Debian's `libembree-dev`) Embree traces
+//! the coherent rays with its packet kernels, `rtcIntersect16` on tiles of 4 x 4 pixels
+//! and `rtcIntersect8` on 4 x 2, in a coherent context, and single rays with
+//! `rtcIntersect1`. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a smaller icosphere
+//! (default 8: 20 * 4^8 triangles).
 
 use std::hint::black_box;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use criterion::{BatchSize, Criterion, Throughput};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 use viewray_geometry::{Mesh, MeshData, Ray};
@@ -37,20 +42,21 @@ fn primary_rays(width: usize, height: usize) -> Vec<Ray> {
         .collect()
 }
 
-/// The same rays reordered into blocks of 8 x 8 pixels, block after block, as a
-/// renderer hands them to [`Mesh::closest_triangles`].
-fn in_blocks(rays: &[Ray], width: usize) -> Vec<Ray> {
+/// The same rays reordered into tiles of `tile_width x tile_height` pixels, tile after
+/// tile (8 x 8 as a renderer hands them to [`Mesh::closest_triangles`]; 4 x 4 and 4 x 2
+/// for Embree's packets of 16 and 8).
+fn in_tiles(rays: &[Ray], width: usize, tile_width: usize, tile_height: usize) -> Vec<Ray> {
     let height = rays.len() / width;
-    let mut blocked = Vec::with_capacity(rays.len());
-    for block_row in (0..height).step_by(8) {
-        for block_col in (0..width).step_by(8) {
-            for row in block_row..(block_row + 8).min(height) {
-                let start = row * width + block_col;
-                blocked.extend_from_slice(&rays[start..start + 8.min(width - block_col)]);
+    let mut tiled = Vec::with_capacity(rays.len());
+    for tile_row in (0..height).step_by(tile_height) {
+        for tile_col in (0..width).step_by(tile_width) {
+            for row in tile_row..(tile_row + tile_height).min(height) {
+                let start = row * width + tile_col;
+                tiled.extend_from_slice(&rays[start..start + tile_width.min(width - tile_col)]);
             }
         }
     }
-    blocked
+    tiled
 }
 
 /// `count` rays with origins uniform in `[-1, 1]^3` and directions uniform on the
@@ -111,8 +117,8 @@ impl Obvhs {
     }
 }
 
-/// Embree 3 (the system library) on the same mesh, with its default build quality and
-/// single-ray queries: only with `--features embree`.
+/// Embree 3 (the system library) on the same mesh, with its default build quality:
+/// only with `--features embree`.
 #[cfg(feature = "embree")]
 struct Embree {
     // Declared before the device so that it is released first.
@@ -162,6 +168,7 @@ impl Embree {
         }
     }
 
+    /// `rtcIntersect1`: the closest hit's `t`.
     fn closest_t(&self, ray: &Ray) -> Option<f32> {
         let mut context = embree3::IntersectContext::incoherent();
         let mut ray_hit = embree3::RayHit::from(embree3::Ray::segment(
@@ -173,6 +180,60 @@ impl Embree {
         self.scene.intersect(&mut context, &mut ray_hit);
         ray_hit.hit.is_valid().then_some(ray_hit.ray.tfar)
     }
+
+    /// The sum of the hit distances of `rays` traced one by one (`rtcIntersect1`).
+    fn trace_single(&self, rays: &[Ray]) -> f32 {
+        rays.iter().filter_map(|ray| self.closest_t(ray)).sum()
+    }
+
+    /// The same with the rays traced 8 at a time (`rtcIntersect8`, coherent context):
+    /// `rays` holds tiles of 4 x 2 pixels, tile after tile.
+    fn trace_8(&self, rays: &[Ray]) -> f32 {
+        let mut context = embree3::IntersectContext::coherent();
+        let valid = embree3::ValidMaskN::<8>::all_active();
+        let mut sum = 0.0;
+        for tile in rays.chunks_exact(8) {
+            let mut ray_hit = embree3::RayHit8 {
+                ray: embree3::Ray8::new(
+                    std::array::from_fn(|i| tile[i].origin.to_array()),
+                    std::array::from_fn(|i| tile[i].direction.to_array()),
+                ),
+                hit: embree3::Hit8::new(),
+            };
+            self.scene.intersect8(&mut context, &mut ray_hit, &valid);
+            sum += hit_sum(&ray_hit.ray.tfar, &ray_hit.hit.geomID);
+        }
+        sum
+    }
+
+    /// The same 16 at a time (`rtcIntersect16`): `rays` holds tiles of 4 x 4 pixels.
+    fn trace_16(&self, rays: &[Ray]) -> f32 {
+        let mut context = embree3::IntersectContext::coherent();
+        let valid = embree3::ValidMaskN::<16>::all_active();
+        let mut sum = 0.0;
+        for tile in rays.chunks_exact(16) {
+            let mut ray_hit = embree3::RayHit16 {
+                ray: embree3::Ray16::new(
+                    std::array::from_fn(|i| tile[i].origin.to_array()),
+                    std::array::from_fn(|i| tile[i].direction.to_array()),
+                ),
+                hit: embree3::Hit16::new(),
+            };
+            self.scene.intersect16(&mut context, &mut ray_hit, &valid);
+            sum += hit_sum(&ray_hit.ray.tfar, &ray_hit.hit.geomID);
+        }
+        sum
+    }
+}
+
+/// The sum of the distances of a packet's lanes that hit something.
+#[cfg(feature = "embree")]
+fn hit_sum(tfar: &[f32], geometry: &[u32]) -> f32 {
+    tfar.iter()
+        .zip(geometry)
+        .filter(|&(_, &g)| g != embree3::INVALID_ID)
+        .map(|(t, _)| t)
+        .sum()
 }
 
 fn obvhs_triangles(data: &MeshData) -> Vec<obvhs::triangle::Triangle> {
@@ -206,20 +267,116 @@ fn trace_viewray_packets(mesh: &Mesh, rays: &[Ray]) -> f32 {
         .sum()
 }
 
-/// The same with the full [`viewray_geometry::Hit`] (normals, shading normal, uv).
-fn trace_viewray_full_hit(mesh: &Mesh, rays: &[Ray]) -> f32 {
-    rays.iter()
-        .filter_map(|ray| mesh.closest_hit(ray, 0.0..f32::INFINITY))
-        .map(|hit| hit.t)
-        .sum()
-}
-
 fn trace_obvhs(bvh: &Obvhs, rays: &[Ray]) -> f32 {
     rays.iter().filter_map(|ray| bvh.closest_t(ray)).sum()
 }
 
-fn parallel(rays: &[Ray], trace: impl Fn(&[Ray]) -> f32 + Sync) -> f32 {
-    rays.par_chunks(1024).map(&trace).sum()
+fn parallel(rays: &[Ray], chunk: usize, trace: impl Fn(&[Ray]) -> f32 + Sync) -> f32 {
+    rays.par_chunks(chunk).map(&trace).sum()
+}
+
+/// Seconds per run: the median, fastest and slowest of a benchmark's runs.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    median: f64,
+    min: f64,
+    max: f64,
+}
+
+/// Times `run` on a fresh `setup()` each time: one warm-up run, then `runs` timed ones.
+fn time<T>(runs: usize, mut setup: impl FnMut() -> T, mut run: impl FnMut(T)) -> Timing {
+    run(setup());
+    let mut seconds: Vec<f64> = (0..runs)
+        .map(|_| {
+            let input = setup();
+            let start = Instant::now();
+            run(input);
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    seconds.sort_by(f64::total_cmp);
+    Timing {
+        median: seconds[seconds.len() / 2],
+        min: seconds[0],
+        max: seconds[seconds.len() - 1],
+    }
+}
+
+/// One line of the table: who ran a case, how, and how long it took.
+struct Line {
+    case: String,
+    who: &'static str,
+    how: &'static str,
+    timing: Timing,
+}
+
+/// The benchmark's results: each case's viewray line first, then its peers.
+struct Table {
+    runs: usize,
+    lines: Vec<Line>,
+}
+
+impl Table {
+    fn add(&mut self, case: &str, who: &'static str, how: &'static str, timing: Timing) {
+        eprintln!(
+            "  {case}: {who} {how}: {:.4} s (median of {})",
+            timing.median, self.runs
+        );
+        self.lines.push(Line {
+            case: case.to_owned(),
+            who,
+            how,
+            timing,
+        });
+    }
+
+    /// Prints every line with its figure (seconds for builds, Mrays/s for tracing), the
+    /// spread of its runs, and the ratio of viewray's speed to the peer's (above 1:
+    /// viewray is faster).
+    fn print(&self, rays_of: impl Fn(&str) -> Option<usize>) {
+        println!();
+        println!("ratio: viewray's speed over the peer's (above 1.00x: viewray is faster)");
+        println!(
+            "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6}",
+            "case", "who", "how", "median", "spread", "ratio"
+        );
+        let mut ours: Option<&Line> = None;
+        for line in &self.lines {
+            if line.who == "viewray" {
+                ours = Some(line);
+            }
+            let (figure, low, high) = match rays_of(&line.case) {
+                Some(rays) => {
+                    let speed = |s: f64| rays as f64 / s / 1e6;
+                    (
+                        format!("{:.2} Mrays/s", speed(line.timing.median)),
+                        speed(line.timing.max),
+                        speed(line.timing.min),
+                    )
+                }
+                None => (
+                    format!("{:.3} s", line.timing.median),
+                    line.timing.min,
+                    line.timing.max,
+                ),
+            };
+            let ratio = match ours {
+                Some(ours) if line.who != "viewray" && ours.case == line.case => {
+                    format!("{:.2}x", line.timing.median / ours.timing.median)
+                }
+                _ => String::new(),
+            };
+            println!(
+                "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6}",
+                line.case,
+                line.who,
+                line.how,
+                figure,
+                format!("{low:.2}-{high:.2}"),
+                ratio
+            );
+        }
+    }
 }
 
 fn main() {
@@ -227,6 +384,11 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(8);
+    let runs = std::env::var("VIEWRAY_BENCH_RUNS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(5usize)
+        .max(1);
     let data = MeshData::icosphere(subdivisions, 1.0);
     let triangles = data.triangles.len();
     let threads = rayon::current_num_threads();
@@ -241,10 +403,10 @@ fn main() {
     #[cfg(feature = "embree")]
     let embree = Embree::build(&data, 0);
     let primary = primary_rays(1024, 1024);
-    let primary_blocks = in_blocks(&primary, 1024);
+    let primary_8x8 = in_tiles(&primary, 1024, 8, 8);
     let incoherent = incoherent_rays(1_000_000);
 
-    println!("icosphere: {triangles} triangles, {threads} threads");
+    println!("icosphere: {triangles} triangles, {threads} threads, {runs} runs per case");
     println!(
         "memory per triangle: viewray {:.1} bytes (BVH + triangle packets), obvhs {:.1} bytes (CWBVH + indices + triangles)",
         mesh.acceleration_bytes() as f64 / triangles as f64,
@@ -257,31 +419,24 @@ fn main() {
             .collect();
         let theirs: Vec<Option<f32>> = rays.par_iter().map(|r| peer.closest_t(r)).collect();
         let hits = ours.iter().flatten().count();
+        let same = |a: &Option<f32>, b: &Option<f32>| match (a, b) {
+            (Some(a), Some(b)) => (a - b).abs() <= 1e-4 * a.max(1.0),
+            (None, None) => true,
+            _ => false,
+        };
         #[cfg(feature = "embree")]
         {
             let embree_agrees = rays
                 .par_iter()
                 .zip(&ours)
-                .filter(|(ray, ours)| match (embree.closest_t(ray), ours) {
-                    (Some(a), Some(b)) => (a - b).abs() <= 1e-4 * a.max(1.0),
-                    (None, None) => true,
-                    _ => false,
-                })
+                .filter(|(ray, ours)| same(&embree.closest_t(ray), ours))
                 .count();
             println!(
                 "{name} rays: Embree agrees on {embree_agrees} ({:.4}%)",
                 100.0 * embree_agrees as f64 / rays.len() as f64
             );
         }
-        let agree = ours
-            .iter()
-            .zip(&theirs)
-            .filter(|(a, b)| match (a, b) {
-                (Some(a), Some(b)) => (a - b).abs() <= 1e-4 * a.max(1.0),
-                (None, None) => true,
-                _ => false,
-            })
-            .count();
+        let agree = ours.iter().zip(&theirs).filter(|(a, b)| same(a, b)).count();
         println!(
             "{name} rays: {} rays, {hits} hits, obvhs agrees on {agree} ({:.4}%)",
             rays.len(),
@@ -289,80 +444,124 @@ fn main() {
         );
     }
 
-    let mut criterion = Criterion::default()
-        .sample_size(10)
-        .warm_up_time(Duration::from_secs(1))
-        .measurement_time(Duration::from_secs(4))
-        .configure_from_args();
-
-    {
-        let mut group = criterion.benchmark_group("build");
-        group.throughput(Throughput::Elements(triangles as u64));
-        group.bench_function("viewray/1 thread", |b| {
-            b.iter_batched(
+    let mut table = Table {
+        runs,
+        lines: Vec::new(),
+    };
+    let thread_counts = [
+        (1, "1 thread".to_owned()),
+        (threads, format!("{threads} threads")),
+    ];
+    for (count, label) in &thread_counts {
+        let pool = if *count == 1 {
+            &one_thread
+        } else {
+            &rayon::ThreadPoolBuilder::new()
+                .num_threads(*count)
+                .build()
+                .expect("a pool")
+        };
+        let case = format!("build, {label}");
+        table.add(
+            &case,
+            "viewray",
+            "binned SAH, 8 wide",
+            time(
+                runs,
                 || data.clone(),
-                |data| one_thread.install(|| Mesh::new(data)),
-                BatchSize::LargeInput,
-            )
-        });
-        group.bench_function(format!("viewray/{threads} threads"), |b| {
-            b.iter_batched(|| data.clone(), Mesh::new, BatchSize::LargeInput)
-        });
-        group.bench_function("obvhs/1 thread", |b| {
-            b.iter(|| one_thread.install(|| Obvhs::build(&obvhs_input)))
-        });
-        group.bench_function(format!("obvhs/{threads} threads"), |b| {
-            b.iter(|| Obvhs::build(&obvhs_input))
-        });
+                |data| drop(pool.install(|| Mesh::new(data))),
+            ),
+        );
         #[cfg(feature = "embree")]
-        {
-            group.bench_function("embree/1 thread", |b| b.iter(|| Embree::build(&data, 1)));
-            group.bench_function(format!("embree/{threads} threads"), |b| {
-                b.iter(|| Embree::build(&data, 0))
-            });
-        }
-        group.finish();
+        table.add(
+            &case,
+            "embree",
+            "default quality",
+            time(runs, || (), |()| drop(Embree::build(&data, *count as u32))),
+        );
+        table.add(
+            &case,
+            "obvhs",
+            "CWBVH, medium",
+            time(
+                runs,
+                || (),
+                |()| drop(pool.install(|| Obvhs::build(&obvhs_input))),
+            ),
+        );
     }
 
-    for (name, rays, packet_rays) in [
-        ("primary", &primary, &primary_blocks),
-        ("incoherent", &incoherent, &incoherent),
-    ] {
-        let mut group = criterion.benchmark_group(name);
-        group.throughput(Throughput::Elements(rays.len() as u64));
-        group.bench_function("viewray/1 thread", |b| {
-            b.iter(|| black_box(trace_viewray(&mesh, rays)))
-        });
-        group.bench_function(format!("viewray/{threads} threads"), |b| {
-            b.iter(|| black_box(parallel(rays, |r| trace_viewray(&mesh, r))))
-        });
-        group.bench_function("viewray packets/1 thread", |b| {
-            b.iter(|| black_box(trace_viewray_packets(&mesh, packet_rays)))
-        });
-        group.bench_function(format!("viewray packets/{threads} threads"), |b| {
-            b.iter(|| black_box(parallel(packet_rays, |r| trace_viewray_packets(&mesh, r))))
-        });
-        group.bench_function("viewray full Hit/1 thread", |b| {
-            b.iter(|| black_box(trace_viewray_full_hit(&mesh, rays)))
-        });
-        group.bench_function("obvhs/1 thread", |b| {
-            b.iter(|| black_box(trace_obvhs(&peer, rays)))
-        });
-        group.bench_function(format!("obvhs/{threads} threads"), |b| {
-            b.iter(|| black_box(parallel(rays, |r| trace_obvhs(&peer, r))))
-        });
+    #[cfg(feature = "embree")]
+    let (primary_4x4, primary_4x2) = (
+        in_tiles(&primary, 1024, 4, 4),
+        in_tiles(&primary, 1024, 4, 2),
+    );
+    for (count, label) in &thread_counts {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(*count)
+            .build()
+            .expect("a pool");
+        let run = |trace: &(dyn Fn() -> f32 + Sync)| {
+            time(
+                runs,
+                || (),
+                |()| {
+                    black_box(pool.install(trace));
+                },
+            )
+        };
+        let case = format!("primary, coherent, {label}");
+        table.add(
+            &case,
+            "viewray",
+            "packets of 64 (8 x 8)",
+            run(&|| parallel(&primary_8x8, 1024, |r| trace_viewray_packets(&mesh, r))),
+        );
         #[cfg(feature = "embree")]
         {
-            let trace_embree =
-                |rays: &[Ray]| -> f32 { rays.iter().filter_map(|ray| embree.closest_t(ray)).sum() };
-            group.bench_function("embree/1 thread", |b| {
-                b.iter(|| black_box(trace_embree(rays)))
-            });
-            group.bench_function(format!("embree/{threads} threads"), |b| {
-                b.iter(|| black_box(parallel(rays, trace_embree)))
-            });
+            table.add(
+                &case,
+                "embree",
+                "rtcIntersect16 (4 x 4)",
+                run(&|| parallel(&primary_4x4, 1024, |r| embree.trace_16(r))),
+            );
+            table.add(
+                &case,
+                "embree",
+                "rtcIntersect8 (4 x 2)",
+                run(&|| parallel(&primary_4x2, 1024, |r| embree.trace_8(r))),
+            );
         }
-        group.finish();
+        for (name, rays) in [("primary", &primary), ("incoherent", &incoherent)] {
+            let case = format!("{name}, ray by ray, {label}");
+            table.add(
+                &case,
+                "viewray",
+                "closest_triangle",
+                run(&|| parallel(rays, 1024, |r| trace_viewray(&mesh, r))),
+            );
+            #[cfg(feature = "embree")]
+            table.add(
+                &case,
+                "embree",
+                "rtcIntersect1",
+                run(&|| parallel(rays, 1024, |r| embree.trace_single(r))),
+            );
+            table.add(
+                &case,
+                "obvhs",
+                "ray_traverse",
+                run(&|| parallel(rays, 1024, |r| trace_obvhs(&peer, r))),
+            );
+        }
     }
-    criterion.final_summary();
+    table.print(|case| {
+        if case.starts_with("primary") {
+            Some(primary.len())
+        } else if case.starts_with("incoherent") {
+            Some(incoherent.len())
+        } else {
+            None
+        }
+    });
 }

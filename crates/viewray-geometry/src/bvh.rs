@@ -707,7 +707,7 @@ impl Bvh {
         with_stack(|stack| self.any_with_stack::<OCTANT>(ray, t_min, t_max, leaf, &mut stack.refs))
     }
 
-    fn any_with_stack<const OCTANT: u8>(
+    pub(crate) fn any_with_stack<const OCTANT: u8>(
         &self,
         ray: &BoxRay,
         t_min: f32,

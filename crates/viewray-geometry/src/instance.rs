@@ -7,8 +7,8 @@ use glam::{Affine3A, Mat3A, Vec3, Vec4};
 
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
-    BoxPacket, PACKET_GROUPS, PACKET_SIZE, PacketQuery, for_each_packet, lane as packet_lane,
-    lanes_of, set_lane,
+    PACKET_GROUPS, PACKET_SIZE, PacketQuery, for_each_packet, lane as packet_lane, lanes_of,
+    set_lane,
 };
 use crate::{Aabb, GeometryError, Mesh, Ray};
 
@@ -145,8 +145,7 @@ impl Instance {
             count += 1;
         }
         let object_rays = &object_rays[..count];
-        let mut object_packet = BoxPacket::new();
-        for_each_packet(object_rays, &mut object_packet, |object_packet| {
+        for_each_packet(object_rays, |object_packet| {
             let lanes = object_packet
                 .rays()
                 .iter()

@@ -66,6 +66,12 @@
 //!   a block repeats, are walked once. Packets whose unit directions spread more than
 //!   0.05 (random rays) are traced ray by ray. A packet's slab numbers are set up four
 //!   rays at a time, bit for bit as for single rays.
+//! - **Packets for shadow rays.** [`World::any_hits`] traces up to 64 rays of one octant
+//!   (a block's shadow rays toward one light) together: the packet's interval test walks
+//!   the top-level BVH once, each leaf goes to the rays whose own box test enters it,
+//!   and a ray that hits stops searching; every ray gets the answer [`World::any_hit`]
+//!   gives it. The numbers a packet is set up from (seven kilobytes) are reused from a
+//!   thread-local: zeroing them for each batch of shadow rays cost more than tracing it.
 //! - **Short cuts for simple worlds.** A world with one bounded object skips its
 //!   top-level BVH (whose one box only repeats the object's own first test), and an
 //!   instance with the identity transform does not carry rays into object space.
@@ -73,24 +79,93 @@
 //!   texture coordinates are computed once, for the winner ([`Mesh::closest_triangle`],
 //!   [`World::closest_object`] and the packet queries skip them altogether).
 //!
+//! # Speed
+//!
 //! `cargo bench -p viewray-geometry --features bench` measures build time, memory and
 //! throughput on a 1,310,720-triangle icosphere side by side with the obvhs crate
-//! (CWBVH), and with `--features embree` Embree 3 too (called ray by ray,
-//! `rtcIntersect1`). On the 2-core
-//! development machine, idle, the last full run gave (ratios come from one run):
+//! (CWBVH); `--features bench,embree` adds Embree 3 (the system's libembree3) in the
+//! same run: its packet kernels `rtcIntersect16` (tiles of 4 x 4 pixels) and
+//! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
+//! its build. It prints one table with the ratio of viewray's speed to each peer's
+//! (above 1.00x: viewray is faster). On the 2-core development machine, idle, an
+//! earlier full run gave:
 //!
 //! | | viewray | obvhs | Embree 3 |
 //! |---|---|---|---|
 //! | build, 1 / 2 threads | 0.71 s / 0.48 s | 1.06 s / 0.87 s | 0.25 s / 0.28 s |
-//! | bytes per triangle | 54 | 60 | |
-//! | primary, packets, 1 / 2 threads | 14.0 / 26.2 Mrays/s | | |
+//! | bytes per triangle | 53.9 | 60.3 | |
+//! | primary, packets, 1 thread | 14.0 Mrays/s (64 rays) | | 25 (16 rays), 18.7 (8 rays) |
 //! | primary, ray by ray, 1 / 2 threads | 6.0 / 11.1 Mrays/s | 3.2 / 6.5 | 9.1 / 17.9 |
 //! | incoherent, ray by ray, 1 / 2 threads | 1.62 / 3.29 Mrays/s | 0.92 / 1.84 | 1.94 / 3.93 |
 //!
-//! Runs vary: over several runs, primary packets on 1 thread gave 11.1 to 14.0 Mrays/s
-//! and the incoherent ratio to obvhs 1.5 to 1.8. Computing the full [`Hit`]
-//! costs a twentieth more on primary rays and half again on incoherent ones, for the
-//! vertex data it reads.
+//! Computing the full [`Hit`] costs a twentieth more on primary rays and half again on
+//! incoherent ones, for the vertex data it reads.
+//!
+//! The latest three runs (`VIEWRAY_BENCH_RUNS=3`) had the machine shared with other
+//! work (load average 11 to 12 on 2 cores), so absolute figures are low and noisy; the
+//! ratios, taken within one run, are the figures to read, and even they move by a
+//! factor of two between runs. Viewray's speed over Embree's, 1 thread, runs 1 / 2 / 3:
+//!
+//! ```text
+//! coherent primary, packets of 64 vs rtcIntersect16   0.62x / 1.98x / 1.34x
+//! coherent primary, packets of 64 vs rtcIntersect8    0.82x / 1.99x / 1.25x
+//! primary, ray by ray vs rtcIntersect1                0.40x / 0.85x / 0.27x
+//! incoherent, ray by ray vs rtcIntersect1             1.03x / 0.60x / 1.20x
+//! build, 1 thread                                     0.58x / 0.61x / 0.70x
+//! build, 2 threads                                    0.79x / 0.88x / 0.47x
+//! coherent primary, 2 threads, vs rtcIntersect16      0.90x / 0.65x / 0.78x
+//! incoherent, 2 threads, vs rtcIntersect1             0.74x / 0.69x / 0.65x
+//! memory per triangle: 53.9 bytes (BVH + triangle packets), obvhs 60.3
+//! ```
+//!
+//! (viewray's 1-thread medians over the three runs: coherent 6.7 / 10.4 / 10.9 Mrays/s,
+//! incoherent 0.90 / 0.56 / 1.23, build 1.23 / 1.14 / 1.32 s; Embree's rtcIntersect16
+//! 10.7 / 5.2 / 8.1 Mrays/s, build 0.71 / 0.70 / 0.93 s.) Against the idle figures
+//! above, what stands: memory is at 53.9 bytes per triangle; the build takes about twice
+//! Embree's time on 1 thread (0.71 s against 0.25 to 0.33 s) and does not reach it on
+//! 2; coherent packets reach about 0.56x of `rtcIntersect16` (14 against 25 Mrays/s)
+//! and 0.75x of `rtcIntersect8`; incoherent rays about 0.84x of `rtcIntersect1`.
+//!
+//! Because wall-clock time on a shared machine is this noisy, changes are decided on
+//! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
+//! doc). On its 81,920-triangle icosphere (6 subdivisions) the code as of this writing
+//! executes, per ray, about 656 instructions for a coherent primary ray in packets of
+//! 64 (`Bvh::closest_packet`), 1,124 for the same ray alone (`Bvh::closest_prepared`)
+//! and 1,468 for an incoherent ray; and about 3,600 per triangle to build the BVH.
+//! Instruction counts are no substitute for the table (Embree uses AVX-512 and its
+//! rays wait on memory), but two builds of viewray compare reliably.
+//!
+//! Where the time goes (callgrind, one thread):
+//!
+//! - **A render of the icosphere** (`viewray render target/icosphere/icosphere.ron
+//!   --stats --threads 1`, Flat shading, 1024 x 1024 primary rays) executes 1,013 M
+//!   instructions, of which packet tracing ([`World::closest_objects`], which hands
+//!   the packets straight to the mesh) is 735 M (72.5%): the render costs 1.38x its
+//!   tracing in instructions, short of the 1.10x aimed for. The rest is the camera's
+//!   `f64` ray generation (125 M, 119 instructions a ray: two `f64` frame transforms
+//!   and the projection), the block's bookkeeping (about 125 M: film points, hit and
+//!   colour buffers, accumulation) and Flat shading (29 M). In wall-clock time, where
+//!   tracing waits on memory, the share lost is smaller: `render_s` gave 5.3 Mrays/s
+//!   (median of 3, spread 4.9 to 7.0) while the benchmark's packets gave 6.7 to 10.9
+//!   in the same hour.
+//! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
+//!   1`, 16 objects) executes about 2,170 instructions per sample: shadow-ray packets
+//!   ([`World::any_hits`], 350), primary and mirror packets (350), camera rays and
+//!   sampling (about 300), and about 1,150 of shading and bookkeeping: grid lines
+//!   filtered over each sample's footprint (540 per sample that sees the ground),
+//!   surface details, Blinn-Phong with `powf`, the block's buffers. With so few objects
+//!   a packet's setup (its slab numbers) costs as much as its traversal.
+//!
+//! Shadow and mirror rays now go as packets and Lit samples are shaded a block at a
+//! time; cameras without a lens draw no lens samples. On the default scene at 1280 x
+//! 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16 --threads 2
+//! --stats`, 38,387,820 rays, the image byte-identical), the renderer before this work
+//! took 4.73 / 4.91 / 5.45 s and now takes 3.81 / 3.91 / 4.19 s: 1.25x by the medians
+//! (4.91 s against 3.91 s), short of the 2x aimed for by a factor of 1.6. Its
+//! instruction count at 320 x 180 and 4 samples fell from 574 M to 501 M (1.15x):
+//! shadow rays from 125 M (`any_hit` ray by ray) to 84 M, all tracing from about 225 M
+//! to 165 M; shading and ray generation, which packets do not touch, are two thirds of
+//! what is left, so even free tracing would not give 2x.
 
 mod aabb;
 mod bvh;

@@ -8,9 +8,7 @@ use rayon::prelude::*;
 
 use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, prefetch};
 use crate::hit::{Hit, RawHit, face_toward};
-use crate::packet::{
-    BoxPacket, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet,
-};
+use crate::packet::{PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet};
 use crate::shapes::{WatertightRay, edge_functions_f64};
 use crate::{Aabb, GeometryError, Ray};
 
@@ -609,10 +607,9 @@ impl Mesh {
         hits: &mut [Option<TriangleHit>],
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit per ray");
-        let mut packet = BoxPacket::new();
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(None);
-            for_each_packet(rays, &mut packet, |packet| {
+            for_each_packet(rays, |packet| {
                 let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
                 let mut best = [None; PACKET_SIZE];
                 let query = PacketQuery {

@@ -11,6 +11,8 @@
 //! each ray's own tests are exactly the single-ray arithmetic, so a packet finds the
 //! same hits as its rays traced alone.
 
+use std::cell::RefCell;
+
 use glam::{BVec4A, Vec4};
 
 use crate::Ray;
@@ -65,21 +67,19 @@ pub(crate) struct BoxPacket {
 
 impl BoxPacket {
     /// An empty packet, to be filled with [`BoxPacket::fill`].
-    pub(crate) fn new() -> Self {
-        Self {
-            len: 0,
-            rays: [0; PACKET_SIZE],
-            octant: 0,
-            coherent: false,
-            origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            bound_origin_near: [Vec4::ZERO; 3],
-            bound_origin_far: [Vec4::ZERO; 3],
-            inverse_min: [Vec4::ZERO; 3],
-            inverse_max: [Vec4::ZERO; 3],
-        }
-    }
+    pub(crate) const EMPTY: Self = Self {
+        len: 0,
+        rays: [0; PACKET_SIZE],
+        octant: 0,
+        coherent: false,
+        origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        bound_origin_near: [Vec4::ZERO; 3],
+        bound_origin_far: [Vec4::ZERO; 3],
+        inverse_min: [Vec4::ZERO; 3],
+        inverse_max: [Vec4::ZERO; 3],
+    };
 
     /// The mask of all the packet's rays.
     pub(crate) fn all_lanes(&self) -> u64 {
@@ -330,19 +330,26 @@ struct ChunkNumbers {
 }
 
 impl ChunkNumbers {
-    /// The numbers of `rays`, as [`BoxRay::new`] computes them ray by ray, four rays at
-    /// a time. Lanes past the last ray copy the first one.
-    fn new(rays: &[Ray]) -> Self {
+    /// Numbers to be filled with [`ChunkNumbers::fill`].
+    const EMPTY: Self = Self {
+        len: 0,
+        all: 0,
+        octants: [0; 8],
+        origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+    };
+
+    /// Makes these the numbers of `rays`, as [`BoxRay::new`] computes them ray by ray,
+    /// four rays at a time. Lanes past the last ray copy the first one; groups past
+    /// the last are left as they were (nothing reads them).
+    fn fill(&mut self, rays: &[Ray]) {
         debug_assert!(!rays.is_empty() && rays.len() <= PACKET_SIZE);
-        let mut chunk = Self {
-            len: rays.len(),
-            all: lanes_below(rays.len()),
-            octants: [0; 8],
-            origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-            direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        };
+        let chunk = self;
+        chunk.len = rays.len();
+        chunk.all = lanes_below(rays.len());
+        chunk.octants = [0; 8];
         for group in 0..rays.len().div_ceil(4) {
             let ray = |i: usize| rays.get(4 * group + i).unwrap_or(&rays[0]);
             let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
@@ -382,27 +389,65 @@ impl ChunkNumbers {
                 }
             }
         }
-        chunk
     }
+}
+
+/// What splitting rays into packets works in: a chunk's numbers and the packet being
+/// filled, some seven kilobytes, reused from a thread-local (zeroing them for every
+/// batch of shadow rays cost more than tracing the batch).
+struct PacketBuffers {
+    chunk: ChunkNumbers,
+    packet: BoxPacket,
+}
+
+impl PacketBuffers {
+    const EMPTY: Self = Self {
+        chunk: ChunkNumbers::EMPTY,
+        packet: BoxPacket::EMPTY,
+    };
+}
+
+thread_local! {
+    /// Three sets of buffers per thread: a world's packets, an instance's packets in
+    /// object space nested in them, and one spare.
+    static PACKET_BUFFERS: [RefCell<PacketBuffers>; 3] = const {
+        [
+            RefCell::new(PacketBuffers::EMPTY),
+            RefCell::new(PacketBuffers::EMPTY),
+            RefCell::new(PacketBuffers::EMPTY),
+        ]
+    };
 }
 
 /// Splits `rays` (at most [`PACKET_SIZE`]) into packets of one octant each and calls
 /// `trace(packet)` for each (see [`BoxPacket::rays`]). Rays that hit nothing by
 /// definition (a non-finite origin or direction, a zero direction) are in no packet.
-pub(crate) fn for_each_packet(
-    rays: &[Ray],
-    packet: &mut BoxPacket,
-    mut trace: impl FnMut(&BoxPacket),
-) {
+pub(crate) fn for_each_packet(rays: &[Ray], mut trace: impl FnMut(&BoxPacket)) {
     if rays.is_empty() {
         return;
     }
-    let chunk = ChunkNumbers::new(rays);
-    for (octant, &mask) in chunk.octants.iter().enumerate() {
-        if mask != 0 {
-            packet.fill(&chunk, octant as u8, mask);
-            trace(packet);
+    let mut split = |buffers: &mut PacketBuffers| {
+        let PacketBuffers { chunk, packet } = buffers;
+        chunk.fill(rays);
+        for (octant, &mask) in chunk.octants.iter().enumerate() {
+            if mask != 0 {
+                packet.fill(chunk, octant as u8, mask);
+                trace(packet);
+            }
         }
+    };
+    let done = PACKET_BUFFERS.with(|all| {
+        for cell in all {
+            if let Ok(mut buffers) = cell.try_borrow_mut() {
+                split(&mut buffers);
+                return true;
+            }
+        }
+        false
+    });
+    if !done {
+        let mut fresh = PacketBuffers::EMPTY;
+        split(&mut fresh);
     }
 }
 
@@ -646,9 +691,119 @@ impl Bvh {
     }
 }
 
-impl Default for BoxPacket {
-    fn default() -> Self {
-        Self::new()
+impl Bvh {
+    /// The any-hit traversal of a packet: which rays of `lanes` meet an item with `t`
+    /// in `[t_min, t_max]`. Visits the nodes that some ray still searching may reach
+    /// (in no particular order) and hands each leaf to the rays that hit its box,
+    /// `leaf(rays, start, count)`, which returns those of `rays` that hit one of the
+    /// leaf's items; a ray that hits stops searching. A ray is given exactly the leaves
+    /// its single-ray traversal ([`Bvh::any`]) would visit, and so gets its answer.
+    pub(crate) fn any_packet(
+        &self,
+        packet: &BoxPacket,
+        lanes: u64,
+        t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u64, u32, u32) -> u64,
+    ) -> u64 {
+        if self.nodes().is_empty() || lanes == 0 {
+            return 0;
+        }
+        macro_rules! octant {
+            ($octant:literal) => {
+                with_stack(|stack| {
+                    self.any_packet_with_stack::<$octant>(
+                        packet,
+                        lanes,
+                        t_min,
+                        t_max,
+                        leaf,
+                        &mut stack.refs,
+                    )
+                })
+            };
+        }
+        match packet.octant {
+            0 => octant!(0),
+            1 => octant!(1),
+            2 => octant!(2),
+            3 => octant!(3),
+            4 => octant!(4),
+            5 => octant!(5),
+            6 => octant!(6),
+            _ => octant!(7),
+        }
+    }
+
+    fn any_packet_with_stack<const OCTANT: u8>(
+        &self,
+        packet: &BoxPacket,
+        lanes: u64,
+        t_min: f32,
+        t_max: f32,
+        mut leaf: impl FnMut(u64, u32, u32) -> u64,
+        stack: &mut [u32; STACK_SIZE],
+    ) -> u64 {
+        let nodes = self.nodes();
+        let mut hit = 0;
+        if !packet.coherent {
+            // Ray by ray: the interval test would visit many nodes no ray needs.
+            for i in lanes_of(lanes) {
+                let ray = packet.lane_ray(i);
+                if self.any_with_stack::<OCTANT>(
+                    &ray,
+                    t_min,
+                    t_max,
+                    |start, count| leaf(1 << i, start, count) != 0,
+                    stack,
+                ) {
+                    hit |= 1 << i;
+                }
+            }
+            return hit;
+        }
+        debug_assert!(nodes.len() < (1 << 28), "entries are node * 8 + slot");
+        let (t_min4, t_max4) = (Vec4::splat(t_min), Vec4::splat(t_max));
+        let t_max_lanes = [t_max4; PACKET_GROUPS];
+        let mut searching = lanes;
+        let mut sp = 0usize;
+        let mut current = 0usize;
+        loop {
+            // Push every child some ray may hit.
+            let node = &nodes[current];
+            let (mut mask, _) = packet.hit_children::<OCTANT>(node, t_min4, t_max4);
+            while mask != 0 {
+                let slot = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                stack[sp] = (current * WIDTH + slot) as u32;
+                sp += 1;
+            }
+            // Pop children until the next node; leaves go to the rays that hit them.
+            loop {
+                if sp == 0 {
+                    return hit;
+                }
+                sp -= 1;
+                let entry = stack[sp] as usize;
+                let (parent, slot) = (&nodes[entry / WIDTH], entry % WIDTH);
+                let child = parent.children[slot];
+                if child & LEAF == 0 {
+                    current = child as usize;
+                    break;
+                }
+                let rays =
+                    packet.rays_hitting::<OCTANT>(parent, slot, searching, t_min4, &t_max_lanes);
+                if rays != 0 {
+                    let (start, count) = decode_leaf(child);
+                    let found = leaf(rays, start, count) & rays;
+                    hit |= found;
+                    searching &= !found;
+                    if searching == 0 {
+                        return hit;
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -727,7 +882,8 @@ mod tests {
             }
         }
         for chunk_rays in rays.chunks(37) {
-            let chunk = ChunkNumbers::new(chunk_rays);
+            let mut chunk = ChunkNumbers::EMPTY;
+            chunk.fill(chunk_rays);
             for (i, ray) in chunk_rays.iter().enumerate() {
                 let single_ray = BoxRay::new(ray);
                 let in_octant = chunk.octants.iter().position(|mask| mask & (1 << i) != 0);

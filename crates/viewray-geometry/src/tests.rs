@@ -284,8 +284,19 @@ fn check_mesh_packet(mesh: &Mesh, rays: &[Ray], t_range: std::ops::Range<f32>) {
     }
 }
 
+/// Checks that the packet queries of a world (`any_hits`, `closest_objects`) answer as
+/// its rays traced one by one.
 #[track_caller]
 fn check_world_packet(world: &World, rays: &[Ray], t_range: std::ops::Range<f32>) {
+    let mut blocked = vec![false; rays.len()];
+    world.any_hits(rays, t_range.clone(), &mut blocked);
+    for (ray, blocked) in rays.iter().zip(blocked) {
+        assert_eq!(
+            blocked,
+            world.any_hit(ray, t_range.clone()),
+            "any_hits differs from any_hit for {ray:?}"
+        );
+    }
     let mut hits = vec![None; rays.len()];
     world.closest_objects(rays, t_range.clone(), &mut hits);
     for (ray, hit) in rays.iter().zip(hits) {

@@ -62,7 +62,12 @@
 //! [`World::closest_objects`](viewray_geometry::World::closest_objects) as one packet
 //! (same hits as ray by ray, a fraction of the work), and each pixel still adds its
 //! samples in index order. Flat shading of a plain colour and Depth shading need no
-//! normals, so they skip the surface details; shadow and mirror rays go one by one.
+//! normals, so they skip the surface details. Lit shading works on the block's hits
+//! together: their shadow rays toward each light go to
+//! [`World::any_hits`](viewray_geometry::World::any_hits) as one batch, their reflected
+//! rays to `closest_objects`, and the reflected hits are shaded as a batch one bounce
+//! deeper; each sample still sums its lights in order with the same numbers, so the
+//! image is the same as sample by sample.
 //!
 //! # Output
 //!

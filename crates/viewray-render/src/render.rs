@@ -166,6 +166,8 @@ struct TileBuffers {
     rays: Vec<Ray>,
     ray_pixels: Vec<(usize, u32, u32)>,
     hits: Vec<Option<ObjectHit>>,
+    /// The colours the block's samples see.
+    colors: Vec<Vec3>,
 }
 
 impl TileBuffers {
@@ -178,6 +180,7 @@ impl TileBuffers {
             rays: Vec::with_capacity(block),
             ray_pixels: Vec::with_capacity(block),
             hits: Vec::with_capacity(block),
+            colors: Vec::with_capacity(block),
         }
     }
 
@@ -224,20 +227,30 @@ impl TileBuffers {
                         }
                     }
 
-                    // Trace them together and shade each hit.
+                    // Trace them together and shade the hits together.
                     self.hits.clear();
                     self.hits.resize(self.rays.len(), None);
                     shader.trace_primary(&self.rays, &mut self.hits);
-                    for ((ray, hit), &(pixel, row, col)) in
-                        self.rays.iter().zip(&self.hits).zip(&self.ray_pixels)
-                    {
-                        let film = FilmPoint {
+                    let films: Vec<FilmPoint<'_>> = self
+                        .ray_pixels
+                        .iter()
+                        .map(|&(pixel, row, col)| FilmPoint {
                             pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
                             spacing,
                             differentials: &self.differentials[pixel],
-                        };
-                        self.pixels[pixel] +=
-                            shader.shade_primary(ray, hit.as_ref(), &film, &mut rays);
+                        })
+                        .collect();
+                    self.colors.clear();
+                    self.colors.resize(self.rays.len(), Vec3::ZERO);
+                    shader.shade_primaries(
+                        &self.rays,
+                        &self.hits,
+                        &films,
+                        &mut self.colors,
+                        &mut rays,
+                    );
+                    for (&(pixel, _, _), &color) in self.ray_pixels.iter().zip(&self.colors) {
+                        self.pixels[pixel] += color;
                     }
                 }
             }
@@ -326,7 +339,7 @@ fn render_on_current_pool(
 
     let shader = Shader::new(scene, view, settings.max_reflection_depth, depth_map);
     let spacing = 1.0 / f64::from(samples).sqrt();
-    let strata = Strata::new(samples);
+    let strata = Strata::new(samples).with_lens(view.camera.projection().has_lens());
     let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
     let traced = AtomicU64::new(0);

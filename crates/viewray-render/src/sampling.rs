@@ -106,6 +106,9 @@ pub(crate) struct Strata {
     /// Cells in the short rows; the first `long_rows` rows hold one more.
     short: u32,
     long_rows: u32,
+    /// Whether lens samples are drawn: cameras without a lens ignore `p_lens`, so
+    /// they are left at the lens centre and their stratum is not looked up.
+    lens: bool,
 }
 
 impl Strata {
@@ -118,7 +121,14 @@ impl Strata {
             count,
             short: count / rows,
             long_rows: count % rows,
+            lens: true,
         }
+    }
+
+    /// The same strata, drawing lens samples only if `lens` (a camera without a lens
+    /// ignores them). The film samples do not change: they are drawn first.
+    pub(crate) fn with_lens(self, lens: bool) -> Self {
+        Self { lens, ..self }
     }
 
     /// The corner and size of cell `cell` (`cell < count`).
@@ -159,6 +169,12 @@ impl Strata {
         let mut rng = SampleRng::new(row, col, index);
         let (corner, size) = self.cell(index);
         let p_film = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
+        if !self.lens {
+            return CameraSample {
+                p_film,
+                p_lens: CameraSample::CENTER.p_lens,
+            };
+        }
         let lens_cell = permute(index, self.count, pixel_seed(row, col));
         let (corner, size) = self.cell(lens_cell);
         let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
@@ -242,6 +258,13 @@ mod tests {
         }
         assert_ne!(strata.camera_sample(3, 4, 0), strata.camera_sample(4, 3, 0));
         assert_eq!(Strata::new(1).camera_sample(7, 7, 0), CameraSample::CENTER);
+        // Without a lens, the same film samples and the lens centre.
+        let no_lens = strata.with_lens(false);
+        for index in 0..9 {
+            let s = no_lens.camera_sample(3, 4, index);
+            assert_eq!(s.p_film, strata.camera_sample(3, 4, index).p_film);
+            assert_eq!(s.p_lens, DVec2::splat(0.5));
+        }
     }
 
     #[test]

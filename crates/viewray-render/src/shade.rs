@@ -207,38 +207,66 @@ impl<'a> Shader<'a> {
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
     }
 
-    /// The value of what the viewing ray `ray` through `film` sees, given its closest
-    /// hit (from [`Shader::trace_primary`]).
-    #[inline]
-    pub(crate) fn shade_primary(
+    /// The values of what the viewing rays `rays` through `films` see, given their
+    /// closest hits (from [`Shader::trace_primary`]), into `colors`. Lit shading traces
+    /// the batch's shadow rays toward each light together, and its reflected rays
+    /// together, as packets (see [`Shader::lit_batch`]).
+    pub(crate) fn shade_primaries(
         &self,
-        ray: &Ray,
-        hit: Option<&ObjectHit>,
-        film: &FilmPoint<'_>,
-        rays: &mut u64,
-    ) -> Vec3 {
-        *rays += 1;
-        let Some(object_hit) = hit else {
-            return self.background;
-        };
+        rays: &[Ray],
+        hits: &[Option<ObjectHit>],
+        films: &[FilmPoint<'_>],
+        colors: &mut [Vec3],
+        count: &mut u64,
+    ) {
+        *count += rays.len() as u64;
         let world = &self.scene.world();
-        match self.shading {
-            Shading::Flat => {
-                // A plain colour needs no surface details.
-                let material = self.material(object_hit.object, object_hit.primitive);
-                if material.grid.is_none() {
-                    return material.color;
+        if self.shading == Shading::Lit {
+            // Shade the hits together; the misses see the background.
+            let mut hit_rays = Vec::with_capacity(rays.len());
+            let mut surfaces = Vec::with_capacity(rays.len());
+            let mut hit_films = Vec::with_capacity(rays.len());
+            for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
+                match hit {
+                    Some(hit) => {
+                        hit_rays.push(*ray);
+                        surfaces.push(world.surface(ray, hit));
+                        hit_films.push(films[i]);
+                    }
+                    None => colors[i] = self.background,
                 }
-                let hit = world.surface(ray, object_hit);
-                surface_color(material, &hit, || self.footprint(film, ray, &hit))
             }
-            Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
-            // Every shape's hit point is `ray.at(t)`, as in the depth pre-pass.
-            Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
-            Shading::Lit => {
-                let hit = world.surface(ray, object_hit);
-                self.lit(ray, &hit, Some(film), 0, rays)
+            let mut lit = vec![Vec3::ZERO; hit_rays.len()];
+            self.lit_batch(&hit_rays, &surfaces, Some(&hit_films), 0, &mut lit, count);
+            let mut lit = lit.into_iter();
+            for (color, hit) in colors.iter_mut().zip(hits) {
+                if hit.is_some() {
+                    *color = lit.next().unwrap_or(Vec3::ZERO);
+                }
             }
+            return;
+        }
+        for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
+            let Some(object_hit) = hit else {
+                colors[i] = self.background;
+                continue;
+            };
+            colors[i] = match self.shading {
+                Shading::Flat => {
+                    // A plain colour needs no surface details.
+                    let material = self.material(object_hit.object, object_hit.primitive);
+                    if material.grid.is_none() {
+                        material.color
+                    } else {
+                        let hit = world.surface(ray, object_hit);
+                        surface_color(material, &hit, || self.footprint(&films[i], ray, &hit))
+                    }
+                }
+                Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
+                // Every shape's hit point is `ray.at(t)`, as in the depth pre-pass.
+                Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
+                Shading::Lit => unreachable!("lit samples are shaded in a batch above"),
+            };
         }
     }
 
@@ -248,88 +276,175 @@ impl<'a> Shader<'a> {
         self.scene.material_of(object, primitive)
     }
 
-    /// The colour seen along a reflected ray at mirror bounce `depth`.
-    fn secondary(&self, ray: &Ray, depth: u32, rays: &mut u64) -> Vec3 {
-        *rays += 1;
-        match self.scene.world().closest_hit(ray, 0.0..f32::INFINITY) {
-            Some(hit) => self.lit(ray, &hit, None, depth, rays),
-            None => self.background,
-        }
-    }
-
-    /// Blinn-Phong with every light, hard shadows and mirror reflection; see the
-    /// crate's documentation for the formulas.
-    fn lit(
+    /// Blinn-Phong with every light, hard shadows and mirror reflection, for the hits
+    /// `hits` of `rays` at mirror bounce `depth` (with their film points for primary
+    /// rays, whose grid lines are filtered), into `colors`; see the crate's
+    /// documentation for the formulas.
+    ///
+    /// The batch's shadow rays toward each light are traced together
+    /// ([`World::any_hits`](viewray_geometry::World::any_hits)), and so are its
+    /// reflected rays, whose hits are then shaded as a batch one bounce deeper. Each
+    /// sample's colour is summed in the same order and with the same numbers as one
+    /// sample shaded alone, so the batch changes no pixel.
+    fn lit_batch(
         &self,
-        ray: &Ray,
-        hit: &Hit,
-        film: Option<&FilmPoint<'_>>,
+        rays: &[Ray],
+        hits: &[Hit],
+        films: Option<&[FilmPoint<'_>]>,
         depth: u32,
-        rays: &mut u64,
-    ) -> Vec3 {
-        let material = self.scene.material(hit);
-        let base = surface_color(material, hit, || {
-            film.map_or(Footprint::Point, |f| self.footprint(f, ray, hit))
-        });
+        colors: &mut [Vec3],
+        count: &mut u64,
+    ) {
         let world = &self.scene.world();
-        let view = -ray.direction.normalize_or_zero();
-        let n = hit.shading_normal;
-        let origin = offset_origin(hit, ray);
+        let lights = self.scene.lights();
+        let n = rays.len();
 
-        let mut color = Vec3::ZERO;
-        if self.scene.lights().is_empty() {
-            // Headlight: a light at the eye, so a scene without lights is still visible.
-            color += base * HEADLIGHT_AMBIENT
-                + (1.0 - HEADLIGHT_AMBIENT) * blinn_phong(base, material, n, view, view);
-        }
-        for light in self.scene.lights() {
-            match *light {
-                Light::Ambient { intensity } => color += base * intensity,
-                Light::Point {
-                    position,
-                    intensity,
-                } => {
-                    // Find the direction to the light and the inverse-square falloff.
-                    let to_light = position - origin;
-                    let distance_squared = to_light.length_squared();
-                    let l = to_light / distance_squared.sqrt();
-                    if distance_squared <= 0.0 || hit.normal.dot(l) <= 0.0 {
-                        continue;
-                    }
-                    // Cast the shadow ray: the light sits at t = 1.
-                    *rays += 1;
-                    if world.any_hit(&Ray::new(origin, to_light), 0.0..1.0) {
-                        continue;
-                    }
-                    color += intensity / distance_squared * blinn_phong(base, material, n, l, view);
+        // Find each sample's material, surface colour and where its secondary rays start.
+        let samples: Vec<LitSample<'_>> = rays
+            .iter()
+            .zip(hits)
+            .enumerate()
+            .map(|(i, (ray, hit))| {
+                let material = self.scene.material(hit);
+                let base = surface_color(material, hit, || {
+                    films.map_or(Footprint::Point, |f| self.footprint(&f[i], ray, hit))
+                });
+                LitSample {
+                    material,
+                    base,
+                    view: -ray.direction.normalize_or_zero(),
+                    origin: offset_origin(hit, ray),
                 }
-                Light::Directional {
-                    direction,
-                    intensity,
-                } => {
-                    let l = -direction;
-                    if hit.normal.dot(l) <= 0.0 {
-                        continue;
-                    }
-                    *rays += 1;
-                    if world.any_hit(&Ray::new(origin, l), 0.0..f32::INFINITY) {
-                        continue;
-                    }
-                    color += intensity * blinn_phong(base, material, n, l, view);
+            })
+            .collect();
+
+        // Cast the shadow rays, light by light; `lit[light * n + sample]` is what the
+        // light gives the sample, `None` where it is ambient, behind the surface or
+        // blocked.
+        let mut lit: Vec<Option<Lighting>> = vec![None; lights.len() * n];
+        let mut shadow_rays = Vec::with_capacity(n);
+        let mut shadow_samples = Vec::with_capacity(n);
+        let mut answers = Vec::with_capacity(n);
+        for (k, light) in lights.iter().enumerate() {
+            let t_range = match light {
+                Light::Ambient { .. } => continue,
+                // The light sits at t = 1.
+                Light::Point { .. } => 0.0..1.0,
+                Light::Directional { .. } => 0.0..f32::INFINITY,
+            };
+            shadow_rays.clear();
+            shadow_samples.clear();
+            let lit = &mut lit[k * n..(k + 1) * n];
+            for (i, (sample, hit)) in samples.iter().zip(hits).enumerate() {
+                if let Some((ray, lighting)) = toward_light(light, sample.origin, hit.normal) {
+                    shadow_rays.push(ray);
+                    shadow_samples.push(i);
+                    lit[i] = Some(lighting);
+                }
+            }
+            *count += shadow_rays.len() as u64;
+            answers.clear();
+            answers.resize(shadow_rays.len(), false);
+            world.any_hits(&shadow_rays, t_range, &mut answers);
+            for (&i, &blocked) in shadow_samples.iter().zip(&answers) {
+                if blocked {
+                    lit[i] = None;
                 }
             }
         }
 
-        if material.mirror > 0.0 {
-            let reflected = if depth < self.max_depth {
-                let direction = reflect(-view, n, hit.normal);
-                self.secondary(&Ray::new(origin, direction), depth + 1, rays)
-            } else {
-                Vec3::ZERO
-            };
-            color = color.lerp(reflected, material.mirror);
+        // Sum the lights in order.
+        for (i, (sample, hit)) in samples.iter().zip(hits).enumerate() {
+            let LitSample {
+                material,
+                base,
+                view,
+                ..
+            } = *sample;
+            let n_shading = hit.shading_normal;
+            let mut color = Vec3::ZERO;
+            if lights.is_empty() {
+                // Headlight: a light at the eye, so a scene without lights is still visible.
+                color += base * HEADLIGHT_AMBIENT
+                    + (1.0 - HEADLIGHT_AMBIENT)
+                        * blinn_phong(base, material, n_shading, view, view);
+            }
+            for (k, light) in lights.iter().enumerate() {
+                if let Light::Ambient { intensity } = *light {
+                    color += base * intensity;
+                    continue;
+                }
+                let Some(lighting) = lit[k * n + i] else {
+                    continue;
+                };
+                color += match lighting {
+                    Lighting::Point {
+                        l,
+                        distance_squared,
+                        intensity,
+                    } => {
+                        intensity / distance_squared
+                            * blinn_phong(base, material, n_shading, l, view)
+                    }
+                    Lighting::Directional { l, intensity } => {
+                        intensity * blinn_phong(base, material, n_shading, l, view)
+                    }
+                };
+            }
+            colors[i] = color;
         }
-        color
+
+        // Follow the mirrors: the reflected rays of the batch are traced and shaded
+        // together, one bounce deeper.
+        let mirrors: Vec<usize> = (0..n)
+            .filter(|&i| samples[i].material.mirror > 0.0)
+            .collect();
+        if mirrors.is_empty() {
+            return;
+        }
+        let mut reflected = vec![Vec3::ZERO; mirrors.len()];
+        if depth < self.max_depth {
+            let mirror_rays: Vec<Ray> = mirrors
+                .iter()
+                .map(|&i| {
+                    let sample = &samples[i];
+                    let direction = reflect(-sample.view, hits[i].shading_normal, hits[i].normal);
+                    Ray::new(sample.origin, direction)
+                })
+                .collect();
+            *count += mirror_rays.len() as u64;
+            let mut mirror_hits = vec![None; mirror_rays.len()];
+            world.closest_objects(&mirror_rays, 0.0..f32::INFINITY, &mut mirror_hits);
+            let mut next_rays = Vec::with_capacity(mirror_rays.len());
+            let mut next_hits = Vec::with_capacity(mirror_rays.len());
+            for ((ray, hit), color) in mirror_rays.iter().zip(&mirror_hits).zip(&mut reflected) {
+                match hit {
+                    Some(hit) => {
+                        next_rays.push(*ray);
+                        next_hits.push(world.surface(ray, hit));
+                    }
+                    None => *color = self.background,
+                }
+            }
+            let mut next_colors = vec![Vec3::ZERO; next_rays.len()];
+            self.lit_batch(
+                &next_rays,
+                &next_hits,
+                None,
+                depth + 1,
+                &mut next_colors,
+                count,
+            );
+            let mut next_colors = next_colors.into_iter();
+            for (hit, color) in mirror_hits.iter().zip(&mut reflected) {
+                if hit.is_some() {
+                    *color = next_colors.next().unwrap_or(Vec3::ZERO);
+                }
+            }
+        }
+        for (&i, reflected) in mirrors.iter().zip(reflected) {
+            colors[i] = colors[i].lerp(reflected, samples[i].material.mirror);
+        }
     }
 
     /// Where the film sample's neighbours (one sample spacing along the image's x and y)
@@ -390,6 +505,72 @@ impl<'a> Shader<'a> {
             if !plane {
                 range.far_bounded = range.far_bounded.max(z);
             }
+        }
+    }
+}
+
+/// A lit sample between its shadow rays and its sum over the lights.
+#[derive(Clone, Copy)]
+struct LitSample<'m> {
+    material: &'m Material,
+    /// The surface colour (with grid lines).
+    base: Vec3,
+    /// The unit direction toward the eye.
+    view: Vec3,
+    /// Where secondary rays start (see [`offset_origin`]).
+    origin: Vec3,
+}
+
+/// What a point or directional light gives a surface point that faces it.
+#[derive(Clone, Copy)]
+enum Lighting {
+    /// A point light: the unit direction to it, the squared distance and the intensity.
+    Point {
+        l: Vec3,
+        distance_squared: f32,
+        intensity: Vec3,
+    },
+    /// A directional light: the unit direction toward it and the intensity.
+    Directional { l: Vec3, intensity: Vec3 },
+}
+
+/// The shadow ray from `origin` (on a surface with geometric normal `normal`) toward
+/// `light` and what the light gives the point if that ray is not blocked; `None` for an
+/// ambient light, and for a light behind the surface or at the point itself. A point
+/// light sits at `t = 1` of its shadow ray.
+#[inline]
+fn toward_light(light: &Light, origin: Vec3, normal: Vec3) -> Option<(Ray, Lighting)> {
+    match *light {
+        Light::Ambient { .. } => None,
+        Light::Point {
+            position,
+            intensity,
+        } => {
+            // Find the direction to the light and the inverse-square falloff.
+            let to_light = position - origin;
+            let distance_squared = to_light.length_squared();
+            let l = to_light / distance_squared.sqrt();
+            if distance_squared <= 0.0 || normal.dot(l) <= 0.0 {
+                return None;
+            }
+            Some((
+                Ray::new(origin, to_light),
+                Lighting::Point {
+                    l,
+                    distance_squared,
+                    intensity,
+                },
+            ))
+        }
+        Light::Directional {
+            direction,
+            intensity,
+        } => {
+            let l = -direction;
+            if normal.dot(l) <= 0.0 {
+                return None;
+            }
+            Some((Ray::new(origin, l), Lighting::Directional { l, intensity }))
         }
     }
 }

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use serde_json::json;
 use viewray_camera::{Camera, CameraSample};
+use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
 use viewray_output::Compression;
 use viewray_render::{RenderSettings, View, render_view};
@@ -259,11 +260,13 @@ fn diagram(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, 
             )
         }
     };
-    let figure = viewray_diagram::camera_side_view(
+    let window = SideWindow::fit(&served.scene, &[camera]);
+    let figure = side_view(
         &served.scene,
         &camera,
+        &window,
+        SideViewCanvas::Panel,
         pixel,
-        viewray_diagram::SideViewCanvas::Panel,
     );
     let svg = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
     Ok(Reply::ok("image/svg+xml", svg))

@@ -18,7 +18,7 @@
 //! | `/api/frame?camera` | the line of `viewray frame` |
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
 //! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
-//! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::camera_side_view`]) |
+//! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::side_view`]) |
 //! | `/api/scene` | the served scene's RON text |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, the command line's words, starting

@@ -131,29 +131,51 @@ pub(crate) enum Command {
     Project(ProjectArgs),
     /// Judge renders against reference images, as an instructor would.
     ///
-    /// EXPECTED and ACTUAL are two PNG files, or two folders whose *.png files are paired
-    /// by name. Antialiasing and sample count are not errors: both images are blurred by
-    /// 2 px before NVIDIA's FLIP compares them, so a correct one-sample render passes.
-    /// Camera mistakes are errors, and are named from the transform between the images,
-    /// measured on the part both show: mirrored ("check u = up x w"), upside down,
-    /// rotated ("check the up vector"), scaled ("check vw, vh or d"), shifted by half a
-    /// pixel ("check the pixel-centre offset") or more ("check the shift (sx, sy)"); moves
-    /// are in pixels, x right and y down. When no transform explains the difference, the
-    /// diagnosis says so. With --scene, the diagnosis speaks the lecture's terms: "the
-    /// sign of the shift is flipped", "the shift is missing", "your field of view is 1.25
-    /// times too wide".
+    /// EXPECTED and ACTUAL are two PNG files, or two folders: each *.png file of
+    /// EXPECTED is paired with the file of the same name in ACTUAL, as diff -r pairs
+    /// files (names match exactly, case included). Antialiasing and sample count are not
+    /// errors: both images are blurred by 2 px before NVIDIA's FLIP compares them, so a
+    /// correct one-sample render passes. Camera mistakes are errors, and are named from
+    /// the transform between the images, measured on the part both show: mirrored ("check
+    /// u = up x w"), upside down, rotated ("check the up vector"), scaled ("check vw, vh
+    /// or d"), shifted by half a pixel ("check the pixel-centre offset") or more ("check
+    /// the shift (sx, sy)"); moves are in pixels, x right and y down. When no transform
+    /// explains the difference, the diagnosis says so. With --scene, the diagnosis speaks
+    /// the lecture's terms: "the sign of the shift is flipped", "the shift is missing",
+    /// "your field of view is 1.25 times too wide".
     ///
-    /// Prints a table (NAME, VERDICT, PEAK FLIP, DIAGNOSIS) and a summary line, or with
-    /// --json one JSON line per pair ({"name", "verdict": "pass" | "fail" | "error",
-    /// "peak_flip", "mean_flip", "threshold", "diagnosis", "transform": {"mirrored_left_right",
-    /// "upside_down", "rotation" (degrees counterclockwise), "scale", "about", "shift"},
-    /// "reasons", "error"})
-    /// and a last line {"summary": {"total", "passed", "failed", "errors"}}. Images of
-    /// different sizes fail. A pair that cannot be compared (a file on one side only, an
-    /// unreadable file, not a PNG) is reported as an error, and every other pair is still
-    /// judged. Exit code 0 when every pair passes, 1 when any fails, 2 when a pair could
-    /// not be compared or on bad usage.
+    /// Prints a table (NAME, VERDICT, PEAK FLIP, DIAGNOSIS), the files only in ACTUAL
+    /// (listed, not judged) and a summary line, or with --json one JSON line per pair
+    /// ({"name", "verdict": "pass" | "fail", "peak_flip", "mean_flip", "threshold",
+    /// "diagnosis", "transform": {"mirrored_left_right", "upside_down", "rotation"
+    /// (degrees counterclockwise), "scale", "about", "shift"}, "reasons"}) and a last line
+    /// {"summary": {"total", "passed", "failed", "missing_or_unreadable", "extra"}}.
+    /// Images of different sizes fail. A reference image with no file of its name in
+    /// ACTUAL fails ("missing"), and so does a file that cannot be read or is not a PNG;
+    /// every other pair is still judged. A problem on the EXPECTED side, or a file given
+    /// directly that cannot be read, is bad input. Exit code 0 when every pair passes, 1
+    /// when any fails, 2 on bad input or usage.
     Compare(crate::compare::CompareArgs),
+    /// Grade a class's renders against the reference images.
+    ///
+    /// REFERENCE is a folder of PNG files (the assignment); SUBMISSIONS holds one folder
+    /// per student, each judged against REFERENCE as `viewray compare` judges two
+    /// folders: the same rules, diagnoses and --threshold; a missing image, or one that
+    /// is not a PNG, fails; the student's other files are listed, not judged.
+    ///
+    /// Prints one row per student (passed of total, then each failure with its
+    /// diagnosis) and a summary: the students who passed everything, each image's pass
+    /// rate and the hardest image. --csv writes the gradebook (student, image, verdict,
+    /// peak_flip, diagnosis; one line per student and image), --report an HTML report
+    /// (the class at a glance, failures first; a page per student with the expected
+    /// image, the render and the FLIP heatmap of each failure). With --json, one JSON
+    /// line per student and image ({"student", "name", and compare's fields}) and a last
+    /// line {"summary": {"students", "images", "passed_everything", "per_image",
+    /// "hardest", "not_graded"}}. Students are graded in parallel. Exit code 0 when
+    /// every student passes everything, 1 when any image fails or is missing, 2 on bad
+    /// usage (REFERENCE missing or without PNG files, SUBMISSIONS not a folder or without
+    /// student folders).
+    Grade(crate::grade::GradeArgs),
     /// Draw one of the lecture's figures to a PNG or SVG.
     ///
     /// Every figure is computed from the camera code: each 3D point is placed by a

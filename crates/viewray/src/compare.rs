@@ -1,34 +1,39 @@
 //! `viewray compare`: judge renders against reference images as an instructor would.
 //!
-//! Output: a table on stdout, one row per pair as it is judged, then a summary line; with
-//! `--json`, JSON lines instead: one object per pair, then one `{"summary":{..}}` object.
+//! Output: a table on stdout, one row per reference image in name order, each printed as
+//! soon as it and those before it are judged (pairs are judged in parallel), then the
+//! files judged nowhere and a summary line; with `--json`, JSON lines instead: one object
+//! per pair, then one `{"summary":{..}}` object.
+//!
+//! Folders are paired like `diff -r` (see [`viewray_grade::pair`]): a reference image the
+//! ACTUAL folder lacks, or whose counterpart cannot be read, is a failing row; a problem
+//! on the EXPECTED side, a scene, or a file given directly is bad input (exit 2).
 
-use std::collections::{BTreeSet, HashMap};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use serde_json::{Value, json};
+use rayon::prelude::*;
+use serde_json::{Map, Value, json};
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Comparison, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry,
-    RgbaImage, Rules, Verdict, judge_with, load_png, write_report,
+    CameraKind, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry, RgbaImage,
+    Rules, Verdict, judge_with, load_png, write_report,
 };
+use viewray_grade::{Counterpart, Outcome, ReferenceImage, in_order, load_counterpart};
 use viewray_scene::{LoadOptions, Scene};
 
-use crate::EXIT_BAD_INPUT;
-
-/// Exit code when a comparison failed.
-const EXIT_FAILED: u8 = 1;
+/// Exit code when a render failed.
+pub(crate) const EXIT_FAILED: u8 = 1;
 
 #[derive(Args, Debug)]
 pub(crate) struct CompareArgs {
     /// The reference: a PNG file, or a folder of PNG files.
     pub(crate) expected: PathBuf,
-    /// The render(s) to judge: a PNG file, or a folder whose *.png files are paired with
-    /// EXPECTED's by file name.
+    /// The render(s) to judge: a PNG file, or a folder whose files are paired with
+    /// EXPECTED's *.png files by exact name.
     pub(crate) actual: PathBuf,
     /// The perceptual threshold, in [0, 1]: the largest FLIP error allowed in the worst 3x3
     /// window after both images are blurred by 2 px (0: identical; 1: black against
@@ -52,7 +57,8 @@ pub(crate) struct CompareArgs {
     pub(crate) scene: Option<PathBuf>,
 }
 
-fn parse_threshold(text: &str) -> Result<f32, String> {
+/// Parses `--threshold`: a FLIP error in [0, 1].
+pub(crate) fn parse_threshold(text: &str) -> Result<f32, String> {
     let value: f32 = text
         .trim()
         .parse()
@@ -65,184 +71,80 @@ fn parse_threshold(text: &str) -> Result<f32, String> {
     Ok(value)
 }
 
-/// One pair to judge: a name and the two files (`None` when one side lacks it), and the
-/// reference's scene file when `--scene` names one.
-struct Pair {
-    name: String,
-    expected: Option<PathBuf>,
-    actual: Option<PathBuf>,
-    scene: Option<PathBuf>,
-}
-
-/// What became of one pair.
-struct Judged {
-    name: String,
-    expected: Option<RgbaImage>,
-    actual: Option<RgbaImage>,
-    outcome: Result<Comparison, String>,
-}
-
-/// How the pairs fared: `passed + failed + errors` is the number of pairs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-struct Tally {
-    passed: usize,
-    /// Compared, and judged different.
-    failed: usize,
-    /// Not compared: a side missing, unreadable or not a PNG.
-    errors: usize,
-}
-
-impl Tally {
-    fn of(results: &[Judged]) -> Self {
-        let mut tally = Self::default();
-        for judged in results {
-            match &judged.outcome {
-                Ok(c) if c.passed() => tally.passed += 1,
-                Ok(_) => tally.failed += 1,
-                Err(_) => tally.errors += 1,
-            }
-        }
-        tally
-    }
-
-    /// 2 when a pair could not be compared (bad input), else 1 when one failed, else 0.
-    fn exit_code(self) -> ExitCode {
-        if self.errors > 0 {
-            ExitCode::from(EXIT_BAD_INPUT)
-        } else if self.failed > 0 {
-            ExitCode::from(EXIT_FAILED)
-        } else {
-            ExitCode::SUCCESS
-        }
-    }
-
-    /// The summary line, e.g. `6 images: 1 passed, 3 failed, 2 could not be compared`.
-    fn summary(self) -> String {
-        let total = self.passed + self.failed + self.errors;
-        let noun = if total == 1 { "image" } else { "images" };
-        let mut line = format!(
-            "{total} {noun}: {} passed, {} failed",
-            self.passed, self.failed
-        );
-        if self.errors > 0 {
-            line.push_str(&format!(", {} could not be compared", self.errors));
-        }
-        line
+/// The thresholds of `--threshold`.
+pub(crate) fn thresholds(threshold: f32) -> InstructorThresholds {
+    InstructorThresholds {
+        max_peak_flip: threshold,
+        ..InstructorThresholds::default()
     }
 }
 
-/// Runs `viewray compare`; prints its own errors and returns the exit code.
-pub(crate) fn run(args: &CompareArgs) -> ExitCode {
-    let pairs = pairs(&args.expected, &args.actual).and_then(|mut pairs| {
-        if let Some(scene) = &args.scene {
-            assign_scenes(&mut pairs, scene)?;
-        }
-        Ok(pairs)
-    });
-    let pairs = match pairs {
-        Ok(pairs) => pairs,
-        Err(error) => return crate::failure(&error),
+/// A reference image with what judging against it needs.
+pub(crate) struct Prepared {
+    pub(crate) image: ReferenceImage,
+    pub(crate) pixels: RgbaImage,
+    pub(crate) expectations: Option<Expectations>,
+}
+
+/// Loads the reference images (in parallel) and their scenes' expectations.
+///
+/// # Errors
+/// Bad input: a reference image that cannot be read or is not a PNG; a scene that does
+/// not exist or is not a valid scene file; a folder of scenes without the scene of some
+/// reference image.
+pub(crate) fn prepare(images: &[ReferenceImage], scene: Option<&Path>) -> Result<Vec<Prepared>> {
+    let scenes = match scene {
+        Some(scene) => scene_files(images, scene)?,
+        None => vec![None; images.len()],
     };
-    match judge_all(args, &pairs) {
-        Ok(tally) => tally.exit_code(),
-        Err(error) => crate::failure(&error),
-    }
+    images
+        .par_iter()
+        .zip(&scenes)
+        .map(|(image, scene)| {
+            let pixels = load_png(&image.path)?;
+            let expectations = match scene {
+                Some(path) => expectations(path, pixels.width(), pixels.height())?,
+                None => None,
+            };
+            Ok(Prepared {
+                image: image.clone(),
+                pixels,
+                expectations,
+            })
+        })
+        .collect()
 }
 
-/// The pairs to judge: two files, or the union of two folders' *.png names.
+/// Each reference image's scene: `scene` itself when it is a file, else the file of
+/// `scene` (a folder) with the image's stem and the extension `.ron`.
 ///
 /// # Errors
-/// Bad usage: a path that does not exist, a file against a folder, an unreadable folder,
-/// two folders without a single PNG.
-fn pairs(expected: &Path, actual: &Path) -> Result<Vec<Pair>> {
-    for (role, path) in [("EXPECTED", expected), ("ACTUAL", actual)] {
-        if !path.exists() {
-            bail!("{role} `{}` does not exist", path.display());
-        }
-    }
-    match (expected.is_dir(), actual.is_dir()) {
-        (false, false) => {
-            let name = actual.file_name().map_or_else(
-                || actual.display().to_string(),
-                |n| n.to_string_lossy().into_owned(),
-            );
-            Ok(vec![Pair {
-                name,
-                expected: Some(expected.to_owned()),
-                actual: Some(actual.to_owned()),
-                scene: None,
-            }])
-        }
-        (true, true) => {
-            let expected_names = png_names(expected)?;
-            let actual_names = png_names(actual)?;
-            if expected_names.is_empty() && actual_names.is_empty() {
-                bail!(
-                    "no *.png files in `{}` or `{}`",
-                    expected.display(),
-                    actual.display()
-                );
-            }
-            Ok(expected_names
-                .union(&actual_names)
-                .map(|name| Pair {
-                    name: name.clone(),
-                    expected: expected_names.contains(name).then(|| expected.join(name)),
-                    actual: actual_names.contains(name).then(|| actual.join(name)),
-                    scene: None,
-                })
-                .collect())
-        }
-        (true, false) => bail!(
-            "EXPECTED `{}` is a folder but ACTUAL `{}` is a file: give two PNG files or two folders",
-            expected.display(),
-            actual.display()
-        ),
-        (false, true) => bail!(
-            "EXPECTED `{}` is a file but ACTUAL `{}` is a folder: give two PNG files or two folders",
-            expected.display(),
-            actual.display()
-        ),
-    }
-}
-
-/// Gives each pair with a reference image its scene: `scene` itself when it is a file,
-/// else the file of `scene` (a folder) with the image's stem and the extension `.ron`.
-/// Every scene is loaded once here, so that a bad one is bad input before anything is
-/// judged.
-///
-/// # Errors
-/// A scene that does not exist or is not a valid scene file; a folder without the scene
-/// of some reference image.
-fn assign_scenes(pairs: &mut [Pair], scene: &Path) -> Result<()> {
+/// A scene that does not exist; a folder without the scene of some reference image.
+fn scene_files(images: &[ReferenceImage], scene: &Path) -> Result<Vec<Option<PathBuf>>> {
     if !scene.exists() {
         bail!("SCENE `{}` does not exist", scene.display());
     }
-    let mut checked = BTreeSet::new();
-    for pair in pairs.iter_mut().filter(|p| p.expected.is_some()) {
-        let path = if scene.is_dir() {
-            let stem = Path::new(&pair.name)
+    images
+        .iter()
+        .map(|image| {
+            if !scene.is_dir() {
+                return Ok(Some(scene.to_owned()));
+            }
+            let stem = Path::new(&image.name)
                 .file_stem()
-                .map_or_else(|| pair.name.clone(), |s| s.to_string_lossy().into_owned());
+                .map_or_else(|| image.name.clone(), |s| s.to_string_lossy().into_owned());
             let path = scene.join(format!("{stem}.ron"));
             if !path.is_file() {
                 bail!(
                     "no scene for {} in `{}` (looked for `{}`)",
-                    pair.name,
+                    image.name,
                     scene.display(),
                     path.display()
                 );
             }
-            path
-        } else {
-            scene.to_owned()
-        };
-        if checked.insert(path.clone()) {
-            Scene::load(&path)?;
-        }
-        pair.scene = Some(path);
-    }
-    Ok(())
+            Ok(Some(path))
+        })
+        .collect()
 }
 
 /// What a scene says camera mistakes look like, for a reference of `width` x `height`
@@ -274,35 +176,152 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
     })
 }
 
-/// The names of the files in `folder` ending in `.png` (any case), sorted.
-fn png_names(folder: &Path) -> Result<BTreeSet<String>> {
-    let mut names = BTreeSet::new();
-    let entries = std::fs::read_dir(folder)
-        .with_context(|| format!("cannot read the folder `{}`", folder.display()))?;
-    for entry in entries {
-        let entry =
-            entry.with_context(|| format!("cannot read the folder `{}`", folder.display()))?;
-        let name = entry.file_name().to_string_lossy().into_owned();
-        let is_png = Path::new(&name)
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-        if is_png && !entry.path().is_dir() {
-            names.insert(name);
-        }
-    }
-    Ok(names)
+/// One pair to judge: the reference and what the ACTUAL side holds for it.
+struct Pair {
+    reference: Prepared,
+    counterpart: Counterpart,
 }
 
-/// Judges every pair, printing a row (or a JSON line) as each is done, then the summary
-/// and, with `--report`, the report. Returns how the pairs fared.
-fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
-    let thresholds = InstructorThresholds {
-        max_peak_flip: args.threshold,
-        ..InstructorThresholds::default()
+/// What became of one pair.
+struct Judged {
+    name: String,
+    expected: Option<RgbaImage>,
+    actual: Option<RgbaImage>,
+    outcome: Outcome,
+}
+
+/// How the pairs fared: `passed + failed` is the number of pairs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Tally {
+    passed: usize,
+    /// Judged different, or missing or unreadable.
+    failed: usize,
+    /// Of those failed, the missing or unreadable.
+    not_compared: usize,
+}
+
+impl Tally {
+    fn add(&mut self, outcome: &Outcome) {
+        match outcome {
+            Outcome::Judged(c) if c.passed() => self.passed += 1,
+            Outcome::Judged(_) => self.failed += 1,
+            Outcome::Failed(_) => {
+                self.failed += 1;
+                self.not_compared += 1;
+            }
+        }
+    }
+
+    /// 1 when a pair failed, else 0.
+    fn exit_code(self) -> ExitCode {
+        if self.failed > 0 {
+            ExitCode::from(EXIT_FAILED)
+        } else {
+            ExitCode::SUCCESS
+        }
+    }
+
+    /// The summary line, e.g. `6 images: 1 passed, 5 failed, 2 of them missing or
+    /// unreadable`.
+    fn summary(self) -> String {
+        let total = self.passed + self.failed;
+        let noun = if total == 1 { "image" } else { "images" };
+        let mut line = format!(
+            "{total} {noun}: {} passed, {} failed",
+            self.passed, self.failed
+        );
+        if self.not_compared > 0 {
+            line.push_str(&format!(
+                ", {} of them missing or unreadable",
+                self.not_compared
+            ));
+        }
+        line
+    }
+}
+
+/// Runs `viewray compare`; prints its own errors and returns the exit code.
+pub(crate) fn run(args: &CompareArgs) -> ExitCode {
+    let planned = plan(args);
+    let (pairs, extra) = match planned {
+        Ok(planned) => planned,
+        Err(error) => return crate::failure(&error),
     };
+    match judge_all(args, pairs, &extra) {
+        Ok(tally) => tally.exit_code(),
+        Err(error) => crate::failure(&error),
+    }
+}
+
+/// The pairs to judge and the ACTUAL folder's files that no reference image has: two
+/// files, or a folder's reference images with what the other folder holds for each.
+///
+/// # Errors
+/// Bad usage or input: a path that does not exist, a file against a folder, a folder that
+/// cannot be read, an EXPECTED folder without PNG files, a reference image or a file given
+/// directly that cannot be read, a bad scene.
+fn plan(args: &CompareArgs) -> Result<(Vec<Pair>, Vec<String>)> {
+    let (expected, actual) = (args.expected.as_path(), args.actual.as_path());
+    for (role, path) in [("EXPECTED", expected), ("ACTUAL", actual)] {
+        if !path.exists() {
+            bail!("{role} `{}` does not exist", path.display());
+        }
+    }
+    let scene = args.scene.as_deref();
+    match (expected.is_dir(), actual.is_dir()) {
+        (false, false) => {
+            // Files given directly: either unreadable is bad input.
+            load_png(actual)?;
+            let mut reference = ReferenceImage::file(expected);
+            reference.name = actual.file_name().map_or_else(
+                || actual.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            let references = prepare(&[reference], scene)?;
+            let pairs = references
+                .into_iter()
+                .map(|reference| Pair {
+                    reference,
+                    counterpart: Counterpart::File(actual.to_owned()),
+                })
+                .collect();
+            Ok((pairs, Vec::new()))
+        }
+        (true, true) => {
+            let images = viewray_grade::reference_images(expected, "EXPECTED")?;
+            let pairing = viewray_grade::pair(actual, &images)
+                .with_context(|| format!("cannot read ACTUAL `{}`", actual.display()))?;
+            let references = prepare(&images, scene)?;
+            let pairs = references
+                .into_iter()
+                .zip(pairing.counterparts)
+                .map(|(reference, counterpart)| Pair {
+                    reference,
+                    counterpart,
+                })
+                .collect();
+            Ok((pairs, pairing.extra))
+        }
+        (true, false) => bail!(
+            "EXPECTED `{}` is a folder but ACTUAL `{}` is a file: give two PNG files or two folders",
+            expected.display(),
+            actual.display()
+        ),
+        (false, true) => bail!(
+            "EXPECTED `{}` is a file but ACTUAL `{}` is a folder: give two PNG files or two folders",
+            expected.display(),
+            actual.display()
+        ),
+    }
+}
+
+/// Judges every pair, printing a row (or a JSON line) as each is done, then the extra
+/// files, the summary and, with `--report`, the report. Returns how the pairs fared.
+fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<Tally> {
+    let thresholds = thresholds(args.threshold);
     let name_width = pairs
         .iter()
-        .map(|p| p.name.chars().count())
+        .map(|p| p.reference.image.name.chars().count())
         .max()
         .unwrap_or(0)
         .max(4);
@@ -312,54 +331,65 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
         writeln!(out, "{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")?;
         out.flush()?;
     }
+    let keep_images = args.report.is_some();
     let mut results = Vec::new();
-    let mut scenes = HashMap::new();
-    for pair in pairs {
-        let judged = judge_pair(pair, &thresholds, &mut scenes);
-        if args.json {
-            viewray_json::write_line(&mut out, &json_line(&judged, args.threshold))?;
-        } else {
-            writeln!(out, "{}", table_row(&judged, name_width))?;
-        }
-        out.flush()?;
-        // Keep the images only for the report.
-        results.push(if args.report.is_some() {
-            judged
-        } else {
-            Judged {
-                expected: None,
-                actual: None,
-                ..judged
+    let mut tally = Tally::default();
+    in_order(
+        &pairs,
+        |pair| judge_pair(pair, &thresholds, keep_images),
+        |judged| {
+            tally.add(&judged.outcome);
+            if args.json {
+                let mut line = Map::new();
+                line.insert("name".into(), json!(judged.name));
+                json_fields(&mut line, &judged.outcome, args.threshold);
+                viewray_json::write_line(&mut out, &Value::Object(line))?;
+            } else {
+                writeln!(
+                    out,
+                    "{}",
+                    table_row(&judged.name, &judged.outcome, name_width)
+                )?;
             }
-        });
-    }
-    let tally = Tally::of(&results);
+            out.flush()?;
+            results.push(judged);
+            anyhow::Ok(())
+        },
+    )?;
     let summary_line = format!("{} (threshold {})", tally.summary(), args.threshold);
     if args.json {
         let summary = json!({"summary": {
             "total": results.len(),
             "passed": tally.passed,
             "failed": tally.failed,
-            "errors": tally.errors,
+            "missing_or_unreadable": tally.not_compared,
+            "extra": extra,
         }});
         viewray_json::write_line(&mut out, &summary)?;
     } else {
+        if !extra.is_empty() {
+            writeln!(
+                out,
+                "not judged, only in ACTUAL: {}",
+                viewray_grade::listed(extra)
+            )?;
+        }
         writeln!(out, "{summary_line}")?;
     }
     out.flush()?;
     if let Some(directory) = &args.report {
+        let messages: Vec<String> = results.iter().map(|r| r.outcome.note()).collect();
         let entries: Vec<ReportEntry<'_>> = results
             .iter()
-            .map(|r| match &r.outcome {
-                Ok(comparison) => ReportEntry {
-                    name: &r.name,
-                    expected: r.expected.as_ref(),
-                    actual: r.actual.as_ref(),
-                    outcome: viewray_compare::Outcome::Compared(comparison),
+            .zip(&messages)
+            .map(|(r, message)| ReportEntry {
+                name: &r.name,
+                expected: r.expected.as_ref(),
+                actual: r.actual.as_ref(),
+                outcome: match &r.outcome {
+                    Outcome::Judged(comparison) => viewray_compare::Outcome::Compared(comparison),
+                    Outcome::Failed(_) => viewray_compare::Outcome::Failed(message),
                 },
-                Err(message) => {
-                    ReportEntry::error(&r.name, message, r.expected.as_ref(), r.actual.as_ref())
-                }
             })
             .collect();
         let title = format!(
@@ -380,87 +410,48 @@ fn judge_all(args: &CompareArgs, pairs: &[Pair]) -> Result<Tally> {
     Ok(tally)
 }
 
-/// The expectations of the scenes already loaded, by scene file and image size.
-type Scenes = HashMap<(PathBuf, (u32, u32)), Option<Expectations>>;
-
-/// Loads and judges one pair; a missing side or an unreadable file is the pair's error.
-fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, scenes: &mut Scenes) -> Judged {
-    let mut errors = Vec::new();
-    let mut load = |path: &Option<PathBuf>| match path.as_ref().map(load_png).transpose() {
-        Ok(image) => image,
-        Err(error) => {
-            errors.push(error.to_string());
-            None
+/// Loads and judges one pair; a missing or unreadable render is the pair's failure.
+fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, keep_images: bool) -> Judged {
+    let reference = &pair.reference;
+    let name = reference.image.name.clone();
+    let (actual, outcome) = match load_counterpart(&pair.counterpart, &name) {
+        Ok(actual) => {
+            let comparison = judge_with(
+                &reference.pixels,
+                &actual,
+                thresholds,
+                reference.expectations.as_ref(),
+            );
+            (Some(actual), Outcome::Judged(Box::new(comparison)))
         }
-    };
-    let expected = load(&pair.expected);
-    let actual = load(&pair.actual);
-    let outcome = match (&expected, &actual) {
-        _ if !errors.is_empty() => Err(errors.join("; ")),
-        (Some(e), Some(a)) => match &pair.scene {
-            None => Ok(judge_with(e, a, thresholds, None)),
-            Some(path) => {
-                let key = (path.clone(), e.dimensions());
-                let known = match scenes.get(&key) {
-                    Some(known) => Ok(*known),
-                    None => expectations(path, e.width(), e.height())
-                        .inspect(|known| {
-                            scenes.insert(key, *known);
-                        })
-                        .map_err(|error| format!("{error:#}")),
-                };
-                known.map(|known| judge_with(e, a, thresholds, known.as_ref()))
-            }
-        },
-        (Some(_), None) => Err(format!("only in EXPECTED: ACTUAL has no {}", pair.name)),
-        (None, _) => Err(format!("only in ACTUAL: EXPECTED has no {}", pair.name)),
+        Err(message) => (None, Outcome::Failed(message)),
     };
     Judged {
-        name: pair.name.clone(),
-        expected,
-        actual,
-        outcome,
-    }
-}
-
-/// The verdict, as the report states it too: `error` for a pair that could not be
-/// compared.
-fn verdict(judged: &Judged) -> Verdict {
-    match &judged.outcome {
-        Ok(c) if c.passed() => Verdict::Pass,
-        Ok(_) => Verdict::Fail,
-        Err(_) => Verdict::Error,
-    }
-}
-
-/// The last column: the diagnosis, else why it failed, else nothing.
-fn note(judged: &Judged) -> String {
-    match &judged.outcome {
-        Ok(c) => match c.diagnosis {
-            Some(d) => d.to_string(),
-            None => c.reasons(),
+        name,
+        expected: keep_images.then(|| reference.pixels.clone()),
+        actual: actual.filter(|_| keep_images),
+        outcome: if keep_images {
+            outcome
+        } else {
+            outcome.without_error_map()
         },
-        Err(message) => message.clone(),
     }
 }
 
-fn table_row(judged: &Judged, name_width: usize) -> String {
-    let peak = match &judged.outcome {
-        Ok(Comparison {
-            metrics: Some(m), ..
-        }) => format!("{:.3}", m.peak_flip),
-        _ => "-".to_owned(),
-    };
-    let style = match verdict(judged) {
+/// A row of the table: name, verdict, peak FLIP and the note.
+pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize) -> String {
+    let peak = outcome
+        .peak_flip()
+        .map_or_else(|| "-".to_owned(), |p| format!("{p:.3}"));
+    let verdict = outcome.verdict();
+    let style = match verdict {
         Verdict::Pass => crate::style::PASS,
-        Verdict::Fail => crate::style::FAIL,
-        Verdict::Error => crate::style::BROKEN,
+        Verdict::Fail | Verdict::Error => crate::style::FAIL,
     };
     let row = format!(
-        "{:name_width$}  {}  {peak:9}  {}",
-        judged.name,
-        crate::style::padded(style, verdict(judged).label(), 7),
-        note(judged)
+        "{name:name_width$}  {}  {peak:9}  {}",
+        crate::style::padded(style, verdict.label(), 7),
+        outcome.note()
     );
     row.trim_end().to_owned()
 }
@@ -470,34 +461,45 @@ fn figure(value: f32) -> Value {
     json!((f64::from(value) * 1e4).round() / 1e4)
 }
 
-fn json_line(judged: &Judged, threshold: f32) -> Value {
-    let (metrics, diagnosis, reasons) = match &judged.outcome {
-        Ok(c) => (
+/// A pair's JSON fields after its name: verdict, figures, diagnosis, transform, reasons.
+pub(crate) fn json_fields(line: &mut Map<String, Value>, outcome: &Outcome, threshold: f32) {
+    let (metrics, diagnosis, reasons) = match outcome {
+        Outcome::Judged(c) => (
             c.metrics,
             c.diagnosis,
             c.failures.iter().map(ToString::to_string).collect(),
         ),
-        Err(_) => (None, None, Vec::new()),
+        Outcome::Failed(message) => (None, None, vec![message.clone()]),
     };
-    json!({
-        "name": judged.name,
-        "verdict": verdict(judged).word(),
-        "peak_flip": metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
-        "mean_flip": metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
-        "threshold": figure(threshold),
-        "diagnosis": diagnosis.map_or(Value::Null, |d| json!(d.messages())),
-        "transform": diagnosis.as_ref().and_then(Diagnosis::camera_mistake).map_or(Value::Null, |m| json!({
-            "mirrored_left_right": m.mirrored_left_right,
-            "upside_down": m.upside_down,
-            "rotation": figure(m.rotation as f32),
-            "scale": [figure(m.scale.0 as f32), figure(m.scale.1 as f32)],
-            "about": [figure(m.about.0 as f32), figure(m.about.1 as f32)],
-            "shift": [figure(m.shift.0 as f32), figure(m.shift.1 as f32)],
-        })),
-        "reasons": reasons,
-        "error": match &judged.outcome {
-            Err(message) => json!(message),
-            Ok(_) => Value::Null,
-        },
-    })
+    line.insert("verdict".into(), json!(outcome.verdict().word()));
+    line.insert(
+        "peak_flip".into(),
+        metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
+    );
+    line.insert(
+        "mean_flip".into(),
+        metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
+    );
+    line.insert("threshold".into(), figure(threshold));
+    line.insert(
+        "diagnosis".into(),
+        diagnosis.map_or(Value::Null, |d| json!(d.messages())),
+    );
+    line.insert(
+        "transform".into(),
+        diagnosis
+            .as_ref()
+            .and_then(Diagnosis::camera_mistake)
+            .map_or(Value::Null, |m| {
+                json!({
+                    "mirrored_left_right": m.mirrored_left_right,
+                    "upside_down": m.upside_down,
+                    "rotation": figure(m.rotation as f32),
+                    "scale": [figure(m.scale.0 as f32), figure(m.scale.1 as f32)],
+                    "about": [figure(m.about.0 as f32), figure(m.about.1 as f32)],
+                    "shift": [figure(m.shift.0 as f32), figure(m.shift.1 as f32)],
+                })
+            }),
+    );
+    line.insert("reasons".into(), json!(reasons));
 }

@@ -7,6 +7,7 @@ use crate::figures::{Format, write};
 use crate::input::load_scene_file;
 use anyhow::{Result, anyhow, bail};
 use clap::Args;
+use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 
 #[derive(Args, Debug)]
 pub(crate) struct DiagramArgs {
@@ -61,12 +62,8 @@ pub(crate) fn diagram(args: &DiagramArgs) -> Result<()> {
             }
         }
     };
-    let figure = viewray_diagram::camera_side_view(
-        &scene,
-        &camera,
-        pixel,
-        viewray_diagram::SideViewCanvas::Slide,
-    );
+    let window = SideWindow::fit(&scene, &[camera]);
+    let figure = side_view(&scene, &camera, &window, SideViewCanvas::Slide, pixel);
     write(&figure, output, format)?;
     if std::io::stderr().is_terminal() {
         eprintln!(

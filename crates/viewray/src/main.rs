@@ -18,6 +18,7 @@ mod commands;
 mod compare;
 mod diagram;
 mod figures;
+mod grade;
 mod input;
 mod interop;
 mod output;
@@ -53,6 +54,7 @@ fn main() -> ExitCode {
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
         Command::Compare(args) => return compare::run(&args),
+        Command::Grade(args) => return grade::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
         Command::Export(args) => interop::export(&args),

@@ -18,8 +18,6 @@ const NOTE: Style = AnsiColor::Cyan.on_default().bold();
 pub(crate) const PASS: Style = AnsiColor::Green.on_default().bold();
 /// A failing verdict.
 pub(crate) const FAIL: Style = AnsiColor::Red.on_default().bold();
-/// A pair that could not be compared.
-pub(crate) const BROKEN: Style = AnsiColor::Magenta.on_default().bold();
 
 /// Prints `error: message` on stderr.
 pub(crate) fn error(message: impl Display) {
@@ -41,4 +39,11 @@ pub(crate) fn note(message: impl Display) {
 pub(crate) fn padded(style: Style, text: &str, width: usize) -> String {
     let padding = " ".repeat(width.saturating_sub(text.chars().count()));
     format!("{style}{text}{style:#}{padding}")
+}
+
+/// `text` right-aligned in `width` characters, in `style` (the padding outside the
+/// colour).
+pub(crate) fn padded_right(style: Style, text: &str, width: usize) -> String {
+    let padding = " ".repeat(width.saturating_sub(text.chars().count()));
+    format!("{padding}{style}{text}{style:#}")
 }

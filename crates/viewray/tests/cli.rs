@@ -383,6 +383,7 @@ fn help_of_every_command_at_80_columns() {
         "rays",
         "project",
         "compare",
+        "grade",
         "figure",
         "figures",
         "scene",

@@ -65,7 +65,8 @@ fn s(path: &Path) -> &str {
 
 /// Two folders: `correct.png` (a one-sample render: passes), `mirrored.png` (fails,
 /// diagnosed), `moved.png` (the picture 12 px right: fails, diagnosed), `small.png`
-/// (another size), `notes.png` (not a PNG), `extra.png` (only in EXPECTED).
+/// (another size), `notes.png` (not a PNG), `extra.png` (only in EXPECTED), and
+/// `readme.txt` (only in ACTUAL).
 fn folders(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
     let (expected, actual) = (dir.join("expected"), dir.join("actual"));
     std::fs::create_dir_all(&expected).unwrap();
@@ -110,13 +111,15 @@ fn two_matching_files_pass_with_exit_code_0() {
 }
 
 #[test]
-fn folders_are_paired_by_name_and_every_problem_is_a_row() {
+fn folders_are_paired_like_diff_r_and_every_problem_is_a_row() {
     let dir = tempfile::tempdir().unwrap();
     let (expected, actual) = folders(dir.path());
     let out = viewray(&["compare", s(&expected), s(&actual)]);
     let stdout = String::from_utf8(out.stdout).unwrap();
-    // Two pairs could not be compared: bad input, exit code 2, after every row.
-    assert_eq!(out.status.code(), Some(2), "{stdout}");
+    // A missing or unreadable render is the student's failure: exit code 1, every pair
+    // still judged.
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(out.stderr.is_empty());
     let row = |name: &str| {
         stdout
             .lines()
@@ -129,13 +132,74 @@ fn folders_are_paired_by_name_and_every_problem_is_a_row() {
     assert!(row("mirrored.png").ends_with("mirrored left-right: check u = up x w"));
     assert!(row("moved.png").ends_with("shifted 12 px right: check the shift (sx, sy)"));
     assert!(row("small.png").ends_with("sizes differ: expected 96x72, actual 48x36"));
-    assert!(row("notes.png").contains("ERROR"));
-    assert!(row("notes.png").contains("notes.png: not a PNG file"));
-    assert!(row("extra.png").ends_with("only in EXPECTED: ACTUAL has no extra.png"));
-    assert!(!stdout.contains("readme"));
-    assert!(
-        stdout.ends_with("6 images: 1 passed, 3 failed, 2 could not be compared (threshold 0.3)\n")
+    assert_eq!(
+        row("notes.png"),
+        "notes.png     FAIL     -          not a PNG: it does not start with the PNG signature"
     );
+    assert_eq!(
+        row("extra.png"),
+        "extra.png     FAIL     -          missing"
+    );
+    assert!(
+        stdout.contains("\nnot judged, only in ACTUAL: readme.txt\n"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.ends_with(
+            "6 images: 1 passed, 5 failed, 2 of them missing or unreadable (threshold 0.3)\n"
+        ),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn a_render_folder_with_a_link_out_of_it_or_nothing_in_it_fails_each_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    // A student's "render" that is a link to the reference itself.
+    std::fs::remove_file(actual.join("correct.png")).unwrap();
+    std::os::unix::fs::symlink(expected.join("correct.png"), actual.join("correct.png")).unwrap();
+    let out = viewray(&["compare", s(&expected), s(&actual)]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let row = stdout
+        .lines()
+        .find(|l| l.starts_with("correct.png"))
+        .unwrap();
+    assert!(
+        row.contains("FAIL") && row.contains("not read: a symbolic link out of the folder"),
+        "{row}"
+    );
+    // An empty render folder: every image missing.
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let out = viewray(&["compare", s(&expected), s(&empty)]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert_eq!(stdout.matches("  missing").count(), 6, "{stdout}");
+    assert!(stdout.ends_with(
+        "6 images: 0 passed, 6 failed, 6 of them missing or unreadable (threshold 0.3)\n"
+    ));
+}
+
+#[test]
+fn a_problem_on_the_reference_side_or_a_file_given_directly_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let (expected, actual) = folders(dir.path());
+    // A reference image that is not a PNG: nothing is judged.
+    std::fs::write(expected.join("broken.png"), "not a picture").unwrap();
+    let line = error_line(&["compare", s(&expected), s(&actual)]);
+    assert!(
+        line.contains("broken.png") && line.contains("not a PNG"),
+        "{line}"
+    );
+    // Files given directly: either one unreadable is bad input.
+    let good = expected.join("correct.png");
+    let notes = actual.join("notes.png");
+    for args in [[s(&good), s(&notes)], [s(&notes), s(&good)]] {
+        let line = error_line(&["compare", args[0], args[1]]);
+        assert!(line.contains("notes.png: not a PNG file"), "{line}");
+    }
 }
 
 #[test]
@@ -168,7 +232,7 @@ fn json_lines_parse_and_end_with_a_summary() {
     let dir = tempfile::tempdir().unwrap();
     let (expected, actual) = folders(dir.path());
     let out = viewray(&["compare", s(&expected), s(&actual), "--json"]);
-    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(out.status.code(), Some(1));
     let lines: Vec<Value> = String::from_utf8(out.stdout)
         .unwrap()
         .lines()
@@ -188,16 +252,17 @@ fn json_lines_parse_and_end_with_a_summary() {
     let moved = by_name("moved.png");
     let shift_x = moved["transform"]["shift"][0].as_f64().unwrap();
     assert!((shift_x - 12.0).abs() < 0.3, "{moved}");
-    assert_eq!(by_name("notes.png")["verdict"], "error");
-    assert!(
-        by_name("extra.png")["error"]
-            .as_str()
-            .unwrap()
-            .contains("only in EXPECTED")
+    assert_eq!(by_name("notes.png")["verdict"], "fail");
+    assert_eq!(by_name("notes.png")["peak_flip"], Value::Null);
+    assert_eq!(by_name("extra.png")["verdict"], "fail");
+    assert_eq!(
+        by_name("extra.png")["reasons"],
+        serde_json::json!(["missing"])
     );
     assert_eq!(
         lines[6]["summary"],
-        serde_json::json!({"total": 6, "passed": 1, "failed": 3, "errors": 2})
+        serde_json::json!({"total": 6, "passed": 1, "failed": 5,
+                           "missing_or_unreadable": 2, "extra": ["readme.txt"]})
     );
 }
 
@@ -207,7 +272,7 @@ fn report_writes_a_page_and_heatmaps() {
     let (expected, actual) = folders(dir.path());
     let report = dir.path().join("report");
     let out = viewray(&["compare", s(&expected), s(&actual), "--report", s(&report)]);
-    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(
         stderr.contains("report: ") && stderr.contains("index.html"),
@@ -232,7 +297,8 @@ fn report_writes_a_page_and_heatmaps() {
     let stdout = String::from_utf8(out.stdout).unwrap();
     let lines: Vec<&str> = stdout.lines().collect();
     assert_eq!(select("p.summary"), [*lines.last().unwrap()]);
-    let terminal: Vec<String> = lines[1..lines.len() - 1]
+    // The rows: between the heading and the line of files judged nowhere.
+    let terminal: Vec<String> = lines[1..lines.len() - 2]
         .iter()
         .map(|row| {
             let words: Vec<&str> = row.split_whitespace().collect();
@@ -241,9 +307,10 @@ fn report_writes_a_page_and_heatmaps() {
         .collect();
     assert_eq!(select("section.entry h2"), terminal);
     assert!(
-        terminal.iter().any(|t| t.starts_with("ERROR")),
+        terminal.contains(&"FAIL extra.png".to_owned()),
         "{terminal:?}"
     );
+    assert!(select("section.entry.fail tr.error td").contains(&"missing".to_owned()));
     for name in ["correct", "mirrored", "moved"] {
         let heatmap = image::open(report.join(format!("{name}.diff.png"))).unwrap();
         assert_eq!((heatmap.width(), heatmap.height()), (W, H));
@@ -288,7 +355,7 @@ fn bad_usage_is_one_line_and_exit_code_2() {
         error_line(&["compare", s(&file), s(dir.path())])
             .contains("give two PNG files or two folders")
     );
-    assert!(error_line(&["compare", s(&empty), s(&empty)]).contains("no *.png files"));
+    assert!(error_line(&["compare", s(&empty), s(&empty)]).contains("holds no *.png file"));
     assert!(error_line(&["compare", s(&file), s(&file), "--threshold", "1.5"]).contains("[0, 1]"));
     assert!(error_line(&["compare", s(&file)]).contains("ACTUAL"));
 }

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use tempfile::TempDir;
-use viewray_diagram::SideViewCanvas;
+use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 use viewray_scene::Scene;
 
 mod support;
@@ -49,8 +49,9 @@ fn a_scenes_side_view_is_written_as_the_library_draws_it() {
 
     // The PNG is the library's figure, painted.
     let scene = Scene::load(&scene_path).unwrap();
-    let figure =
-        viewray_diagram::camera_side_view(&scene, scene.camera(), None, SideViewCanvas::Slide);
+    let camera = scene.camera();
+    let window = SideWindow::fit(&scene, std::slice::from_ref(camera));
+    let figure = side_view(&scene, camera, &window, SideViewCanvas::Slide, None);
     let expected = viewray_draw::raster::render(&figure);
     let written = image::open(dir.path().join("side.png")).unwrap().to_rgba8();
     assert_eq!((written.width(), written.height()), (1600, 900));
@@ -58,11 +59,12 @@ fn a_scenes_side_view_is_written_as_the_library_draws_it() {
 
     // The SVG is the library's figure with pixel (10, 20) highlighted, and --one-based
     // names the same pixel as (11, 21).
-    let figure = viewray_diagram::camera_side_view(
+    let figure = side_view(
         &scene,
-        scene.camera(),
-        Some((10, 20)),
+        camera,
+        &window,
         SideViewCanvas::Slide,
+        Some((10, 20)),
     );
     let svg = std::fs::read_to_string(dir.path().join("side.svg")).unwrap();
     assert_eq!(

@@ -1,15 +1,17 @@
-//! The side view of any scene's camera: rays the camera generates, drawn to what they
-//! hit, in the plane of the camera's v and w.
+//! The side view of any camera over a scene: rays the camera generates, drawn to what
+//! they hit, in the plane of the camera's v and w, in a window fitted to one camera or
+//! fixed for an animation.
 
 use std::path::Path;
 
-use glam::DVec3;
-use viewray_camera::CameraSample;
+use glam::{DVec2, DVec3};
+use viewray_camera::{Camera, CameraSample};
 use viewray_draw::Item;
 use viewray_scene::{Scene, parse_camera};
 
 use super::figures::{assert_drawn_rays_are_generated, labels};
-use crate::camera_side::{SideViewCanvas, camera_side_view};
+use crate::Diagram;
+use crate::camera_side::{SideViewCanvas, SideWindow, side_view};
 use crate::style;
 use crate::view::FigureView;
 
@@ -56,17 +58,34 @@ fn scene(name: &str, text: &str) -> Scene {
     Scene::parse(text, &path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The side view of `camera` in a window fitted to it alone.
+fn fitted(
+    scene: &Scene,
+    camera: &Camera,
+    pixel: Option<(u32, u32)>,
+    canvas: SideViewCanvas,
+) -> Diagram {
+    let window = SideWindow::fit(scene, std::slice::from_ref(camera));
+    side_view(scene, camera, &window, canvas, pixel)
+}
+
+const CANVASES: [SideViewCanvas; 3] = [
+    SideViewCanvas::Slide,
+    SideViewCanvas::Panel,
+    SideViewCanvas::Beside,
+];
+
 #[test]
 fn every_ray_drawn_is_one_the_camera_generates() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
         let camera = *scene.camera();
         let pixel = (camera.height() / 3, camera.width() / 4);
-        for canvas in [SideViewCanvas::Slide, SideViewCanvas::Panel] {
-            let diagram = camera_side_view(&scene, &camera, Some(pixel), canvas);
+        for canvas in CANVASES {
+            let diagram = fitted(&scene, &camera, Some(pixel), canvas);
             assert_drawn_rays_are_generated(name, &diagram);
         }
-        let diagram = camera_side_view(&scene, &camera, Some(pixel), SideViewCanvas::Slide);
+        let diagram = fitted(&scene, &camera, Some(pixel), SideViewCanvas::Slide);
         // The five rays of the middle column at least, and the highlighted pixel's.
         let middle = diagram
             .rays
@@ -96,7 +115,7 @@ fn rays_stop_at_the_first_thing_they_hit() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
         let camera = *scene.camera();
-        let diagram = camera_side_view(&scene, &camera, None, SideViewCanvas::Slide);
+        let diagram = fitted(&scene, &camera, None, SideViewCanvas::Slide);
         let mut stopped = 0;
         for ray in diagram
             .rays
@@ -130,7 +149,7 @@ fn the_view_is_the_plane_of_v_and_w_with_world_up_up() {
     for (name, text) in SCENES {
         let scene = scene(name, text);
         let camera = *scene.camera();
-        let diagram = camera_side_view(&scene, &camera, None, SideViewCanvas::Slide);
+        let diagram = fitted(&scene, &camera, None, SideViewCanvas::Slide);
         let FigureView::Side(view) = diagram.rays[0].view else {
             panic!("{name}: a side view")
         };
@@ -162,8 +181,8 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
         "(eye: (0.0, 1.0, 6.0), look_at: (0.0, 1.0, 0.0), projection: ThinLens(fov_y: 40.0, aperture: 0.3, focus: 6.0))",
     ] {
         let camera = parse_camera(camera_text, Path::new("camera"), 160, 90).unwrap();
-        for canvas in [SideViewCanvas::Slide, SideViewCanvas::Panel] {
-            let diagram = camera_side_view(&scene, &camera, Some((45, 80)), canvas);
+        for canvas in CANVASES {
+            let diagram = fitted(&scene, &camera, Some((45, 80)), canvas);
             assert_drawn_rays_are_generated(camera_text, &diagram);
             let figure = &diagram.figure;
             let labels = labels(figure);
@@ -184,4 +203,105 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
             }
         }
     }
+}
+
+/// A unit sphere at the origin, and nothing else.
+fn sphere_scene() -> Scene {
+    Scene::parse(
+        "(camera: (eye: (0.0, 0.0, 5.0), look_at: (0.0, 0.0, 0.0), \
+         projection: Perspective(distance: 1.0, viewport: (1.0, 1.0))), \
+         image: (width: 40, height: 40), \
+         materials: { \"grey\": (color: (0.5, 0.5, 0.5)) }, \
+         objects: [Sphere(center: (0.0, 0.0, 0.0), radius: 1.0, material: \"grey\")])",
+        Path::new("sphere.ron"),
+    )
+    .unwrap()
+}
+
+/// The camera of `sphere_scene` with its eye at `(0, 0, z)`.
+fn looking_down_minus_z(z: f64) -> Camera {
+    let text = format!(
+        "(eye: (0.0, 0.0, {z:?}), look_at: (0.0, 0.0, 0.0), \
+         projection: Perspective(distance: 1.0, viewport: (1.0, 1.0)))"
+    );
+    parse_camera(&text, Path::new("camera"), 40, 40).unwrap()
+}
+
+#[test]
+fn a_window_holds_the_objects_the_camera_and_room_for_its_frame() {
+    let scene = sphere_scene();
+    let camera = looking_down_minus_z(5.0);
+    let window = SideWindow::fit(&scene, &[camera]);
+    // The camera looks down -z, up y: -z is drawn right and y up, plane point
+    // (-p.z, p.y). The sphere spans [-1, 1] both ways; the eye is at (-5, 0); the image
+    // plane's edges at (-4, +-0.5). Fitted: from -5 to 1 across, size 6, so w (+z) and v
+    // (+y) reach 0.1 * 6 past the eye: -5.6 across, 0.6 up (inside the sphere's 1). With
+    // the margin of 0.1 * 6.6 = 0.66 all round:
+    assert!(
+        window.right.abs_diff_eq(DVec3::NEG_Z, 1e-12),
+        "{}",
+        window.right
+    );
+    assert!(window.up.abs_diff_eq(DVec3::Y, 1e-12), "{}", window.up);
+    assert!(
+        window.min.abs_diff_eq(DVec2::new(-6.26, -1.66), 1e-9),
+        "{}",
+        window.min
+    );
+    assert!(
+        window.max.abs_diff_eq(DVec2::new(1.66, 1.66), 1e-9),
+        "{}",
+        window.max
+    );
+}
+
+#[test]
+fn an_animations_window_keeps_the_objects_still_and_far_eyes_as_arrows() {
+    let scene = sphere_scene();
+    let cameras = [5.0, 10.0, 10_000.0].map(looking_down_minus_z);
+    let window = SideWindow::fit(&scene, &cameras);
+    // The nearest eye (5) sets the size, 6 across; eyes within three times the size of
+    // that are in (10), farther ones are not (10000).
+    assert!(
+        window.min.x < -10.0 && window.min.x > -20.0,
+        "{}",
+        window.min
+    );
+    let spheres: Vec<Item> = cameras
+        .iter()
+        .map(|camera| {
+            let diagram = side_view(&scene, camera, &window, SideViewCanvas::Beside, None);
+            assert_drawn_rays_are_generated("moving camera", &diagram);
+            let texts: Vec<&str> = labels(&diagram.figure)
+                .iter()
+                .map(|label| label.text.as_str())
+                .collect();
+            let far = camera.frame().e.z > 100.0;
+            assert_eq!(texts.contains(&"*e*"), !far, "{texts:?}");
+            assert_eq!(
+                texts.iter().any(|text| text.starts_with("*e*, 9")),
+                far,
+                "{texts:?}"
+            );
+            let arrows_to_eye = diagram
+                .figure
+                .items
+                .iter()
+                .filter(
+                    |item| matches!(item, Item::Arrow { stroke, .. } if stroke.color == style::EYE),
+                )
+                .count();
+            assert_eq!(arrows_to_eye, usize::from(far));
+            diagram
+                .figure
+                .items
+                .iter()
+                .find(|item| matches!(item, Item::Ellipse { rotation, .. } if *rotation == 0.0))
+                .expect("the sphere")
+                .clone()
+        })
+        .collect();
+    // The sphere is drawn in the same place in every frame: only the camera moves.
+    assert_eq!(spheres[0], spheres[1]);
+    assert_eq!(spheres[0], spheres[2]);
 }

@@ -1,0 +1,39 @@
+//! Grading a class of renders: what `viewray grade` and the folder form of `viewray
+//! compare` do, without the command line.
+//!
+//! This crate owns pairing folders and grading a class on viewray-compare's judgement:
+//!
+//! - [`reference_images`] and [`pair`]: a folder of reference images paired with a folder
+//!   of renders as `diff -r` pairs two trees, by exact file name. What the render's side
+//!   lacks or cannot read is the render's failure ([`Counterpart`], [`Outcome::Failed`]);
+//!   what it has besides is listed; the reference side's problems are bad input
+//!   ([`FolderError`]).
+//! - [`submissions`], [`grade_class`]: one folder per student, each judged against the
+//!   [`Assignment`]'s references (prepared once: [`viewray_compare::Reference`]),
+//!   students in parallel (rayon), results handed on in the students' order.
+//! - [`ClassSummary`]: students fully passing, per-image pass rates, the hardest image.
+//! - [`write_gradebook`]: the CSV gradebook (student, image, verdict, peak FLIP,
+//!   diagnosis); [`write_class_report`]: the HTML class report (maud), the class at a
+//!   glance and a page per student with thumbnails of each failure.
+//!
+//! It reads the folders and images it is given, and writes only the gradebook and the
+//! report, atomically; it knows nothing of scenes or of the command line (a reference's
+//! scene reaches it as [`viewray_compare::Expectations`] inside its `Reference`).
+
+mod class;
+mod folders;
+mod gradebook;
+mod outcome;
+mod report;
+
+pub use class::{
+    Assignment, ClassSummary, ImageGrade, ImageTally, Pictures, StudentGrade, THUMBNAIL, Task,
+    grade_class, grade_student, thumbnail,
+};
+pub use folders::{
+    Counterpart, FolderError, Pairing, ReferenceImage, Student, Submissions, listed, pair,
+    reference_images, submissions,
+};
+pub use gradebook::{HEADER, gradebook, write_gradebook};
+pub use outcome::{Outcome, in_order, judge_counterpart, load_counterpart, unreadable};
+pub use report::{ClassReport, write_class_report};
