@@ -840,10 +840,11 @@ mod tests {
                 Ray::new(Vec3::ZERO, Vec3::new(s, 0.0, -2.0)),
                 Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)),
             ];
-            let chunk = ChunkNumbers::new(&rays);
+            let mut chunk = ChunkNumbers::EMPTY;
+            chunk.fill(&rays);
             // Octant 0b100: negative z only.
             assert_eq!(chunk.octants[4], 0b11);
-            let mut packet = BoxPacket::new();
+            let mut packet = BoxPacket::EMPTY;
             packet.fill(&chunk, 4, chunk.octants[4]);
             packet.coherent
         };
