@@ -70,7 +70,7 @@ pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Signific
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
-pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, write_report};
+pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, unique_stem, write_report};
 
 /// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
 /// target.

@@ -231,8 +231,11 @@ enum Role {
     Difference,
 }
 
-/// A file-name stem for `name`, distinct from those already `used`.
-fn unique_stem(name: &str, used: &mut HashSet<String>) -> String {
+/// A file-name stem for the image `name` in a report folder: `name` without `.png`, every
+/// character but ASCII letters, digits, `-`, `_` and `.` made `_`, never hidden, and
+/// distinct from the stems already `used` whatever the case of their letters (a report
+/// folder may sit on a file system that ignores it): `-2`, `-3`, ... added when needed.
+pub fn unique_stem(name: &str, used: &mut HashSet<String>) -> String {
     let base = name.strip_suffix(".png").unwrap_or(name);
     let mut stem: String = base
         .chars()
@@ -249,7 +252,7 @@ fn unique_stem(name: &str, used: &mut HashSet<String>) -> String {
     }
     let mut candidate = stem.clone();
     let mut n = 2;
-    while !used.insert(candidate.clone()) {
+    while !used.insert(candidate.to_ascii_lowercase()) {
         candidate = format!("{stem}-{n}");
         n += 1;
     }
@@ -599,10 +602,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn stems_are_safe_file_names_and_never_collide() {
+    fn stems_are_safe_file_names_and_never_collide_even_in_case() {
         let mut used = HashSet::new();
         assert_eq!(unique_stem("perspective.png", &mut used), "perspective");
         assert_eq!(unique_stem("perspective", &mut used), "perspective-2");
+        assert_eq!(unique_stem("Perspective.png", &mut used), "Perspective-3");
         assert_eq!(unique_stem("a b/c<d>.png", &mut used), "a_b_c_d_");
         assert_eq!(unique_stem("../x", &mut used), "_.._x");
         assert_eq!(unique_stem("", &mut used), "_");

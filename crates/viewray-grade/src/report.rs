@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Pixel};
 use maud::{DOCTYPE, Markup, PreEscaped, html};
-use viewray_compare::Verdict;
+use viewray_compare::{Verdict, unique_stem};
 use viewray_output::{Compression, encode_png, write_atomically};
 
 use crate::class::{Assignment, ClassSummary, StudentGrade, thumbnail};
@@ -111,31 +111,6 @@ where
     let png = encode_png(image, Compression::Balanced)?;
     write_atomically(path, &png)?;
     Ok(())
-}
-
-/// A file-name stem for `name`, distinct from those already `used`.
-fn unique_stem(name: &str, used: &mut HashSet<String>) -> String {
-    let base = name.strip_suffix(".png").unwrap_or(name);
-    let mut stem: String = base
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if stem.is_empty() || stem.starts_with('.') {
-        stem.insert(0, '_');
-    }
-    let mut candidate = stem.clone();
-    let mut n = 2;
-    while !used.insert(candidate.to_ascii_lowercase()) {
-        candidate = format!("{stem}-{n}");
-        n += 1;
-    }
-    candidate
 }
 
 /// The students in the grid's order: the most failures first, then by name.
@@ -336,18 +311,3 @@ figure { margin: 0; }
 figure img { border: 1px solid #ccc; display: block; max-width: 240px; max-height: 180px; }
 figcaption { color: #666; font-size: 0.85em; text-align: center; }
 ";
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn stems_are_safe_file_names_and_never_collide_even_in_case() {
-        let mut used = HashSet::new();
-        assert_eq!(unique_stem("boxes.png", &mut used), "boxes");
-        assert_eq!(unique_stem("Boxes", &mut used), "Boxes-2");
-        assert_eq!(unique_stem("a b/c<d>.png", &mut used), "a_b_c_d_");
-        assert_eq!(unique_stem("../x", &mut used), "_.._x");
-        assert_eq!(unique_stem("", &mut used), "_");
-    }
-}

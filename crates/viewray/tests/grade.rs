@@ -4,42 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use image::{Rgba, RgbaImage};
 use scraper::{Html, Selector};
 use serde_json::Value;
 
 mod support;
+use support::pictures::picture;
 use support::{error_line, viewray};
-
-/// A small picture: a red disc and a green bar on a dark background, mirrored
-/// left-right or not, moved `shift_x` pixels right, sampled `n` x `n` times per pixel.
-fn picture(width: u32, height: u32, n: u32, mirrored: bool, shift_x: f64) -> RgbaImage {
-    let color_at = |x: f64, y: f64| -> [f64; 3] {
-        let (u, v) = (x / f64::from(width), y / f64::from(height));
-        let u = if mirrored { 1.0 - u } else { u };
-        let (du, dv) = ((u - 0.3) * 4.0 / 3.0, v - 0.4);
-        if du * du + dv * dv < 0.18 * 0.18 {
-            return [0.8, 0.1, 0.1];
-        }
-        if (0.55..0.9).contains(&u) && (0.6..0.75).contains(&v) {
-            return [0.1, 0.7, 0.2];
-        }
-        [0.02, 0.03, 0.05]
-    };
-    RgbaImage::from_fn(width, height, |col, row| {
-        let mut sum = [0.0; 3];
-        for k in 0..n * n {
-            let sx = (f64::from(k % n) + 0.5) / f64::from(n);
-            let sy = (f64::from(k / n) + 0.5) / f64::from(n);
-            let c = color_at(f64::from(col) + sx - shift_x, f64::from(row) + sy);
-            for i in 0..3 {
-                sum[i] += c[i] / f64::from(n * n);
-            }
-        }
-        let encode = |l: f64| viewray_output::linear_to_srgb8(l as f32);
-        Rgba([encode(sum[0]), encode(sum[1]), encode(sum[2]), 255])
-    })
-}
 
 const W: u32 = 96;
 const H: u32 = 72;

@@ -93,3 +93,4 @@ fn bad_input(args: &[&str], out: Output) -> String {
 }
 
 pub(crate) mod http;
+pub(crate) mod pictures;
