@@ -159,7 +159,10 @@ pub fn mutants(root: &Path, args: &MutantsArgs) -> Result<()> {
 /// The diff of `crates/<krate>/src` since the base this branch is compared with, or
 /// `None` (having said so) when those sources did not change.
 fn diff_since_base(root: &Path, krate: &str) -> Result<Option<String>> {
-    let base = base_commit(root)?;
+    let Some(base) = base_commit(root)? else {
+        println!("no commit to compare with (a clone of one commit?): no mutants to test");
+        return Ok(None);
+    };
     let sources = format!("crates/{krate}/src");
     let diff = git(root, &["diff", &base, "--", &sources])?;
     if diff.trim().is_empty() {
@@ -178,19 +181,20 @@ fn diff_since_base(root: &Path, krate: &str) -> Result<Option<String>> {
 
 /// The commit a change is measured from: the merge base with `main` (or `origin/main`),
 /// or, where that is the current commit itself (CI's clone of `main`), its first parent:
-/// the `main` before the change landed.
-fn base_commit(root: &Path) -> Result<String> {
+/// the `main` before the change landed. `None` where there is none to be had: a clone of
+/// that one commit alone.
+fn base_commit(root: &Path) -> Result<Option<String>> {
     let head = git(root, &["rev-parse", "HEAD"])?.trim().to_owned();
     let merge_base = ["main", "origin/main"]
         .into_iter()
         .find_map(|main| git(root, &["merge-base", "HEAD", main]).ok())
         .map(|base| base.trim().to_owned());
-    match merge_base {
-        Some(base) if base != head => Ok(base),
-        _ => git(root, &["rev-parse", "HEAD^1"])
-            .map(|parent| parent.trim().to_owned())
-            .context("no base to compare with: HEAD is main and has no parent"),
-    }
+    Ok(match merge_base {
+        Some(base) if base != head => Some(base),
+        _ => git(root, &["rev-parse", "--verify", "--quiet", "HEAD^1"])
+            .ok()
+            .map(|parent| parent.trim().to_owned()),
+    })
 }
 
 /// Installs the pinned cargo-mutants with `cargo install --locked` unless some version
@@ -374,9 +378,12 @@ mod tests {
         };
         run(&["init", "-q", "-b", "main"]);
         let first = commit("crates/c/src/lib.rs", "fn a() {}\n");
+        // One commit alone (what a clone of depth 1 has): nothing to compare with.
+        assert_eq!(base_commit(root).unwrap(), None);
+        assert_eq!(diff_since_base(root, "c").unwrap(), None);
         let second = commit("README.md", "readme\n");
         // On main: the previous commit; and a README change leaves the crate alone.
-        assert_eq!(base_commit(root).unwrap(), first);
+        assert_eq!(base_commit(root).unwrap(), Some(first));
         assert_eq!(diff_since_base(root, "c").unwrap(), None);
         // On a branch: the merge base, whatever main did since.
         run(&["checkout", "-q", "-b", "topic"]);
@@ -384,7 +391,7 @@ mod tests {
         run(&["checkout", "-q", "main"]);
         commit("other.txt", "x\n");
         run(&["checkout", "-q", "topic"]);
-        assert_eq!(base_commit(root).unwrap(), second);
+        assert_eq!(base_commit(root).unwrap(), Some(second));
         let diff = diff_since_base(root, "c").unwrap().unwrap();
         assert!(diff.contains("+fn a() { b() }"), "{diff}");
         // Uncommitted changes count too.
