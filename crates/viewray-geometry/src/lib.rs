@@ -41,7 +41,12 @@
 //!   repeatedly splitting its largest child until it has eight, splits that fill a free
 //!   slot cost no extra node, leaves hold at most 8 triangles. Large ranges are binned
 //!   and built in parallel with rayon. After a depth of 40 the build halves ranges by
-//!   count, which bounds the depth and so the traversal stack.
+//!   count, which bounds the depth and so the traversal stack. The build is shaped by
+//!   its small ranges, of which there are as many as leaves: a range no bigger than one
+//!   block becomes a leaf without binning (no split can be cheaper), sweeps skip empty
+//!   bins (a split behind one costs what the split before it did), build items are two
+//!   aligned SIMD registers with the index in a spare lane, and the three bins of an item
+//!   are one SSE2 conversion. Each of these leaves the tree the same, node for node.
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
 //!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
 //!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
@@ -52,7 +57,8 @@
 //!   slab are constants. Its stack is a fixed array reused from a thread-local (zeroing
 //!   a fresh one per ray cost a quarter of a primary ray). On large meshes rays are
 //!   bound by memory latency, so the children a ray will visit are prefetched as soon
-//!   as their boxes are hit (the crate's one `unsafe`: the x86_64 prefetch hint).
+//!   as their boxes are hit (one of the crate's two `unsafe` blocks: the x86_64
+//!   prefetch hint; the other is the builder's SSE2 float-to-integer conversion).
 //! - **Packets for coherent rays.** [`Mesh::closest_triangles`] and
 //!   [`World::closest_objects`] trace up to 64 rays of one octant (a renderer's 8 x 8
 //!   pixel block) together. One interval-arithmetic test per node bounds every ray of
