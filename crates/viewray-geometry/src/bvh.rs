@@ -1391,6 +1391,44 @@ mod tests {
         }
     }
 
+    /// 200 unit boxes in a row along x, a gap of 1 between neighbours, seen end on: the
+    /// nearest box hides every other, so a front-to-back walk that skips boxes entered
+    /// beyond the closest hit visits one leaf, whichever end the ray comes from (two
+    /// octants) and however the boxes were ordered when the tree was built.
+    #[test]
+    fn closest_visits_only_the_nearest_leaf_of_a_row_of_boxes() {
+        let mut boxes: Vec<Aabb> = (0..200)
+            .map(|k| {
+                let x = 2.0 * k as f32;
+                Aabb::new(Vec3::new(x, -0.5, -0.5), Vec3::new(x + 1.0, 0.5, 0.5))
+            })
+            .collect();
+        for shuffled in [false, true] {
+            if shuffled {
+                // A fixed permutation: 73 is coprime with 200.
+                boxes = (0..200).map(|k| boxes[(k * 73) % 200]).collect();
+            }
+            let bvh = Bvh::build(&boxes, BuildParams::default());
+            for (origin, direction, nearest_t) in [
+                (Vec3::new(-10.0, 0.1, 0.2), Vec3::X, 10.0),
+                (Vec3::new(410.0, -0.1, 0.2), Vec3::NEG_X, 11.0),
+            ] {
+                let ray = Ray::new(origin, direction);
+                let mut visits = 0;
+                let t = bvh.closest(&ray, 0.0, f32::INFINITY, |start, count, t_max| {
+                    visits += 1;
+                    let order = bvh.item_order();
+                    (start..start + count)
+                        .filter_map(|p| boxes[order[p as usize] as usize].slab_interval(&ray))
+                        .map(|(t_enter, _)| t_enter)
+                        .fold(t_max, f32::min)
+                });
+                assert_eq!(t, nearest_t, "from {origin}");
+                assert_eq!(visits, 1, "from {origin}, shuffled: {shuffled}");
+            }
+        }
+    }
+
     #[test]
     fn a_build_item_keeps_its_box_and_index_and_no_lane_is_denormal() {
         let bounds = Aabb::new(Vec3::new(-1.0, 2.0, -3.5), Vec3::new(4.0, 5.0, 6.25));
