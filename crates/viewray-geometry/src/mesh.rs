@@ -360,18 +360,18 @@ impl Mesh {
             let first_packet = packets.len() as u32;
             let faces = &order[start as usize..(start + count) as usize];
             for chunk in faces.chunks(4) {
-                let face = |lane: usize| chunk[lane.min(chunk.len() - 1)];
-                let vertex = |lane: usize, corner: usize| {
-                    positions[data.triangles[face(lane) as usize][corner] as usize]
-                };
-                packets.push(TrianglePacket {
-                    vertices: std::array::from_fn(|corner| {
-                        std::array::from_fn(|axis| {
-                            std::array::from_fn(|lane| vertex(lane, corner)[axis])
-                        })
-                    }),
-                    faces: std::array::from_fn(face),
-                });
+                // A short chunk repeats its last face in the spare lanes.
+                let faces: [u32; 4] = std::array::from_fn(|lane| chunk[lane.min(chunk.len() - 1)]);
+                let mut vertices = [[[0.0; 4]; 3]; 3];
+                for (lane, &face) in faces.iter().enumerate() {
+                    for (corner, &index) in data.triangles[face as usize].iter().enumerate() {
+                        let p = positions[index as usize];
+                        for axis in 0..3 {
+                            vertices[corner][axis][lane] = p[axis];
+                        }
+                    }
+                }
+                packets.push(TrianglePacket { vertices, faces });
             }
             (first_packet, packets.len() as u32 - first_packet)
         });
