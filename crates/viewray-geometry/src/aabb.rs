@@ -257,6 +257,22 @@ mod tests {
     }
 
     #[test]
+    fn face_uv_runs_along_the_next_two_axes_in_turn() {
+        // The point is a quarter, a half and three quarters of the way along x, y, z.
+        let b = Aabb::new(Vec3::new(0.0, 10.0, 100.0), Vec3::new(2.0, 14.0, 108.0));
+        let p = Vec3::new(0.5, 12.0, 106.0);
+        assert_eq!(b.face_uv(0, p), Vec2::new(0.5, 0.75)); // y, z
+        assert_eq!(b.face_uv(1, p), Vec2::new(0.75, 0.25)); // z, x
+        assert_eq!(b.face_uv(2, p), Vec2::new(0.25, 0.5)); // x, y
+        // Without extent along an axis, the coordinate along it is 0 (not 0 / 0).
+        let flat = Aabb::new(Vec3::new(0.0, 3.0, 0.0), Vec3::new(4.0, 3.0, 4.0));
+        assert_eq!(
+            flat.face_uv(2, Vec3::new(1.0, 3.0, 2.0)),
+            Vec2::new(0.25, 0.0)
+        );
+    }
+
+    #[test]
     fn slab_interval_handles_axis_parallel_rays() {
         let b = Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0));
         // A ray lying in the plane of a face (o_x = max.x, d_x = 0) still gets an interval.

@@ -1429,6 +1429,34 @@ mod tests {
         }
     }
 
+    /// Boxes along x at geometric distances (1.1^k) make the binned SAH peel a few off
+    /// at each level, the deepest trees a build makes, and a ray down the row that hits
+    /// nothing walks all of it, pushing up to seven children a level: the traversal
+    /// stack must hold that (its size is the bound derived at `STACK_SIZE`).
+    #[test]
+    fn a_ray_down_the_deepest_tree_visits_every_leaf() {
+        let boxes: Vec<Aabb> = (0..400)
+            .map(|k| {
+                let x = 1.1f32.powi(k);
+                Aabb::new(Vec3::new(x, -0.5, -0.5), Vec3::new(x * 1.01, 0.5, 0.5))
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes, BuildParams::default());
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::X);
+        let mut seen = 0;
+        let t = bvh.closest(&ray, 0.0, f32::INFINITY, |_, count, t_max| {
+            seen += count;
+            t_max
+        });
+        assert_eq!((t, seen), (f32::INFINITY, 400));
+        let mut seen = 0;
+        assert!(!bvh.any(&ray, 0.0, f32::INFINITY, |_, count| {
+            seen += count;
+            false
+        }));
+        assert_eq!(seen, 400);
+    }
+
     #[test]
     fn a_build_item_keeps_its_box_and_index_and_no_lane_is_denormal() {
         let bounds = Aabb::new(Vec3::new(-1.0, 2.0, -3.5), Vec3::new(4.0, 5.0, 6.25));
