@@ -3,9 +3,11 @@
 //! cargo-mutants changes the code one small way at a time (`*` to `/`, `>` to `>=`, a
 //! function body to `Ok(())`) and runs the crate's own tests against each change; a
 //! change no test notices is a *survivor*: a wrong formula the tests would let through.
-//! This runs it on one crate with that crate's tests only, one job at a time (the machine
-//! is shared), and prints the survivors. Mutants that cannot change behaviour are
-//! excluded, each with the reason, in `.cargo/mutants.toml`.
+//! This runs it on one crate with that crate's tests only, one job at a time unless told
+//! otherwise (the machine is shared), built unoptimized (the `mutation` profile), and
+//! prints the survivors. A mutant that cannot change behaviour is best rewritten away
+//! (the code can usually say the same thing more plainly); failing that, it would be
+//! excluded with the reason in `.cargo/mutants.toml`. viewray-camera needs no exclusion.
 //!
 //! cargo-mutants is installed from crates.io (`cargo install --locked`) into cargo's bin
 //! folder when it is missing.
