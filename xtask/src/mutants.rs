@@ -90,9 +90,10 @@ pub fn mutants(root: &Path, args: &MutantsArgs) -> Result<()> {
         "--jobs",
         &args.jobs.to_string(),
         // The auto-set timeout is a few times the unmutated tests' time; on a busy shared
-        // machine that is too tight, and a slow test is not a survivor.
+        // machine that is too tight, and a slow test is not a survivor. The crates' tests
+        // take 2-5 s unoptimized; a mutant that loops forever costs a job this long.
         "--minimum-test-timeout",
-        "120",
+        "30",
         "--no-shuffle",
         // Each mutant is a rebuild of the crate: the `mutation` profile builds it
         // unoptimized (2-3 s per mutant instead of ~15 s at the test profile's
