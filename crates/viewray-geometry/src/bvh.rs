@@ -1457,6 +1457,29 @@ mod tests {
         assert_eq!(seen, 400);
     }
 
+    /// A ray parallel to an axis that lies exactly in the plane of a box's face is inside
+    /// the closed slab: the BVH's box test must enter that box (0 x inf would be NaN).
+    #[test]
+    fn a_ray_in_the_plane_of_a_face_enters_the_box() {
+        let unit = Aabb::new(Vec3::ZERO, Vec3::ONE);
+        let bvh = Bvh::build(&[unit], BuildParams::default());
+        for (origin, direction) in [
+            (Vec3::new(0.0, 0.5, 5.0), Vec3::NEG_Z), // in the plane x = 0 (a min face)
+            (Vec3::new(1.0, 0.5, 5.0), Vec3::NEG_Z), // in the plane x = 1 (a max face)
+            (Vec3::new(0.5, 1.0, -5.0), Vec3::Z),    // in y = 1, the other way
+            (Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z), // along an edge
+        ] {
+            let ray = Ray::new(origin, direction);
+            let mut entered = false;
+            bvh.closest(&ray, 0.0, f32::INFINITY, |_, _, t_max| {
+                entered = true;
+                t_max
+            });
+            assert!(entered, "{origin} + t {direction}");
+            assert!(bvh.any(&ray, 0.0, f32::INFINITY, |_, _| true), "{origin}");
+        }
+    }
+
     #[test]
     fn a_build_item_keeps_its_box_and_index_and_no_lane_is_denormal() {
         let bounds = Aabb::new(Vec3::new(-1.0, 2.0, -3.5), Vec3::new(4.0, 5.0, 6.25));
