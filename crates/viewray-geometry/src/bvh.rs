@@ -101,7 +101,7 @@ pub(crate) const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
 const PARALLEL_ITEMS: usize = 16 * 1024;
 
 impl Node {
-    const EMPTY: Self = Self {
+    pub(crate) const EMPTY: Self = Self {
         planes: [
             [f32::INFINITY; WIDTH],
             [f32::INFINITY; WIDTH],
@@ -113,7 +113,7 @@ impl Node {
         children: [EMPTY_REF; WIDTH],
     };
 
-    fn set_child(&mut self, slot: usize, bounds: &Aabb, child: u32) {
+    pub(crate) fn set_child(&mut self, slot: usize, bounds: &Aabb, child: u32) {
         for axis in 0..3 {
             self.planes[axis][slot] = bounds.min[axis];
             self.planes[axis + 3][slot] = bounds.max[axis];

@@ -172,7 +172,7 @@ impl BoxPacket {
         // over the shortest one's length. (A chunk's padding lanes copy a ray of the
         // packet whenever the packet is the whole chunk; a lone lane is never padding.)
         let spread = (0..3)
-            .map(|axis| (direction_max[axis] - direction_min[axis]).max_element())
+            .map(|axis| direction_max[axis].max_element() - direction_min[axis].min_element())
             .fold(0.0, f32::max);
         self.coherent = spread <= MAX_DIRECTION_SPREAD * length_squared_min.min_element().sqrt();
     }
@@ -811,6 +811,8 @@ impl Bvh {
 mod tests {
     use glam::Vec3;
 
+    use crate::Aabb;
+
     use super::*;
 
     /// The largest number among the lanes a mask selects, and only those.
@@ -827,6 +829,49 @@ mod tests {
         assert_eq!(max_lane(&values, (1 << 5) | (1 << 40)), 95.0);
         assert_eq!(max_lane(&values, 1 << 63), 37.0);
         assert_eq!(max_lane(&values, 0), f32::NEG_INFINITY);
+    }
+
+    proptest::proptest! {
+        /// The packet's interval test bounds its rays' own tests: every child a ray
+        /// enters, the packet enters, and no earlier than the ray (for rays of one
+        /// octant whose directions differ in length and in angle, so that the extreme
+        /// reciprocals differ, against boxes ahead, around and behind the origins).
+        #[test]
+        fn the_packet_box_test_bounds_each_ray_box_test(
+            rays in proptest::collection::vec(
+                (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0, 0.1f32..3.0, 0.1f32..3.0, 0.1f32..3.0),
+                1..=PACKET_SIZE,
+            ),
+            boxes in proptest::collection::vec(
+                (-4.0f32..8.0, -4.0f32..8.0, -4.0f32..8.0, 0.01f32..3.0, 0.01f32..3.0, 0.01f32..3.0),
+                WIDTH,
+            ),
+            t_max in 0.5f32..20.0,
+        ) {
+            let rays: Vec<Ray> = rays
+                .iter()
+                .map(|&(ox, oy, oz, dx, dy, dz)| Ray::new(Vec3::new(ox, oy, oz), Vec3::new(dx, dy, dz)))
+                .collect();
+            let mut node = Node::EMPTY;
+            for (slot, &(x, y, z, w, h, d)) in boxes.iter().enumerate() {
+                let min = Vec3::new(x, y, z);
+                node.set_child(slot, &Aabb::new(min, min + Vec3::new(w, h, d)), slot as u32);
+            }
+            let mut chunk = ChunkNumbers::EMPTY;
+            chunk.fill(&rays);
+            // Every direction is positive: octant 0.
+            let mut packet = BoxPacket::EMPTY;
+            packet.fill(&chunk, 0, chunk.octants[0]);
+            let (t_min4, t_max4) = (Vec4::ZERO, Vec4::splat(t_max));
+            let (packet_mask, packet_near) = packet.hit_children::<0>(&node, t_min4, t_max4);
+            for ray in &rays {
+                let (mask, near) = BoxRay::new(ray).hit_children::<0>(&node, t_min4, t_max4);
+                proptest::prop_assert_eq!(mask & !packet_mask, 0, "{:?}", ray);
+                for slot in lanes_of(u64::from(mask)) {
+                    proptest::prop_assert!(packet_near[slot] <= near[slot], "{:?} slot {}", ray, slot);
+                }
+            }
+        }
     }
 
     /// Directions `(0, 0, -2)` and `(s, 0, -2)`, gathered from a chunk that also holds
@@ -850,6 +895,31 @@ mod tests {
         };
         assert!(coherent(0.09));
         assert!(!coherent(0.11));
+    }
+
+    /// Two rays as a whole chunk (no ray of another octant), directions `(1, 1, -2) L`
+    /// and `(1 + s, 1, -2) L`: they spread by `s L` on x over a shortest length of
+    /// `sqrt(6) L`, so they are a packet while `s <= 0.05 sqrt(6) = 0.1225`, whatever
+    /// `L`. The spread is measured across the lanes, not lane by lane (two rays in lanes
+    /// 0 and 1 each spread nothing on their own).
+    #[test]
+    fn a_whole_chunk_is_coherent_while_its_directions_spread_at_most_a_twentieth() {
+        let coherent = |s: f32, length: f32| {
+            let rays = [
+                Ray::new(Vec3::ZERO, Vec3::new(1.0, 1.0, -2.0) * length),
+                Ray::new(Vec3::ZERO, Vec3::new(1.0 + s, 1.0, -2.0) * length),
+            ];
+            let mut chunk = ChunkNumbers::EMPTY;
+            chunk.fill(&rays);
+            assert_eq!(chunk.octants[4], chunk.all);
+            let mut packet = BoxPacket::EMPTY;
+            packet.fill(&chunk, 4, chunk.all);
+            packet.coherent
+        };
+        for length in [1.0, 3.0] {
+            assert!(coherent(0.12, length), "L = {length}");
+            assert!(!coherent(0.125, length), "L = {length}");
+        }
     }
 
     /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
