@@ -630,6 +630,58 @@ fn flat_arrays_build_the_same_mesh_and_attributes_interpolate() {
     );
 }
 
+/// A triangle whose edge functions do not sum to 1 (it is 2 x 4, seen along z with a
+/// direction of length 2), hit at (0.5, 2): barycentrics (b1, b2) = (1/4, 1/2), so
+/// b0 = 1/4, and every attribute is the weighted sum of its vertices' values, by a
+/// single ray and by a packet alike.
+#[test]
+fn hits_interpolate_uvs_and_normals_by_the_barycentrics() {
+    let data = MeshData::new(
+        vec![
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 4.0, 0.0),
+        ],
+        vec![[0, 1, 2]],
+    )
+    .with_uvs(vec![
+        Vec2::new(1.0, 1.0),
+        Vec2::new(3.0, 1.0),
+        Vec2::new(1.0, 5.0),
+    ])
+    .with_normals(vec![
+        Vec3::Z,
+        Vec3::new(1.0, 0.0, 1.0),
+        Vec3::new(0.0, 1.0, 1.0),
+    ]);
+    let mesh = Mesh::new(data).unwrap();
+    let ray = Ray::new(Vec3::new(0.5, 2.0, -1.0), Vec3::new(0.0, 0.0, 2.0));
+    // 1/4 (1, 1) + 1/4 (3, 1) + 1/2 (1, 5); the normal is seen from behind, so flipped.
+    let uv = Vec2::new(1.5, 3.0);
+    let shading = -Vec3::new(0.25, 0.5, 1.0).normalize();
+    let alone = mesh.closest_triangle(&ray, 0.0..f32::INFINITY).unwrap();
+    let mut in_packet = [None];
+    mesh.closest_triangles(&[ray], 0.0..f32::INFINITY, &mut in_packet);
+    for hit in [alone, in_packet[0].unwrap()] {
+        assert_eq!((hit.t, hit.primitive), (0.5, 0));
+        assert!(
+            hit.barycentric.abs_diff_eq(Vec2::new(0.25, 0.5), 1e-6),
+            "{}",
+            hit.barycentric
+        );
+        let surface = mesh.surface(&ray, &hit);
+        assert!(surface.uv.abs_diff_eq(uv, 1e-6), "{}", surface.uv);
+        assert!(
+            surface.shading_normal.abs_diff_eq(shading, 1e-6),
+            "{}",
+            surface.shading_normal
+        );
+        assert_eq!(surface.normal, Vec3::NEG_Z);
+    }
+    let hit = mesh.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+    assert!(hit.uv.abs_diff_eq(uv, 1e-6), "{}", hit.uv);
+}
+
 #[test]
 fn instances_transform_rays_hits_and_normals() {
     let cube = Arc::new(
