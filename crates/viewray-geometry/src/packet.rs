@@ -874,51 +874,33 @@ mod tests {
         }
     }
 
-    /// Directions `(0, 0, -2)` and `(s, 0, -2)`, gathered from a chunk that also holds
-    /// a ray of another octant, spread by `s` on x over a shortest length of 2: traced
-    /// as a packet while `s <= 0.05 * 2 = 0.1`.
+    /// Directions `(1, 1, -2) L` and `(1 + s, 1, -2) L` spread by `s L` on x over a
+    /// shortest length of `sqrt(6) L`: traced as a packet while `s <= 0.05 sqrt(6) =
+    /// 0.1225`, whatever `L`, whether they are the whole chunk or are gathered from a
+    /// chunk that also holds a ray of another octant. The spread is measured across the
+    /// lanes, not lane by lane (in lanes 0 and 1, each ray spreads nothing on its own).
     #[test]
-    fn a_gathered_packet_is_coherent_while_its_directions_spread_at_most_a_twentieth() {
-        let coherent = |s: f32| {
-            let rays = [
-                Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -2.0)),
-                Ray::new(Vec3::ZERO, Vec3::new(s, 0.0, -2.0)),
-                Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)),
+    fn a_packet_is_coherent_while_its_directions_spread_at_most_a_twentieth() {
+        let coherent = |s: f32, length: f32, gathered: bool| {
+            let mut rays = vec![
+                Ray::new(Vec3::ZERO, Vec3::new(1.0, 1.0, -2.0) * length),
+                Ray::new(Vec3::ZERO, Vec3::new(1.0 + s, 1.0, -2.0) * length),
             ];
+            if gathered {
+                rays.push(Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0)));
+            }
             let mut chunk = ChunkNumbers::EMPTY;
             chunk.fill(&rays);
             // Octant 0b100: negative z only.
             assert_eq!(chunk.octants[4], 0b11);
+            assert_eq!(chunk.octants[4] == chunk.all, !gathered);
             let mut packet = BoxPacket::EMPTY;
             packet.fill(&chunk, 4, chunk.octants[4]);
             packet.coherent
         };
-        assert!(coherent(0.09));
-        assert!(!coherent(0.11));
-    }
-
-    /// Two rays as a whole chunk (no ray of another octant), directions `(1, 1, -2) L`
-    /// and `(1 + s, 1, -2) L`: they spread by `s L` on x over a shortest length of
-    /// `sqrt(6) L`, so they are a packet while `s <= 0.05 sqrt(6) = 0.1225`, whatever
-    /// `L`. The spread is measured across the lanes, not lane by lane (two rays in lanes
-    /// 0 and 1 each spread nothing on their own).
-    #[test]
-    fn a_whole_chunk_is_coherent_while_its_directions_spread_at_most_a_twentieth() {
-        let coherent = |s: f32, length: f32| {
-            let rays = [
-                Ray::new(Vec3::ZERO, Vec3::new(1.0, 1.0, -2.0) * length),
-                Ray::new(Vec3::ZERO, Vec3::new(1.0 + s, 1.0, -2.0) * length),
-            ];
-            let mut chunk = ChunkNumbers::EMPTY;
-            chunk.fill(&rays);
-            assert_eq!(chunk.octants[4], chunk.all);
-            let mut packet = BoxPacket::EMPTY;
-            packet.fill(&chunk, 4, chunk.all);
-            packet.coherent
-        };
-        for length in [1.0, 3.0] {
-            assert!(coherent(0.12, length), "L = {length}");
-            assert!(!coherent(0.125, length), "L = {length}");
+        for (length, gathered) in [(1.0, false), (3.0, false), (1.0, true), (3.0, true)] {
+            assert!(coherent(0.12, length, gathered), "L {length}, {gathered}");
+            assert!(!coherent(0.125, length, gathered), "L {length}, {gathered}");
         }
     }
 
