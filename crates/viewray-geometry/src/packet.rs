@@ -904,6 +904,66 @@ mod tests {
         }
     }
 
+    /// The packet walk, like the single-ray one, goes front to back: 200 boxes in a row
+    /// along x seen end on by four parallel rays, the nearest box hides the others, so
+    /// each ray's leaf test runs once (`Bvh::closest`'s test, for packets).
+    #[test]
+    fn the_packet_walk_visits_only_the_nearest_leaf_of_a_row_of_boxes() {
+        struct Nearest<'a> {
+            boxes: &'a [Aabb],
+            order: &'a [u32],
+            rays: &'a [Ray],
+            visits: [u32; PACKET_SIZE],
+        }
+        impl PacketVisitor for Nearest<'_> {
+            fn leaf(&mut self, lane: usize, start: u32, count: u32, t_max: f32) -> f32 {
+                self.visits[lane] += 1;
+                (start..start + count)
+                    .filter_map(|p| {
+                        self.boxes[self.order[p as usize] as usize].slab_interval(&self.rays[lane])
+                    })
+                    .map(|(t_enter, _)| t_enter)
+                    .fold(t_max, f32::min)
+            }
+        }
+        let boxes: Vec<Aabb> = (0..200)
+            .map(|k| {
+                let x = 2.0 * k as f32;
+                Aabb::new(Vec3::new(x, -0.5, -0.5), Vec3::new(x + 1.0, 0.5, 0.5))
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes, crate::BuildParams::default());
+        for (x, direction) in [(-10.0, Vec3::X), (410.0, Vec3::NEG_X)] {
+            let rays: Vec<Ray> = (0..4)
+                .map(|k| Ray::new(Vec3::new(x, 0.1 * k as f32, 0.2), direction))
+                .collect();
+            let mut chunk = ChunkNumbers::EMPTY;
+            chunk.fill(&rays);
+            let octant = usize::from(direction.x < 0.0);
+            let mut packet = BoxPacket::EMPTY;
+            packet.fill(&chunk, octant as u8, chunk.octants[octant]);
+            assert!(packet.coherent);
+            let mut t_max = [Vec4::INFINITY; PACKET_GROUPS];
+            let mut nearest = Nearest {
+                boxes: &boxes,
+                order: bvh.item_order(),
+                rays: &rays,
+                visits: [0; PACKET_SIZE],
+            };
+            bvh.closest_packet(&packet, chunk.all, 0.0, &mut t_max, &mut nearest, |_, _| {});
+            for (i, ray) in rays.iter().enumerate() {
+                let lane_ray = packet.rays[i] as usize;
+                assert_eq!(lane_ray, i, "whole chunk: lane i holds ray i");
+                assert_eq!(
+                    lane(&t_max, i),
+                    if x < 0.0 { 10.0 } else { 11.0 },
+                    "{ray:?}"
+                );
+                assert_eq!(nearest.visits[i], 1, "{ray:?}");
+            }
+        }
+    }
+
     /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
     /// and validity included, for directions with zero, negative-zero, tiny and
     /// non-finite components.
