@@ -829,6 +829,15 @@ mod tests {
         assert_eq!(max_lane(&values, (1 << 5) | (1 << 40)), 95.0);
         assert_eq!(max_lane(&values, 1 << 63), 37.0);
         assert_eq!(max_lane(&values, 0), f32::NEG_INFINITY);
+        // Lane i holds i: now every unselected lane of a group holds more than the
+        // selected one below it.
+        for i in 0..PACKET_SIZE {
+            set_lane(&mut values, i, i as f32);
+        }
+        for lane in [0, 1, 2, 4, 41, 62] {
+            assert_eq!(max_lane(&values, 1 << lane), lane as f32);
+        }
+        assert_eq!(max_lane(&values, 0b101), 2.0);
     }
 
     proptest::proptest! {
