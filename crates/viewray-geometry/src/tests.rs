@@ -682,6 +682,36 @@ fn hits_interpolate_uvs_and_normals_by_the_barycentrics() {
     assert!(hit.uv.abs_diff_eq(uv, 1e-6), "{}", hit.uv);
 }
 
+/// A lone triangle (the `Triangle` shape, not a mesh) is closed: rays exactly through
+/// an edge or a vertex hit it from the front and from the back; its `t` range ends
+/// before `t_max`; and its uv are the barycentrics (b1, b2) on a triangle whose edge
+/// functions do not sum to 1 (2 x 4, a direction of length 2).
+#[test]
+fn a_lone_triangle_is_closed_and_its_uv_are_the_barycentrics() {
+    let front = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 4.0, 0.0),
+    );
+    let back = Triangle::new(
+        Vec3::ZERO,
+        Vec3::new(0.0, 4.0, 0.0),
+        Vec3::new(2.0, 0.0, 0.0),
+    );
+    let all = 0.0..f32::INFINITY;
+    for triangle in [front, back] {
+        for (x, y) in [(1.0, 0.0), (0.0, 2.0), (1.0, 2.0), (0.0, 0.0), (2.0, 0.0)] {
+            let ray = Ray::new(Vec3::new(x, y, 1.0), Vec3::new(0.0, 0.0, -2.0));
+            let hit = triangle.closest_hit(&ray, all.clone());
+            assert_eq!(hit.map(|h| h.t), Some(0.5), "{triangle:?} at ({x}, {y})");
+        }
+    }
+    let ray = Ray::new(Vec3::new(0.5, 2.0, 1.0), Vec3::new(0.0, 0.0, -2.0));
+    assert_eq!(front.closest_hit(&ray, 0.0..0.5), None, "t_max is excluded");
+    let hit = front.closest_hit(&ray, all).unwrap();
+    assert!(hit.uv.abs_diff_eq(Vec2::new(0.25, 0.5), 1e-6), "{}", hit.uv);
+}
+
 #[test]
 fn instances_transform_rays_hits_and_normals() {
     let cube = Arc::new(
