@@ -93,53 +93,42 @@
 //! same run: its packet kernels `rtcIntersect16` (tiles of 4 x 4 pixels) and
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
-//! (above 1.00x: viewray is faster). On the 2-core development machine, idle, an
-//! earlier full run gave:
+//! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
+//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 1.7 to 3 while
+//! they ran), the first two with the current code, the third with the code before its
+//! builder work; Embree's own figures move by a third between runs, so read the ratios
+//! within a run:
 //!
-//! | | viewray | obvhs | Embree 3 |
+//! | 1 thread unless stated | run 1 | run 2 | before (run 3) |
 //! |---|---|---|---|
-//! | build, 1 / 2 threads | 0.71 s / 0.48 s | 1.06 s / 0.87 s | 0.25 s / 0.28 s |
-//! | bytes per triangle | 53.9 | 60.3 | |
-//! | primary, packets, 1 thread | 14.0 Mrays/s (64 rays) | | 25 (16 rays), 18.7 (8 rays) |
-//! | primary, ray by ray, 1 / 2 threads | 6.0 / 11.1 Mrays/s | 3.2 / 6.5 | 9.1 / 17.9 |
-//! | incoherent, ray by ray, 1 / 2 threads | 1.62 / 3.29 Mrays/s | 0.92 / 1.84 | 1.94 / 3.93 |
+//! | build | 0.469 s (Embree 0.243: 0.52x) | 0.549 s (0.410: 0.75x) | 0.674 s (0.322: 0.48x) |
+//! | build, 2 threads | 0.315 s (0.251: 0.80x) | 0.311 s (0.251: 0.81x) | 0.382 s (0.239: 0.62x) |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 14.89 Mrays/s (0.82x) | 11.14 (0.62x) | 13.16 (0.77x) |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 0.99x | 0.76x | 0.96x |
+//! | primary, ray by ray vs `rtcIntersect1` | 6.41 Mrays/s (0.71x) | 6.84 (0.77x) | 6.27 (0.69x) |
+//! | incoherent vs `rtcIntersect1` | 1.30 Mrays/s (0.68x) | 1.22 (0.75x) | 1.43 (0.80x) |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 21.40 Mrays/s (0.64x) | 20.73 (0.70x) | 24.86 (0.73x) |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.53 Mrays/s (0.80x) | 2.33 (0.70x) | 2.57 (0.77x) |
 //!
-//! Computing the full [`Hit`] costs a twentieth more on primary rays and half again on
-//! incoherent ones, for the vertex data it reads.
-//!
-//! The latest three runs (`VIEWRAY_BENCH_RUNS=3`) had the machine shared with other
-//! work (load average 11 to 12 on 2 cores), so absolute figures are low and noisy; the
-//! ratios, taken within one run, are the figures to read, and even they move by a
-//! factor of two between runs. Viewray's speed over Embree's, 1 thread, runs 1 / 2 / 3:
-//!
-//! ```text
-//! coherent primary, packets of 64 vs rtcIntersect16   0.62x / 1.98x / 1.34x
-//! coherent primary, packets of 64 vs rtcIntersect8    0.82x / 1.99x / 1.25x
-//! primary, ray by ray vs rtcIntersect1                0.40x / 0.85x / 0.27x
-//! incoherent, ray by ray vs rtcIntersect1             1.03x / 0.60x / 1.20x
-//! build, 1 thread                                     0.58x / 0.61x / 0.70x
-//! build, 2 threads                                    0.79x / 0.88x / 0.47x
-//! coherent primary, 2 threads, vs rtcIntersect16      0.90x / 0.65x / 0.78x
-//! incoherent, 2 threads, vs rtcIntersect1             0.74x / 0.69x / 0.65x
-//! memory per triangle: 53.9 bytes (BVH + triangle packets), obvhs 60.3
-//! ```
-//!
-//! (viewray's 1-thread medians over the three runs: coherent 6.7 / 10.4 / 10.9 Mrays/s,
-//! incoherent 0.90 / 0.56 / 1.23, build 1.23 / 1.14 / 1.32 s; Embree's rtcIntersect16
-//! 10.7 / 5.2 / 8.1 Mrays/s, build 0.71 / 0.70 / 0.93 s.) Against the idle figures
-//! above, what stands: memory is at 53.9 bytes per triangle; the build takes about twice
-//! Embree's time on 1 thread (0.71 s against 0.25 to 0.33 s) and does not reach it on
-//! 2; coherent packets reach about 0.56x of `rtcIntersect16` (14 against 25 Mrays/s)
-//! and 0.75x of `rtcIntersect8`; incoherent rays about 0.84x of `rtcIntersect1`.
+//! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
+//! 1.4x to 2.7x faster than obvhs everywhere. The tree is the same in all three runs,
+//! node for node, and so are the traces' instructions (callgrind counts the same
+//! 60,682,020 for the packets of the `coherent` workload at 7 subdivisions before and
+//! after), so the spread of the tracing figures is the machine's, not the code's;
+//! the build went from 0.674 s to 0.47-0.55 s on 1 thread and from 0.38 to 0.31 s on 2.
+//! An earlier run on an idle machine gave Embree 18.6 Mrays/s with `rtcIntersect16`,
+//! 9.1 ray by ray, 1.8-1.9 incoherent and a 0.25-0.32 s build.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the code as of this writing
 //! executes, per ray, about 656 instructions for a coherent primary ray in packets of
 //! 64 (`Bvh::closest_packet`), 1,124 for the same ray alone (`Bvh::closest_prepared`)
-//! and 1,468 for an incoherent ray; and about 3,600 per triangle to build the BVH.
-//! Instruction counts are no substitute for the table (Embree uses AVX-512 and its
-//! rays wait on memory), but two builds of viewray compare reliably.
+//! and 1,468 for an incoherent ray. Its `build` workload (the icosphere generated once,
+//! then built five times) executes 1,209 M instructions, down from 1,849 M before the
+//! builder work (about 2,800 instead of 4,400 per triangle and build). Instruction
+//! counts are no substitute for the table (Embree uses AVX-512 and its rays wait on
+//! memory), but two builds of viewray compare reliably.
 //!
 //! Where the time goes (callgrind, one thread):
 //!
