@@ -915,7 +915,8 @@ mod tests {
 
     /// The packet walk, like the single-ray one, goes front to back: 200 boxes in a row
     /// along x seen end on by four parallel rays, the nearest box hides the others, so
-    /// each ray's leaf test runs once (`Bvh::closest`'s test, for packets).
+    /// each ray's leaf test runs once (`Bvh::closest`'s test, for packets). From inside
+    /// the row, the nearest child is in the middle of a node, not at one end.
     #[test]
     fn the_packet_walk_visits_only_the_nearest_leaf_of_a_row_of_boxes() {
         struct Nearest<'a> {
@@ -942,7 +943,13 @@ mod tests {
             })
             .collect();
         let bvh = Bvh::build(&boxes, crate::BuildParams::default());
-        for (x, direction) in [(-10.0, Vec3::X), (410.0, Vec3::NEG_X)] {
+        // From either end, and from between boxes 99 and 100 (x = 199 to 200) either way.
+        for (x, direction, nearest_t) in [
+            (-10.0, Vec3::X, 10.0),
+            (410.0, Vec3::NEG_X, 11.0),
+            (199.25, Vec3::X, 0.75),
+            (199.5, Vec3::NEG_X, 0.5),
+        ] {
             let rays: Vec<Ray> = (0..4)
                 .map(|k| Ray::new(Vec3::new(x, 0.1 * k as f32, 0.2), direction))
                 .collect();
@@ -963,11 +970,7 @@ mod tests {
             for (i, ray) in rays.iter().enumerate() {
                 let lane_ray = packet.rays[i] as usize;
                 assert_eq!(lane_ray, i, "whole chunk: lane i holds ray i");
-                assert_eq!(
-                    lane(&t_max, i),
-                    if x < 0.0 { 10.0 } else { 11.0 },
-                    "{ray:?}"
-                );
+                assert_eq!(lane(&t_max, i), nearest_t, "{ray:?}");
                 assert_eq!(nearest.visits[i], 1, "{ray:?}");
             }
         }
