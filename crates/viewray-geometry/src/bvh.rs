@@ -951,7 +951,7 @@ impl<const B: usize> Bins<B> {
 /// The whole parts of the three lanes of `x`, which are in `[0, 2^31)`: the bins of an
 /// item on the three axes.
 ///
-/// `as` converts lane by lane and saturates, a tenth of the build's instructions; one
+/// `as` converts lane by lane and saturates (8% of the build's instructions); one
 /// SSE2 conversion does the three lanes at once, with the same results in that range.
 #[inline(always)]
 fn whole_bins(x: Vec3A) -> [usize; 3] {
