@@ -1,6 +1,6 @@
 //! The camera frame (e, u, v, w) and how it is built from eye, view and up.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::CameraError;
 
@@ -82,7 +82,15 @@ impl Frame {
     /// The world vector with camera coordinates `c`: `c.x u + c.y v + c.z w`.
     #[inline]
     pub fn world_from_camera_vector(&self, c: DVec3) -> DVec3 {
-        c.x * self.u + c.y * self.v + c.z * self.w
+        self.world_from_camera_xy(c.truncate(), c.z * self.w)
+    }
+
+    /// `c.x u + c.y v + w_term`: [`Frame::world_from_camera_vector`] of `(c.x, c.y, z)`
+    /// with its last term `z w` given, bit for bit the same when `w_term == z * w`. A
+    /// camera whose rays all share `z` works that term out once.
+    #[inline]
+    pub(crate) fn world_from_camera_xy(&self, c: DVec2, w_term: DVec3) -> DVec3 {
+        c.x * self.u + c.y * self.v + w_term
     }
 
     /// The world point with camera coordinates `c`: `e + c.x u + c.y v + c.z w`.

@@ -194,7 +194,7 @@ impl Perspective {
 
     /// The pinhole ray direction through `(u, v)`, in camera coordinates.
     #[inline]
-    fn direction(&self, uv: DVec2) -> DVec3 {
+    pub(crate) fn direction(&self, uv: DVec2) -> DVec3 {
         (uv + self.shift).extend(-self.distance)
     }
 

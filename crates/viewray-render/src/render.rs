@@ -227,25 +227,24 @@ impl TileBuffers {
                         }
                     }
 
-                    // Trace them together and shade the hits together.
-                    self.hits.clear();
-                    self.hits.resize(self.rays.len(), None);
+                    // Trace them together and shade the hits together (both write
+                    // every entry, so the buffers need only the right length).
+                    let n = self.rays.len();
+                    self.hits.resize(n, None);
                     shader.trace_primary(&self.rays, &mut self.hits);
-                    let films: Vec<FilmPoint<'_>> = self
-                        .ray_pixels
-                        .iter()
-                        .map(|&(pixel, row, col)| FilmPoint {
-                            pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
-                            spacing,
-                            differentials: &self.differentials[pixel],
-                        })
-                        .collect();
-                    self.colors.clear();
-                    self.colors.resize(self.rays.len(), Vec3::ZERO);
+                    self.colors.resize(n, Vec3::ZERO);
+                    let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
                     shader.shade_primaries(
                         &self.rays,
                         &self.hits,
-                        &films,
+                        |i| {
+                            let (pixel, row, col) = ray_pixels[i];
+                            FilmPoint {
+                                pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
+                                spacing,
+                                differentials: &differentials[pixel],
+                            }
+                        },
                         &mut self.colors,
                         &mut rays,
                     );

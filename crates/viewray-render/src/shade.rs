@@ -207,15 +207,16 @@ impl<'a> Shader<'a> {
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
     }
 
-    /// The values of what the viewing rays `rays` through `films` see, given their
-    /// closest hits (from [`Shader::trace_primary`]), into `colors`. Lit shading traces
-    /// the batch's shadow rays toward each light together, and its reflected rays
-    /// together, as packets (see [`Shader::lit_batch`]).
-    pub(crate) fn shade_primaries(
+    /// The values of what the viewing rays `rays` see, given their closest hits (from
+    /// [`Shader::trace_primary`]), into `colors`; `film(i)` is the film point of
+    /// `rays[i]`, asked for only where a grid is filtered over the sample's footprint.
+    /// Lit shading traces the batch's shadow rays toward each light together, and its
+    /// reflected rays together, as packets (see [`Shader::lit_batch`]).
+    pub(crate) fn shade_primaries<'f>(
         &self,
         rays: &[Ray],
         hits: &[Option<ObjectHit>],
-        films: &[FilmPoint<'_>],
+        film: impl Fn(usize) -> FilmPoint<'f>,
         colors: &mut [Vec3],
         count: &mut u64,
     ) {
@@ -231,7 +232,7 @@ impl<'a> Shader<'a> {
                     Some(hit) => {
                         hit_rays.push(*ray);
                         surfaces.push(world.surface(ray, hit));
-                        hit_films.push(films[i]);
+                        hit_films.push(film(i));
                     }
                     None => colors[i] = self.background,
                 }
@@ -259,7 +260,7 @@ impl<'a> Shader<'a> {
                         material.color
                     } else {
                         let hit = world.surface(ray, object_hit);
-                        surface_color(material, &hit, || self.footprint(&films[i], ray, &hit))
+                        surface_color(material, &hit, || self.footprint(&film(i), ray, &hit))
                     }
                 }
                 Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
