@@ -894,6 +894,8 @@ impl RangeInfo {
 
 /// Number of bins per axis for large ranges.
 const BINS: usize = 32;
+/// From how many items on binning uses two sets of bins (see `Bins::add`).
+const TWO_BIN_SETS_ITEMS: usize = 256;
 /// Number of bins per axis for ranges of at most `FEW_ITEMS` items, where setting up
 /// and sweeping 32 bins would cost more than binning the items.
 const FEW_BINS: usize = 8;
@@ -918,25 +920,53 @@ impl<const B: usize> Bins<B> {
     }
 
     fn add(&mut self, items: &[BuildItem], origin: Vec3A, scale: Vec3A) {
+        if items.len() < TWO_BIN_SETS_ITEMS {
+            for item in items {
+                self.add_one(item, origin, scale);
+            }
+            return;
+        }
+        // Neighbouring items are mostly neighbours in space too and fall in the same
+        // bins, so each item's update would wait for the one before it to reach memory:
+        // the items at even and odd positions go to two sets of bins, two chains that
+        // run side by side, merged at the end (min, max and sums: the same bins).
+        let mut odd = Self::new();
+        let pairs = items.chunks_exact(2);
+        let rest = pairs.remainder();
+        for pair in pairs {
+            self.add_one(&pair[0], origin, scale);
+            odd.add_one(&pair[1], origin, scale);
+        }
+        for item in rest {
+            self.add_one(item, origin, scale);
+        }
+        self.merge_from(&odd);
+    }
+
+    #[inline(always)]
+    fn add_one(&mut self, item: &BuildItem, origin: Vec3A, scale: Vec3A) {
         const { assert!(B.is_power_of_two()) };
         let last = (B - 1) as f32;
-        for item in items {
-            let (lo, hi) = (item.min(), item.max());
-            let bin = ((item.centroid2() - origin) * scale)
-                .min(Vec3A::splat(last))
-                .max(Vec3A::ZERO);
-            for (axis, b) in whole_bins(bin).into_iter().enumerate() {
-                // The bin is at most B - 1 already; the mask (B is a power of two)
-                // tells the compiler so, and saves three bounds checks per item.
-                let b = b & (B - 1);
-                self.min[axis][b] = self.min[axis][b].min(lo);
-                self.max[axis][b] = self.max[axis][b].max(hi);
-                self.count[axis][b] += 1;
-            }
+        let (lo, hi) = (item.min(), item.max());
+        let bin = ((item.centroid2() - origin) * scale)
+            .min(Vec3A::splat(last))
+            .max(Vec3A::ZERO);
+        for (axis, b) in whole_bins(bin).into_iter().enumerate() {
+            // The bin is at most B - 1 already; the mask (B is a power of two) tells the
+            // compiler so, and saves three bounds checks per item.
+            let b = b & (B - 1);
+            self.min[axis][b] = self.min[axis][b].min(lo);
+            self.max[axis][b] = self.max[axis][b].max(hi);
+            self.count[axis][b] += 1;
         }
     }
 
     fn merge(mut self, other: &Self) -> Self {
+        self.merge_from(other);
+        self
+    }
+
+    fn merge_from(&mut self, other: &Self) {
         for axis in 0..3 {
             for b in 0..B {
                 self.min[axis][b] = self.min[axis][b].min(other.min[axis][b]);
@@ -944,7 +974,6 @@ impl<const B: usize> Bins<B> {
                 self.count[axis][b] += other.count[axis][b];
             }
         }
-        self
     }
 }
 
