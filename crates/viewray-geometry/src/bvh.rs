@@ -97,6 +97,10 @@ const FORCE_MEDIAN_DEPTH: u32 = 40;
 /// pushes all `WIDTH` and pops one at once, hence the `+ 1`), and the tree is less than
 /// 67 nodes deep.
 pub(crate) const STACK_SIZE: usize = (WIDTH - 1) * 67 + 1;
+/// The stack's length: `STACK_SIZE` and a node's row of `WIDTH` more, so that a node's
+/// sorted children are pushed as one fixed-size copy of the whole row (only the first
+/// ones count; a copy of variable length is a call to `memcpy`).
+pub(crate) const STACK_ROOM: usize = STACK_SIZE + WIDTH;
 /// Ranges at least this large are split with parallel binning and built in parallel.
 const PARALLEL_ITEMS: usize = 16 * 1024;
 
@@ -134,14 +138,14 @@ impl Node {
 /// A traversal stack: subtrees still to visit and the distances at which the ray
 /// enters them.
 pub(crate) struct Stack {
-    pub(crate) refs: [u32; STACK_SIZE],
-    pub(crate) t: [f32; STACK_SIZE],
+    pub(crate) refs: [u32; STACK_ROOM],
+    pub(crate) t: [f32; STACK_ROOM],
 }
 
 impl Stack {
     const EMPTY: Self = Self {
-        refs: [0; STACK_SIZE],
-        t: [0.0; STACK_SIZE],
+        refs: [0; STACK_ROOM],
+        t: [0.0; STACK_ROOM],
     };
 }
 
@@ -638,8 +642,8 @@ impl Bvh {
                         dists[j] = dist;
                         k += 1;
                     }
-                    stack_refs[sp..sp + k - 1].copy_from_slice(&refs[..k - 1]);
-                    stack_t[sp..sp + k - 1].copy_from_slice(&dists[..k - 1]);
+                    stack_refs[sp..sp + WIDTH].copy_from_slice(&refs);
+                    stack_t[sp..sp + WIDTH].copy_from_slice(&dists);
                     sp += k - 1;
                     current = refs[k - 1];
                     continue;
@@ -713,7 +717,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         mut leaf: impl FnMut(u32, u32) -> bool,
-        stack: &mut [u32; STACK_SIZE],
+        stack: &mut [u32; STACK_ROOM],
     ) -> bool {
         let mut sp = 0usize;
         let mut current = 0u32;

@@ -17,9 +17,9 @@ use glam::{BVec4A, Vec4};
 
 use crate::Ray;
 use crate::bvh::{
-    BoxRay, Bvh, GROUPS, LEAF, Node, RayTraversal, STACK_SIZE, Stack, WIDTH, decode_leaf,
-    node_planes, per_axis, plane_distances, plane_index, prefetch, slab_numbers, slab_test,
-    with_stack,
+    BoxRay, Bvh, GROUPS, LEAF, Node, RayTraversal, STACK_ROOM, STACK_SIZE, Stack, WIDTH,
+    decode_leaf, node_planes, per_axis, plane_distances, plane_index, prefetch, slab_numbers,
+    slab_test, with_stack,
 };
 use crate::hit::RawHit;
 
@@ -620,8 +620,8 @@ impl Bvh {
                     k += 1;
                 }
                 debug_assert!(sp + k <= STACK_SIZE);
-                stack_entries[sp..sp + k - 1].copy_from_slice(&entries[..k - 1]);
-                stack_t[sp..sp + k - 1].copy_from_slice(&dists[..k - 1]);
+                stack_entries[sp..sp + WIDTH].copy_from_slice(&entries);
+                stack_t[sp..sp + WIDTH].copy_from_slice(&dists);
                 sp += k - 1;
                 next = Some(entries[k - 1]);
             }
@@ -742,7 +742,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         mut leaf: impl FnMut(u64, u32, u32) -> u64,
-        stack: &mut [u32; STACK_SIZE],
+        stack: &mut [u32; STACK_ROOM],
     ) -> u64 {
         let nodes = self.nodes();
         let mut hit = 0;
