@@ -217,6 +217,24 @@ struct TrianglePacket {
     faces: [u32; 4],
 }
 
+impl TrianglePacket {
+    /// The packet of the faces `chunk` (one to four) of `data`; a short chunk repeats its
+    /// last face in the spare lanes.
+    fn new(chunk: &[u32], data: &MeshData) -> Self {
+        let faces: [u32; 4] = std::array::from_fn(|lane| chunk[lane.min(chunk.len() - 1)]);
+        let mut vertices = [[[0.0; 4]; 3]; 3];
+        for (lane, &face) in faces.iter().enumerate() {
+            for (corner, &index) in data.triangles[face as usize].iter().enumerate() {
+                let p = data.positions[index as usize];
+                for axis in 0..3 {
+                    vertices[corner][axis][lane] = p[axis];
+                }
+            }
+        }
+        Self { vertices, faces }
+    }
+}
+
 /// A ray prepared for packet tests: [`WatertightRay`] with its numbers splatted.
 #[derive(Clone, Copy, Debug)]
 struct PacketRay {
@@ -353,28 +371,27 @@ impl Mesh {
         drop(items);
 
         // Store the triangles leaf by leaf in packets of four, and point the leaves at
-        // their packets instead of their triangles.
-        let order = bvh.item_order().to_vec();
-        let mut packets = Vec::with_capacity(triangle_count.div_ceil(4) + triangle_count / 8);
+        // their packets instead of their triangles. The packets are filled in parallel
+        // (gathering their vertices waits on memory), each from its run of faces in leaf
+        // order, worked out first.
+        let mut runs: Vec<(u32, u32)> =
+            Vec::with_capacity(triangle_count.div_ceil(4) + triangle_count / 8);
         bvh.remap_leaves(|start, count| {
-            let first_packet = packets.len() as u32;
-            let faces = &order[start as usize..(start + count) as usize];
-            for chunk in faces.chunks(4) {
-                // A short chunk repeats its last face in the spare lanes.
-                let faces: [u32; 4] = std::array::from_fn(|lane| chunk[lane.min(chunk.len() - 1)]);
-                let mut vertices = [[[0.0; 4]; 3]; 3];
-                for (lane, &face) in faces.iter().enumerate() {
-                    for (corner, &index) in data.triangles[face as usize].iter().enumerate() {
-                        let p = positions[index as usize];
-                        for axis in 0..3 {
-                            vertices[corner][axis][lane] = p[axis];
-                        }
-                    }
-                }
-                packets.push(TrianglePacket { vertices, faces });
-            }
-            (first_packet, packets.len() as u32 - first_packet)
+            let first_packet = runs.len() as u32;
+            runs.extend(
+                (start..start + count)
+                    .step_by(4)
+                    .map(|s| (s, (start + count - s).min(4))),
+            );
+            (first_packet, runs.len() as u32 - first_packet)
         });
+        let order = bvh.item_order();
+        let mut packets = Vec::new();
+        runs.par_iter()
+            .map(|&(start, count)| {
+                TrianglePacket::new(&order[start as usize..(start + count) as usize], &data)
+            })
+            .collect_into_vec(&mut packets);
         bvh.clear_item_order();
         Self {
             data,
