@@ -100,12 +100,11 @@ pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
 /// Every `count` is stratified exactly, squares (4 -> 2 x 2, 16 -> 4 x 4) and others
 /// alike (3 -> two cells 2/3 tall side by side over one cell 1/3 tall; 5 -> a row of 3
 /// over a row of 2).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct Strata {
     count: u32,
-    /// Cells in the short rows; the first `long_rows` rows hold one more.
-    short: u32,
-    long_rows: u32,
+    /// Each cell's corner and size, worked out once (four divisions a sample otherwise).
+    cells: Vec<(DVec2, DVec2)>,
     /// Whether lens samples are drawn: cameras without a lens ignore `p_lens`, so
     /// they are left at the lens centre and their stratum is not looked up.
     lens: bool,
@@ -119,8 +118,9 @@ impl Strata {
         let rows = f64::from(count).sqrt().round().max(1.0) as u32;
         Self {
             count,
-            short: count / rows,
-            long_rows: count % rows,
+            cells: (0..count)
+                .map(|cell| cell_of(cell, count, count / rows, count % rows))
+                .collect(),
             lens: true,
         }
     }
@@ -134,24 +134,7 @@ impl Strata {
     /// The corner and size of cell `cell` (`cell < count`).
     #[inline]
     pub(crate) fn cell(&self, cell: u32) -> (DVec2, DVec2) {
-        debug_assert!(cell < self.count);
-        let long = self.short + 1;
-        // Rows 0..long_rows hold `long` cells, the rest `short`.
-        let (row_cells, first_in_row, col) = if cell < self.long_rows * long {
-            let row = cell / long;
-            (long, row * long, cell % long)
-        } else {
-            let rest = cell - self.long_rows * long;
-            let col = rest % self.short;
-            (self.short, cell - col, col)
-        };
-        let n = f64::from(self.count);
-        let corner = DVec2::new(
-            f64::from(col) / f64::from(row_cells),
-            f64::from(first_in_row) / n,
-        );
-        let size = DVec2::new(1.0 / f64::from(row_cells), f64::from(row_cells) / n);
-        (corner, size)
+        self.cells[cell as usize]
     }
 
     /// The camera sample of sample `index` in pixel `(row, col)`.
@@ -180,6 +163,29 @@ impl Strata {
         let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
         CameraSample { p_film, p_lens }
     }
+}
+
+/// The corner and size of cell `cell` of `count` strata whose short rows hold `short`
+/// cells, the first `long_rows` rows one more.
+fn cell_of(cell: u32, count: u32, short: u32, long_rows: u32) -> (DVec2, DVec2) {
+    debug_assert!(cell < count);
+    let long = short + 1;
+    // Rows 0..long_rows hold `long` cells, the rest `short`.
+    let (row_cells, first_in_row, col) = if cell < long_rows * long {
+        let row = cell / long;
+        (long, row * long, cell % long)
+    } else {
+        let rest = cell - long_rows * long;
+        let col = rest % short;
+        (short, cell - col, col)
+    };
+    let n = f64::from(count);
+    let corner = DVec2::new(
+        f64::from(col) / f64::from(row_cells),
+        f64::from(first_in_row) / n,
+    );
+    let size = DVec2::new(1.0 / f64::from(row_cells), f64::from(row_cells) / n);
+    (corner, size)
 }
 
 #[cfg(test)]
@@ -259,7 +265,7 @@ mod tests {
         assert_ne!(strata.camera_sample(3, 4, 0), strata.camera_sample(4, 3, 0));
         assert_eq!(Strata::new(1).camera_sample(7, 7, 0), CameraSample::CENTER);
         // Without a lens, the same film samples and the lens centre.
-        let no_lens = strata.with_lens(false);
+        let no_lens = strata.clone().with_lens(false);
         for index in 0..9 {
             let s = no_lens.camera_sample(3, 4, index);
             assert_eq!(s.p_film, strata.camera_sample(3, 4, index).p_film);
