@@ -828,6 +828,11 @@ impl BuildItem {
         self.lo.w.to_bits() & !INDEX_TAG
     }
 
+    /// Whether the box is empty (made from [`Aabb::EMPTY`]).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.lo.x > self.hi.x
+    }
+
     /// Twice the box center: the point binned (the factor 2 cancels out).
     #[inline(always)]
     fn centroid2(&self) -> Vec3A {

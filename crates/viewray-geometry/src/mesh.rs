@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{BVec4A, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
@@ -348,19 +349,28 @@ impl Mesh {
 
     fn new_unchecked(data: MeshData) -> Self {
         let positions = &data.positions;
-        // Keep the faces with nonzero area, as build items with their boxes.
-        let mut items: Vec<BuildItem> = data
-            .triangles
+        // Keep the faces with nonzero area, as build items with their boxes. Every face's
+        // item is written in place in parallel (a filtering collect gathers per-thread
+        // lists and copies them again); the zero-area faces, rare, get an empty box and
+        // are dropped after.
+        let faces = &data.triangles[..data.triangles.len().min(MAX_ITEMS)];
+        let zero_area = AtomicBool::new(false);
+        let mut items: Vec<BuildItem> = Vec::new();
+        faces
             .par_iter()
             .enumerate()
-            .take(MAX_ITEMS)
-            .filter_map(|(face, &[a, b, c])| {
+            .map(|(face, &[a, b, c])| {
                 let [a, b, c] = [a, b, c].map(|i| positions[i as usize]);
-                let area_normal = (b - a).cross(c - a);
-                (area_normal != Vec3::ZERO)
-                    .then(|| BuildItem::new(Aabb::from_points([a, b, c]), face as u32))
+                if (b - a).cross(c - a) == Vec3::ZERO {
+                    zero_area.store(true, Ordering::Relaxed);
+                    return BuildItem::new(Aabb::EMPTY, face as u32);
+                }
+                BuildItem::new(Aabb::from_points([a, b, c]), face as u32)
             })
-            .collect();
+            .collect_into_vec(&mut items);
+        if zero_area.into_inner() {
+            items.retain(|item| !item.is_empty());
+        }
         let triangle_count = items.len();
         let params = BuildParams {
             block_size: 4,
