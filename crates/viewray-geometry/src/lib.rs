@@ -46,7 +46,12 @@
 //!   block becomes a leaf without binning (no split can be cheaper), sweeps skip empty
 //!   bins (a split behind one costs what the split before it did), build items are two
 //!   aligned SIMD registers with the index in a spare lane, and the three bins of an item
-//!   are one SSE2 conversion. Each of these leaves the tree the same, node for node.
+//!   are one SSE2 conversion. Large ranges bin their even and odd items into two sets of
+//!   bins merged after (neighbouring items fall in the same bins, and one set would make
+//!   each update wait for the last). Each of these leaves the tree the same, node for
+//!   node. Around the tree, a mesh writes its build items in place in parallel and fills
+//!   its triangle packets in parallel too: on 2 threads these serial steps had been a
+//!   fifth of the build.
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
 //!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
 //!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
@@ -55,7 +60,9 @@
 //!   subtrees entered beyond the closest hit so far are skipped. The traversal is
 //!   compiled once per sign pattern of the direction, so the near and far plane of each
 //!   slab are constants. Its stack is a fixed array reused from a thread-local (zeroing
-//!   a fresh one per ray cost a quarter of a primary ray). On large meshes rays are
+//!   a fresh one per ray cost a quarter of a primary ray), with a node's row to spare so
+//!   that a node's sorted children are pushed by one fixed-size copy (a copy of the
+//!   exact length was a call to `memcpy` per node). On large meshes rays are
 //!   bound by memory latency, so the children a ray will visit are prefetched as soon
 //!   as their boxes are hit (one of the crate's two `unsafe` blocks: the x86_64
 //!   prefetch hint; the other is the builder's SSE2 float-to-integer conversion).
@@ -94,73 +101,77 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 1.7 to 3 while
-//! they ran), the first two with the current code, the third with the code before its
-//! builder work; Embree's own figures move by a third between runs, so read the ratios
-//! within a run:
+//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average about 1.5), with
+//! the code as of this writing, and the two runs of the version before its last round
+//! of build and traversal work; Embree's own figures move by a tenth to a third between
+//! runs, so read the ratios within a run:
 //!
-//! | 1 thread unless stated | run 1 | run 2 | before (run 3) |
-//! |---|---|---|---|
-//! | build | 0.469 s (Embree 0.243: 0.52x) | 0.549 s (0.410: 0.75x) | 0.674 s (0.322: 0.48x) |
-//! | build, 2 threads | 0.315 s (0.251: 0.80x) | 0.311 s (0.251: 0.81x) | 0.382 s (0.239: 0.62x) |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 14.89 Mrays/s (0.82x) | 11.14 (0.62x) | 13.16 (0.77x) |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 0.99x | 0.76x | 0.96x |
-//! | primary, ray by ray vs `rtcIntersect1` | 6.41 Mrays/s (0.71x) | 6.84 (0.77x) | 6.27 (0.69x) |
-//! | incoherent vs `rtcIntersect1` | 1.30 Mrays/s (0.68x) | 1.22 (0.75x) | 1.43 (0.80x) |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 21.40 Mrays/s (0.64x) | 20.73 (0.70x) | 24.86 (0.73x) |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.53 Mrays/s (0.80x) | 2.33 (0.70x) | 2.57 (0.77x) |
+//! | 1 thread unless stated | run 1 | run 2 | run 3 | before (two runs) |
+//! |---|---|---|---|---|
+//! | build | 0.434 s (Embree 0.229: 0.53x) | 0.427 s (0.216: 0.51x) | 0.446 s (0.246: 0.55x) | 0.469 s (0.52x), 0.549 s (0.75x) |
+//! | build, 2 threads | 0.259 s (0.240: 0.92x) | 0.236 s (0.232: 0.98x) | 0.263 s (0.241: 0.92x) | 0.315 s (0.80x), 0.311 s (0.81x) |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 12.86 Mrays/s (0.72x) | 15.27 (0.81x) | 14.74 (0.80x) | 14.89 (0.82x), 11.14 (0.62x) |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 0.85x | 1.01x | 0.97x | 0.99x, 0.76x |
+//! | primary, ray by ray vs `rtcIntersect1` | 6.77 Mrays/s (0.73x) | 6.53 (0.71x) | 7.08 (0.78x) | 6.41 (0.71x), 6.84 (0.77x) |
+//! | incoherent vs `rtcIntersect1` | 1.56 Mrays/s (0.84x) | 1.60 (0.82x) | 1.41 (0.74x) | 1.30 (0.68x), 1.22 (0.75x) |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 22.66 Mrays/s (0.67x) | 20.74 (0.69x) | 29.63 (0.81x) | 21.40 (0.64x), 20.73 (0.70x) |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.66 Mrays/s (0.95x) | 3.46 (0.93x) | 3.80 (0.96x) | 3.53 (0.80x), 2.33 (0.70x) |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.4x to 2.7x faster than obvhs everywhere. The tree is the same in all three runs,
-//! node for node, and so are the traces' instructions (callgrind counts the same
-//! 60,682,020 for the packets of the `coherent` workload at 7 subdivisions before and
-//! after), so the spread of the tracing figures is the machine's, not the code's;
-//! the build went from 0.674 s to 0.47-0.55 s on 1 thread and from 0.38 to 0.31 s on 2.
-//! An earlier run on an idle machine gave Embree 18.6 Mrays/s with `rtcIntersect16`,
-//! 9.1 ray by ray, 1.8-1.9 incoherent and a 0.25-0.32 s build.
+//! 1.4x to 2.7x faster than obvhs everywhere. The tree is the same, node for node, as
+//! before this round (its steps change how the tree is built, not which), so the
+//! packets' figures moved with the machine: callgrind counts 50.1 M instructions for
+//! the packets of `examples/profile.rs`'s `coherent` workload before and 49.5 M after.
+//! The build's serial steps went parallel and its binning waits less, so 2 threads
+//! gained most (0.80x to 0.92-0.98x); single rays and incoherent rays execute about 5%
+//! fewer instructions (the children pushed by one fixed-size copy).
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
-//! doc). On its 81,920-triangle icosphere (6 subdivisions) the code as of this writing
-//! executes, per ray, about 656 instructions for a coherent primary ray in packets of
-//! 64 (`Bvh::closest_packet`), 1,124 for the same ray alone (`Bvh::closest_prepared`)
-//! and 1,468 for an incoherent ray. Its `build` workload (the icosphere generated once,
-//! then built five times) executes 1,209 M instructions, down from 1,849 M before the
-//! builder work (about 2,800 instead of 4,400 per triangle and build). Instruction
-//! counts are no substitute for the table (Embree uses AVX-512 and its rays wait on
-//! memory), but two builds of viewray compare reliably.
+//! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
+//! primary rays executes 49.5 M instructions in packets of 64 (`Bvh::closest_packet`),
+//! 77.5 M one by one (`Bvh::closest_prepared`, 81.4 M before the fixed-size push), and
+//! of 100,000 incoherent rays 151.8 M (158.5 M before). Its `build` workload (the
+//! icosphere generated once, then built five times) executes 1,223 M instructions (1,849 M
+//! before the builder's rewrite). Instruction counts are no substitute for the table
+//! (Embree uses AVX-512 and its rays wait on memory), but two builds of viewray compare
+//! reliably. A build of the whole crate for `x86-64-v3` (AVX2, FMA, BMI) instead of the
+//! x86_64 baseline gained only about 5% in one run (coherent 0.85x, ray by ray 0.85x),
+//! not enough to close the gap by itself: the packets would need eight-wide node and
+//! leaf tests, with runtime dispatch, to reach Embree's.
 //!
 //! Where the time goes (callgrind, one thread):
 //!
 //! - **A render of the icosphere** (`viewray render target/icosphere/icosphere.ron
-//!   --stats --threads 1`, Flat shading, 1024 x 1024 primary rays) executes 1,013 M
-//!   instructions, of which packet tracing ([`World::closest_objects`], which hands
-//!   the packets straight to the mesh) is 735 M (72.5%): the render costs 1.38x its
-//!   tracing in instructions, short of the 1.10x aimed for. The rest is the camera's
-//!   `f64` ray generation (125 M, 119 instructions a ray: two `f64` frame transforms
-//!   and the projection), the block's bookkeeping (about 125 M: film points, hit and
-//!   colour buffers, accumulation) and Flat shading (29 M). In wall-clock time, where
-//!   tracing waits on memory, the share lost is smaller: `render_s` gave 5.3 Mrays/s
-//!   (median of 3, spread 4.9 to 7.0) while the benchmark's packets gave 6.7 to 10.9
-//!   in the same hour.
+//!   --stats --threads 1`, Flat shading, 1024 x 1024 primary rays) executes 887 M
+//!   instructions, of which packet tracing ([`World::closest_objects`], which hands the
+//!   packets straight to the mesh) is 735 M: the render costs 1.21x its tracing in
+//!   instructions (1.39x before a perspective camera shared its eye and `-d w` across
+//!   rays and the block loop stopped building film points it does not use). In wall-clock
+//!   time, `viewray-render`'s `examples/icosphere.rs` times the render against the same
+//!   rays traced as the same packets: the fastest of 11 runs gives 1.07x to 1.14x on 1
+//!   thread (before: 1.34x to 1.39x), the medians 1.16x to 1.18x (before: 1.31x to 1.40x),
+//!   three runs each, the two versions alternated; the aim is 1.10x. What is left is the
+//!   camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping and Flat
+//!   shading, about 150 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 2,170 instructions per sample: shadow-ray packets
-//!   ([`World::any_hits`], 350), primary and mirror packets (350), camera rays and
-//!   sampling (about 300), and about 1,150 of shading and bookkeeping: grid lines
-//!   filtered over each sample's footprint (540 per sample that sees the ground),
-//!   surface details, Blinn-Phong with `powf`, the block's buffers. With so few objects
-//!   a packet's setup (its slab numbers) costs as much as its traversal.
+//!   1`, 16 objects) executes about 2,000 instructions per sample (459.8 M), down from
+//!   2,170: shadow-ray packets ([`World::any_hits`]), primary and mirror packets, camera
+//!   rays and sampling, and shading and bookkeeping, which is half: grid lines filtered
+//!   over each sample's footprint (`line_coverage`, the footprint and the ray
+//!   differentials: 89 M), surface details (`World::surface`, 38 M, which also works out
+//!   texture coordinates that Lit shading never reads), Blinn-Phong with `powf`, the
+//!   batch's buffers (about 27 M in allocation and `Vec` upkeep; stack buffers in their
+//!   place cost more). With so few objects a packet's setup (its slab numbers, 35 M)
+//!   costs as much as its traversal.
 //!
-//! Shadow and mirror rays now go as packets and Lit samples are shaded a block at a
-//! time; cameras without a lens draw no lens samples. On the default scene at 1280 x
-//! 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16 --threads 2
-//! --stats`, 38,387,820 rays, the image byte-identical), the renderer before this work
-//! took 4.73 / 4.91 / 5.45 s and now takes 3.81 / 3.91 / 4.19 s: 1.25x by the medians
-//! (4.91 s against 3.91 s), short of the 2x aimed for by a factor of 1.6. Its
-//! instruction count at 320 x 180 and 4 samples fell from 574 M to 501 M (1.15x):
-//! shadow rays from 125 M (`any_hit` ray by ray) to 84 M, all tracing from about 225 M
-//! to 165 M; shading and ray generation, which packets do not touch, are two thirds of
-//! what is left, so even free tracing would not give 2x.
+//! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
+//! --threads 2 --stats`, 38,387,820 rays, the image byte-identical), five alternated runs
+//! give 1.05 to 1.57 s against the previous version's 1.15 to 1.75 s (medians 1.36 and
+//! 1.38 s; the fastest runs 8% apart); the machine was too busy for a finer figure. The
+//! renderer before packets for shadow and mirror rays took 4.91 s (median) on the
+//! machine of that day against 3.91 s after; the 2x aimed for against it is far off,
+//! and shading and ray generation, which packets do not touch, are most of what is left.
 
 mod aabb;
 mod bvh;
