@@ -1531,4 +1531,41 @@ mod tests {
             assert_eq!(Vec3::from(item.centroid2()), Vec3::new(3.0, 7.0, 2.75));
         }
     }
+
+    /// Binning a large range into two sets of bins and merging them gives the bins of
+    /// one item at a time, for an even and an odd number of items, the last bin
+    /// included; so does binning an empty range.
+    #[test]
+    fn two_sets_of_bins_give_the_bins_of_one() {
+        for n in [0, TWO_BIN_SETS_ITEMS - 1, TWO_BIN_SETS_ITEMS, 1001] {
+            // Boxes of different sizes along a slanted line, in an order that puts
+            // neighbours in different bins now and then.
+            let items: Vec<BuildItem> = (0..n)
+                .map(|i| {
+                    let k = (i * 37 % n.max(1)) as f32;
+                    let lo = Vec3::new(k, 0.5 * k, -0.25 * k);
+                    let size = 1.0 + (i % 5) as f32;
+                    BuildItem::new(Aabb::new(lo, lo + Vec3::splat(size)), i as u32)
+                })
+                .collect();
+            let range = RangeInfo::of(&items, 0);
+            let origin = Vec3A::from(range.centroids.min);
+            let extent = Vec3A::from(range.centroids.max) - origin;
+            let scale = Vec3A::select(
+                extent.cmpgt(Vec3A::ZERO),
+                Vec3A::splat(BINS as f32 * (1.0 - 1e-6)) / extent,
+                Vec3A::ZERO,
+            );
+            let mut both = Bins::<BINS>::new();
+            both.add(&items, origin, scale);
+            let mut one = Bins::<BINS>::new();
+            for item in &items {
+                one.add_one(item, origin, scale);
+            }
+            assert_eq!(both.count, one.count, "{n} items");
+            assert_eq!(both.count[0].iter().sum::<u32>() as usize, n);
+            assert_eq!(both.min, one.min, "{n} items");
+            assert_eq!(both.max, one.max, "{n} items");
+        }
+    }
 }
