@@ -928,6 +928,20 @@ impl<const B: usize> Bins<B> {
         }
     }
 
+    /// The `origin` and `scale` that put a range's items in bins: an item's bin
+    /// position on each axis is `(centroid2 - origin) * scale`, `B` bins across the
+    /// centroids' extent; an axis without extent has scale 0.
+    fn mapping(range: &RangeInfo) -> (Vec3A, Vec3A) {
+        let origin = Vec3A::from(range.centroids.min);
+        let extent = Vec3A::from(range.centroids.max) - origin;
+        let scale = Vec3A::select(
+            extent.cmpgt(Vec3A::ZERO),
+            Vec3A::splat(B as f32 * (1.0 - 1e-6)) / extent,
+            Vec3A::ZERO,
+        );
+        (origin, scale)
+    }
+
     fn add(&mut self, items: &[BuildItem], origin: Vec3A, scale: Vec3A) {
         if items.len() < TWO_BIN_SETS_ITEMS {
             for item in items {
@@ -968,11 +982,6 @@ impl<const B: usize> Bins<B> {
             self.max[axis][b] = self.max[axis][b].max(hi);
             self.count[axis][b] += 1;
         }
-    }
-
-    fn merge(mut self, other: &Self) -> Self {
-        self.merge_from(other);
-        self
     }
 
     fn merge_from(&mut self, other: &Self) {
@@ -1104,13 +1113,7 @@ impl Builder {
     ) -> Split {
         let n = items.len();
         let small = n <= self.params.max_leaf_items as usize;
-        let origin = Vec3A::from(range.centroids.min);
-        let extent = Vec3A::from(range.centroids.max) - origin;
-        let scale = Vec3A::select(
-            extent.cmpgt(Vec3A::ZERO),
-            Vec3A::splat(B as f32 * (1.0 - 1e-6)) / extent,
-            Vec3A::ZERO,
-        );
+        let (origin, scale) = Bins::<B>::mapping(range);
         if scale == Vec3A::ZERO {
             return if small { Split::Leaf } else { Split::Median };
         }
@@ -1125,7 +1128,10 @@ impl Builder {
                     bins.add(chunk, origin, scale);
                     bins
                 })
-                .reduce(Bins::new, |a, b| a.merge(&b));
+                .reduce(Bins::new, |mut a, b| {
+                    a.merge_from(&b);
+                    a
+                });
         } else {
             bins.add(items, origin, scale);
         }
@@ -1548,14 +1554,7 @@ mod tests {
                     BuildItem::new(Aabb::new(lo, lo + Vec3::splat(size)), i as u32)
                 })
                 .collect();
-            let range = RangeInfo::of(&items, 0);
-            let origin = Vec3A::from(range.centroids.min);
-            let extent = Vec3A::from(range.centroids.max) - origin;
-            let scale = Vec3A::select(
-                extent.cmpgt(Vec3A::ZERO),
-                Vec3A::splat(BINS as f32 * (1.0 - 1e-6)) / extent,
-                Vec3A::ZERO,
-            );
+            let (origin, scale) = Bins::<BINS>::mapping(&RangeInfo::of(&items, 0));
             let mut both = Bins::<BINS>::new();
             both.add(&items, origin, scale);
             let mut one = Bins::<BINS>::new();
