@@ -157,9 +157,21 @@ impl Plane {
     }
 
     pub(crate) fn surface(&self, ray: &Ray, t: f32) -> Hit {
+        self.surface_in(ray, t, &self.frame())
+    }
+
+    /// The unit normal and the uv axes, which every hit on the plane shares.
+    pub(crate) fn frame(&self) -> PlaneFrame {
+        let normal = self.normal.normalize_or(Vec3::Y);
+        let (s1, s2) = normal.any_orthonormal_pair();
+        PlaneFrame { normal, s1, s2 }
+    }
+
+    /// [`Plane::surface`] with the plane's [`Plane::frame`] already worked out.
+    #[inline]
+    pub(crate) fn surface_in(&self, ray: &Ray, t: f32, frame: &PlaneFrame) -> Hit {
         let point = ray.at(t);
-        let n = self.normal.normalize_or(Vec3::Y);
-        let (s1, s2) = n.any_orthonormal_pair();
+        let PlaneFrame { normal: n, s1, s2 } = *frame;
         let offset = point - self.point;
         let (normal, shading_normal, front_face) = face_toward(ray.direction, n, n);
         Hit {
@@ -173,6 +185,15 @@ impl Plane {
             object: 0,
         }
     }
+}
+
+/// What every hit on a plane shares: its unit normal and the unit uv axes `(s1, s2)`
+/// (see [`Plane::closest_hit`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PlaneFrame {
+    normal: Vec3,
+    s1: Vec3,
+    s2: Vec3,
 }
 
 impl Triangle {

@@ -10,7 +10,7 @@ use crate::packet::{
     BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet,
     lane as lane_value, lanes_of, set_lane,
 };
-use crate::shapes::WatertightRay;
+use crate::shapes::{PlaneFrame, WatertightRay};
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
 /// One object of a [`World`]: an analytic shape or a placed mesh.
@@ -90,7 +90,11 @@ pub struct World {
     single: Option<u32>,
     /// The object index at each leaf position of the BVH.
     leaf_objects: Vec<u32>,
+    /// The planes' object indices, in increasing order, and each one's frame (worked
+    /// out once: the normal's length and the uv axes cost a hit more than the rest of
+    /// its surface details).
     planes: Vec<u32>,
+    plane_frames: Vec<PlaneFrame>,
     triangle_count: usize,
 }
 
@@ -113,13 +117,14 @@ impl World {
         let mut bounded = Vec::new();
         let mut bounds = Vec::new();
         let mut planes = Vec::new();
+        let mut plane_frames = Vec::new();
         for (i, object) in objects.iter().enumerate() {
-            match object.bounds() {
-                Some(b) => {
-                    bounded.push(i as u32);
-                    bounds.push(b);
-                }
-                None => planes.push(i as u32),
+            if let Object::Plane(plane) = object {
+                planes.push(i as u32);
+                plane_frames.push(plane.frame());
+            } else if let Some(b) = object.bounds() {
+                bounded.push(i as u32);
+                bounds.push(b);
             }
         }
         let bvh = Bvh::build(&bounds, BuildParams::default());
@@ -143,6 +148,7 @@ impl World {
             single,
             leaf_objects,
             planes,
+            plane_frames,
             triangle_count,
         })
     }
@@ -465,7 +471,10 @@ impl World {
     fn surface_of(&self, ray: &Ray, raw: &RawHit) -> Hit {
         let hit = match &self.objects[raw.object as usize] {
             Object::Sphere(s) => s.surface(ray, raw.t),
-            Object::Plane(p) => p.surface(ray, raw.t),
+            Object::Plane(p) => match self.planes.binary_search(&raw.object) {
+                Ok(slot) => p.surface_in(ray, raw.t, &self.plane_frames[slot]),
+                Err(_) => p.surface(ray, raw.t),
+            },
             Object::Triangle(tri) => tri.surface(ray, raw),
             Object::Box(b) => b.surface(ray, raw.t, raw.primitive / 2, raw.primitive % 2 == 1),
             Object::Instance(i) => i.surface(ray, raw),
