@@ -673,7 +673,7 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
     let spacing = grid.spacing;
     let half = 0.5 * grid.line_width.min(spacing);
     // The offset from the nearest line's centre, in [-spacing/2, spacing/2].
-    let d = x - (x / spacing).round() * spacing;
+    let d = x - round(x / spacing) * spacing;
     if width <= 1e-6 * spacing {
         return f32::from(u8::from(d.abs() < half));
     }
@@ -693,7 +693,7 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
     // [k spacing, k spacing + 2 half), is k 2 half + min(y - k spacing, 2 half) for
     // k = floor(y / spacing); the coverage is its difference over the window / width.
     let integral = |y: f32| {
-        let k = (y / spacing).floor();
+        let k = floor(y / spacing);
         (k, (y - k * spacing).clamp(0.0, spacing).min(2.0 * half))
     };
     let (k0, m0) = integral(a + half);
@@ -701,9 +701,93 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
     (((k1 - k0) * 2.0 * half + m1 - m0) / width).clamp(0.0, 1.0)
 }
 
+/// Floats from 2^23 up in magnitude are all integers (and NaN and the infinities round
+/// to themselves), so [`round`] and [`floor`] return them as they are.
+const ALL_INTEGERS: f32 = 8_388_608.0;
+
+/// `x.round()`, half-way cases away from zero, bit for bit (a NaN stays a NaN, though
+/// perhaps not as quiet a one), without the call into the
+/// maths library that `f32::round` makes on CPUs before SSE4.1 (every grid sample
+/// rounds once). Below 2^23 the truncation `x as i32` is exact, and so are `x - t`
+/// and `t +- 1`.
+#[inline]
+fn round(x: f32) -> f32 {
+    if x.is_nan() || x.abs() >= ALL_INTEGERS {
+        return x;
+    }
+    // Truncate toward zero, keeping the sign of a zero result (`-0.3` rounds to `-0`).
+    let t = ((x as i32) as f32).copysign(x);
+    if (x - t).abs() >= 0.5 {
+        t + 1.0f32.copysign(x)
+    } else {
+        t
+    }
+}
+
+/// `x.floor()`, bit for bit, without a call into the maths library (see [`round`]).
+#[inline]
+fn floor(x: f32) -> f32 {
+    if x.is_nan() || x.abs() >= ALL_INTEGERS {
+        return x;
+    }
+    let t = ((x as i32) as f32).copysign(x);
+    if t > x { t - 1.0 } else { t }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[track_caller]
+    fn check_rounding(x: f32) {
+        if x.is_nan() {
+            assert!(round(x).is_nan() && floor(x).is_nan());
+            return;
+        }
+        assert_eq!(round(x).to_bits(), x.round().to_bits(), "round({x:e})");
+        assert_eq!(floor(x).to_bits(), x.floor().to_bits(), "floor({x:e})");
+    }
+
+    #[test]
+    fn round_and_floor_are_the_standard_ones_bit_for_bit() {
+        let edges = [
+            0.0,
+            0.5,
+            1.5,
+            2.5,
+            0.499_999_97,
+            0.3,
+            1.0,
+            8_388_607.5,
+            8_388_608.0,
+            8_388_609.0,
+            1e30,
+            f32::MIN_POSITIVE,
+            1e-45,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        for x in edges {
+            check_rounding(x);
+            check_rounding(-x);
+        }
+        // Every float of a few binades around the integers, and a spread of bit patterns.
+        let mut bits = 0x3e00_0000_u32; // 0.125
+        while bits < 0x4b80_0000 {
+            // up to 2^24
+            check_rounding(f32::from_bits(bits));
+            check_rounding(-f32::from_bits(bits));
+            bits += 97;
+        }
+        let mut state = 0x9e37_79b9_u32;
+        for _ in 0..1_000_000 {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            check_rounding(f32::from_bits(state));
+        }
+    }
 
     const GRID: Grid = Grid {
         spacing: 1.0,
