@@ -101,30 +101,26 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average about 1.5), with
-//! the code as of this writing, and the two runs of the version before its last round
-//! of build and traversal work; Embree's own figures move by a tenth to a third between
-//! runs, so read the ratios within a run:
+//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 0.9 to 1.2), and
+//! the three runs of the previous round; Embree's own figures move by a tenth to a third
+//! between runs (its 2-thread build took 0.239 to 0.316 s below), so read the ratios
+//! within a run:
 //!
-//! | 1 thread unless stated | run 1 | run 2 | run 3 | before (two runs) |
+//! | 1 thread unless stated | run 1 | run 2 | run 3 | previous round (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.434 s (Embree 0.229: 0.53x) | 0.427 s (0.216: 0.51x) | 0.446 s (0.246: 0.55x) | 0.469 s (0.52x), 0.549 s (0.75x) |
-//! | build, 2 threads | 0.259 s (0.240: 0.92x) | 0.236 s (0.232: 0.98x) | 0.263 s (0.241: 0.92x) | 0.315 s (0.80x), 0.311 s (0.81x) |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 12.86 Mrays/s (0.72x) | 15.27 (0.81x) | 14.74 (0.80x) | 14.89 (0.82x), 11.14 (0.62x) |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 0.85x | 1.01x | 0.97x | 0.99x, 0.76x |
-//! | primary, ray by ray vs `rtcIntersect1` | 6.77 Mrays/s (0.73x) | 6.53 (0.71x) | 7.08 (0.78x) | 6.41 (0.71x), 6.84 (0.77x) |
-//! | incoherent vs `rtcIntersect1` | 1.56 Mrays/s (0.84x) | 1.60 (0.82x) | 1.41 (0.74x) | 1.30 (0.68x), 1.22 (0.75x) |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 22.66 Mrays/s (0.67x) | 20.74 (0.69x) | 29.63 (0.81x) | 21.40 (0.64x), 20.73 (0.70x) |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.66 Mrays/s (0.95x) | 3.46 (0.93x) | 3.80 (0.96x) | 3.53 (0.80x), 2.33 (0.70x) |
+//! | build | 0.425 s (Embree 0.310: 0.73x) | 0.422 s (0.207: 0.49x) | 0.426 s (0.232: 0.54x) | 0.53x, 0.51x, 0.55x |
+//! | build, 2 threads | 0.226 s (0.239: 1.06x) | 0.251 s (0.279: 1.11x) | 0.275 s (0.316: 1.15x) | 0.92x, 0.98x, 0.92x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 14.18 Mrays/s (0.76x) | 12.45 (0.81x) | 14.48 (0.81x) | 0.72x, 0.81x, 0.80x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 0.92x | 0.93x | 0.96x | 0.85x, 1.01x, 0.97x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.21 Mrays/s (0.79x) | 5.53 (0.62x) | 6.95 (0.76x) | 0.73x, 0.71x, 0.78x |
+//! | incoherent vs `rtcIntersect1` | 1.69 Mrays/s (0.83x) | 1.53 (0.84x) | 1.32 (0.77x) | 0.84x, 0.82x, 0.74x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 25.36 Mrays/s (0.70x) | 28.70 (0.93x) | 28.68 (0.78x) | 0.67x, 0.69x, 0.81x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 2.81 Mrays/s (0.83x) | 3.38 (0.88x) | 3.43 (0.92x) | 0.95x, 0.93x, 0.96x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.4x to 2.7x faster than obvhs everywhere. The tree is the same, node for node, as
-//! before this round (its steps change how the tree is built, not which), so the
-//! packets' figures moved with the machine: callgrind counts 50.1 M instructions for
-//! the packets of `examples/profile.rs`'s `coherent` workload before and 49.5 M after.
-//! The build's serial steps went parallel and its binning waits less, so 2 threads
-//! gained most (0.80x to 0.92-0.98x); single rays and incoherent rays execute about 5%
-//! fewer instructions (the children pushed by one fixed-size copy).
+//! 1.3x to 4.0x faster than obvhs everywhere. Neither the tree nor the traversal changed
+//! between the two rounds, so the differences are the machine's: the 2-thread build,
+//! at 0.92x to 1.15x over six runs, is level with Embree's.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
@@ -135,10 +131,21 @@
 //! icosphere generated once, then built five times) executes 1,223 M instructions (1,849 M
 //! before the builder's rewrite). Instruction counts are no substitute for the table
 //! (Embree uses AVX-512 and its rays wait on memory), but two builds of viewray compare
-//! reliably. A build of the whole crate for `x86-64-v3` (AVX2, FMA, BMI) instead of the
-//! x86_64 baseline gained only about 5% in one run (coherent 0.85x, ray by ray 0.85x),
-//! not enough to close the gap by itself: the packets would need eight-wide node and
-//! leaf tests, with runtime dispatch, to reach Embree's.
+//! reliably.
+//!
+//! Wider instruction sets, measured and left out:
+//!
+//! - A build of the whole crate for `x86-64-v4` (AVX-512) runs the packets 12% to 18%
+//!   faster, but glam then fuses multiplies and adds at compile time, which changes the
+//!   bits of a hit. Compiling only the traversal loops for `x86-64-v3` and `x86-64-v4`
+//!   beside the baseline, chosen at run time (the same bits), gained 0% to 5% (packets
+//!   15.3 to 15.6 Mrays/s against 14.5 to 15.2, three alternated runs): not worth three
+//!   copies of every traversal.
+//! - Two rays against a leaf's four triangles per 256-bit AVX instruction (each half
+//!   exactly one ray's 128-bit test) cut the icosphere render's instructions by 4.4%
+//!   (880 M to 841 M) and its time not at all (`render_s` 0.080 to 0.098 s against
+//!   0.080 to 0.090 s, six alternated runs): the leaf tests wait on something other
+//!   than their arithmetic, most likely the loads of their triangles.
 //!
 //! Where the time goes (callgrind, one thread):
 //!
@@ -155,23 +162,22 @@
 //!   camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping and Flat
 //!   shading, about 150 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 2,000 instructions per sample (459.8 M), down from
-//!   2,170: shadow-ray packets ([`World::any_hits`]), primary and mirror packets, camera
-//!   rays and sampling, and shading and bookkeeping, which is half: grid lines filtered
-//!   over each sample's footprint (`line_coverage`, the footprint and the ray
-//!   differentials: 89 M), surface details (`World::surface`, 38 M, which also works out
-//!   texture coordinates that Lit shading never reads), Blinn-Phong with `powf`, the
-//!   batch's buffers (about 27 M in allocation and `Vec` upkeep; stack buffers in their
-//!   place cost more). With so few objects a packet's setup (its slab numbers, 35 M)
-//!   costs as much as its traversal.
+//!   1`, 16 objects) executes about 1,920 instructions per sample (442.7 M, the render
+//!   loop alone; 453.8 M before the world kept each plane's unit normal and uv axes and
+//!   grid lines stopped calling `roundf` and `floorf`): shadow-ray packets
+//!   ([`World::any_hits`], 84 M), primary and mirror packets (79 M), and shading and
+//!   bookkeeping, which is more than half: grid lines filtered over each sample's
+//!   footprint (`line_coverage` 37 M, the footprint and the ray differentials 32 M),
+//!   surface details (`World::surface`, 27 M), Blinn-Phong with `powf`, and each
+//!   sample's view, offset origin and shadow-ray directions. With so few objects a
+//!   packet's setup (its slab numbers, 52 M) costs as much as its traversal.
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
-//! --threads 2 --stats`, 38,387,820 rays, the image byte-identical), five alternated runs
-//! give 1.05 to 1.57 s against the previous version's 1.15 to 1.75 s (medians 1.36 and
-//! 1.38 s; the fastest runs 8% apart); the machine was too busy for a finer figure. The
-//! renderer before packets for shadow and mirror rays took 4.91 s (median) on the
-//! machine of that day against 3.91 s after; the 2x aimed for against it is far off,
-//! and shading and ray generation, which packets do not touch, are most of what is left.
+//! --threads 2 --stats`, 38,387,820 rays), six runs on a quiet machine take 0.99 to
+//! 1.15 s (median 1.03 s). The renderer before shadow and mirror rays went as packets
+//! took 4.91 s (median) on the busier machine of that day against 3.91 s after; the 2x
+//! aimed for is far off, and shading and ray generation, which packets do not touch, are
+//! most of what is left.
 
 mod aabb;
 mod bvh;
