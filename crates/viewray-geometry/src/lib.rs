@@ -135,12 +135,13 @@
 //!
 //! Wider instruction sets, measured and left out:
 //!
-//! - A build of the whole crate for `x86-64-v4` (AVX-512) runs the packets 12% to 18%
-//!   faster, but glam then fuses multiplies and adds at compile time, which changes the
-//!   bits of a hit. Compiling only the traversal loops for `x86-64-v3` and `x86-64-v4`
-//!   beside the baseline, chosen at run time (the same bits), gained 0% to 5% (packets
-//!   15.3 to 15.6 Mrays/s against 14.5 to 15.2, three alternated runs): not worth three
-//!   copies of every traversal.
+//! - A build of the whole crate for `x86-64-v4` (AVX-512) traces 10% to 20% faster
+//!   (packets at 0.92x to 0.93x of `rtcIntersect16` against 0.77x to 0.81x), but glam
+//!   then fuses multiplies and adds at compile time, which changes the bits of a hit.
+//!   Compiling only the traversal loops for `x86-64-v3` and `x86-64-v4` beside the
+//!   baseline, chosen at run time (the same bits), gained -1% to 5% (packets 15.62, 15.29
+//!   and 14.38 Mrays/s against 15.19, 14.53 and 14.54 with the baseline, alternated
+//!   runs): not worth three copies of every traversal.
 //! - Two rays against a leaf's four triangles per 256-bit AVX instruction (each half
 //!   exactly one ray's 128-bit test) cut the icosphere render's instructions by 4.4%
 //!   (880 M to 841 M) and its time not at all (`render_s` 0.080 to 0.098 s against
