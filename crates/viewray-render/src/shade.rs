@@ -827,6 +827,38 @@ mod tests {
     }
 
     #[test]
+    fn line_coverage_follows_the_grid_spacing() {
+        // Lines 0.2 wide every 2 units: a spacing of 1 would hide a position divided
+        // where it should be multiplied.
+        let grid = Grid {
+            spacing: 2.0,
+            line_width: 0.2,
+            color: Vec3::ZERO,
+        };
+        let check = |x: f32, width: f32, expected: f32| {
+            let got = line_coverage(x, width, &grid);
+            assert!(
+                (got - expected).abs() < 1e-5,
+                "x {x} width {width}: {got}, expected {expected}"
+            );
+        };
+        // Point samples: on a line within 0.1 of a multiple of 2.
+        check(0.0, 0.0, 1.0);
+        check(4.08, 0.0, 1.0);
+        check(-6.09, 0.0, 1.0);
+        check(1.0, 0.0, 0.0);
+        check(2.12, 0.0, 0.0);
+        // A footprint of one spacing covers a tenth; half a line at a line's edge.
+        for x in [0.0, 0.7, 1.5, -3.3] {
+            check(x, 2.0, 0.1);
+        }
+        check(2.1, 0.2, 0.5);
+        check(1.0, 0.5, 0.0);
+        // Two and a half spacings around a midpoint, [-1.5, 3.5]: the lines at 0 and 2.
+        check(1.0, 5.0, 0.08);
+    }
+
+    #[test]
     fn reflection_mirrors_about_the_normal_and_never_enters_the_surface() {
         let d = Vec3::new(1.0, -1.0, 0.0).normalize();
         let r = reflect(d, Vec3::Y, Vec3::Y);
