@@ -797,7 +797,12 @@ mod tests {
 
     #[track_caller]
     fn check(x: f32, width: f32, expected: f32) {
-        let got = line_coverage(x, width, &GRID);
+        check_grid(&GRID, x, width, expected);
+    }
+
+    #[track_caller]
+    fn check_grid(grid: &Grid, x: f32, width: f32, expected: f32) {
+        let got = line_coverage(x, width, grid);
         assert!(
             (got - expected).abs() < 1e-5,
             "x {x} width {width}: {got}, expected {expected}"
@@ -835,13 +840,7 @@ mod tests {
             line_width: 0.2,
             color: Vec3::ZERO,
         };
-        let check = |x: f32, width: f32, expected: f32| {
-            let got = line_coverage(x, width, &grid);
-            assert!(
-                (got - expected).abs() < 1e-5,
-                "x {x} width {width}: {got}, expected {expected}"
-            );
-        };
+        let check = |x, width, expected| check_grid(&grid, x, width, expected);
         // Point samples: on a line within 0.1 of a multiple of 2.
         check(0.0, 0.0, 1.0);
         check(4.08, 0.0, 1.0);
