@@ -102,8 +102,8 @@ pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
 /// over a row of 2).
 #[derive(Clone, Debug)]
 pub(crate) struct Strata {
-    count: u32,
-    /// Each cell's corner and size, worked out once (four divisions a sample otherwise).
+    /// Each cell's corner and size, worked out once (four divisions a sample otherwise):
+    /// one cell per sample.
     cells: Vec<(DVec2, DVec2)>,
     /// Whether lens samples are drawn: cameras without a lens ignore `p_lens`, so
     /// they are left at the lens centre and their stratum is not looked up.
@@ -117,7 +117,6 @@ impl Strata {
         // round(sqrt(count)) is between 1 and count.
         let rows = f64::from(count).sqrt().round().max(1.0) as u32;
         Self {
-            count,
             cells: (0..count)
                 .map(|cell| cell_of(cell, count, count / rows, count % rows))
                 .collect(),
@@ -146,7 +145,8 @@ impl Strata {
     /// film and lens positions are not correlated.
     #[inline]
     pub(crate) fn camera_sample(&self, row: u32, col: u32, index: u32) -> CameraSample {
-        if self.count == 1 {
+        let count = self.cells.len() as u32;
+        if count == 1 {
             return CameraSample::CENTER;
         }
         let mut rng = SampleRng::new(row, col, index);
@@ -158,7 +158,7 @@ impl Strata {
                 p_lens: CameraSample::CENTER.p_lens,
             };
         }
-        let lens_cell = permute(index, self.count, pixel_seed(row, col));
+        let lens_cell = permute(index, count, pixel_seed(row, col));
         let (corner, size) = self.cell(lens_cell);
         let p_lens = corner + size * DVec2::new(rng.next_f64(), rng.next_f64());
         CameraSample { p_film, p_lens }
