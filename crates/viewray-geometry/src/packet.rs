@@ -349,14 +349,15 @@ impl ChunkNumbers {
         let chunk = self;
         chunk.len = rays.len();
         chunk.all = lanes_below(rays.len());
-        chunk.octants = [0; 8];
+        // Per lane, one bit each: valid, and a negative direction on x, y and z; the
+        // octants' masks come from these at the end, a few operations for the chunk.
+        let (mut valid_lanes, mut negative_lanes) = (0u64, [0u64; 3]);
         for group in 0..rays.len().div_ceil(4) {
             let ray = |i: usize| rays.get(4 * group + i).unwrap_or(&rays[0]);
             let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
             let mut valid = BVec4A::splat(true);
             let mut nonzero = BVec4A::splat(false);
-            let mut octant = [0usize; 4];
-            for axis in 0..3 {
+            for (axis, negative) in negative_lanes.iter_mut().enumerate() {
                 let o = Vec4::new(
                     r0.origin[axis],
                     r1.origin[axis],
@@ -371,23 +372,27 @@ impl ChunkNumbers {
                 );
                 valid &= o.is_finite_mask() & d.is_finite_mask();
                 nonzero |= d.cmpne(Vec4::ZERO);
-                let negative = d.is_negative_bitmask() as usize;
-                for (i, octant) in octant.iter_mut().enumerate() {
-                    *octant |= ((negative >> i) & 1) << axis;
-                }
+                *negative |= u64::from(d.is_negative_bitmask()) << (4 * group);
                 let (near, far, inverse) = slab_numbers(o, d);
                 chunk.origin_near[axis][group] = near;
                 chunk.origin_far[axis][group] = far;
                 chunk.inverse[axis][group] = inverse;
                 chunk.direction[axis][group] = d;
             }
-            let valid = (valid & nonzero).bitmask() as u64;
-            for (i, &octant) in octant.iter().enumerate() {
-                let lane = 4 * group + i;
-                if lane < rays.len() && (valid >> i) & 1 == 1 {
-                    chunk.octants[octant] |= 1 << lane;
-                }
-            }
+            valid_lanes |= u64::from((valid & nonzero).bitmask()) << (4 * group);
+        }
+        // A lane's octant has bit `axis` set where its direction is negative on `axis`.
+        let valid_lanes = valid_lanes & chunk.all;
+        for (octant, mask) in chunk.octants.iter_mut().enumerate() {
+            *mask = (0..3).fold(valid_lanes, |lanes, axis| {
+                let negative = negative_lanes[axis];
+                let side = if (octant >> axis) & 1 == 1 {
+                    negative
+                } else {
+                    !negative
+                };
+                lanes & side
+            });
         }
     }
 }
@@ -1009,6 +1014,13 @@ mod tests {
         for chunk_rays in rays.chunks(37) {
             let mut chunk = ChunkNumbers::EMPTY;
             chunk.fill(chunk_rays);
+            // Each lane in at most one octant, and no lane past the last ray.
+            let mut seen = 0;
+            for &mask in &chunk.octants {
+                assert_eq!(mask & seen, 0, "octants overlap");
+                assert_eq!(mask & !chunk.all, 0, "a lane past the last ray");
+                seen |= mask;
+            }
             for (i, ray) in chunk_rays.iter().enumerate() {
                 let single_ray = BoxRay::new(ray);
                 let in_octant = chunk.octants.iter().position(|mask| mask & (1 << i) != 0);
