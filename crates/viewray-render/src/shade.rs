@@ -686,6 +686,11 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
         if a >= -half && b <= half {
             return 1.0;
         }
+        // Between two lines, touching neither (most samples): every overlap below is
+        // zero, and so is the coverage.
+        if (a >= half && b <= spacing - half) || (a >= -spacing + half && b <= -half) {
+            return 0.0;
+        }
         let overlap = |centre: f32| (b.min(centre + half) - a.max(centre - half)).max(0.0);
         return ((overlap(-spacing) + overlap(0.0) + overlap(spacing)) / width).clamp(0.0, 1.0);
     }
@@ -855,6 +860,64 @@ mod tests {
         check(1.0, 0.5, 0.0);
         // Two and a half spacings around a midpoint, [-1.5, 3.5]: the lines at 0 and 2.
         check(1.0, 5.0, 0.08);
+    }
+
+    /// Windows narrower than a spacing: the coverage is the window's overlap with the
+    /// nearest line and its two neighbours, bit for bit, also where a window lies between
+    /// two lines and the overlaps are not computed.
+    #[test]
+    fn narrow_windows_cover_the_three_nearest_lines() {
+        let grids = [
+            GRID,
+            Grid {
+                spacing: 2.0,
+                line_width: 0.2,
+                color: Vec3::ZERO,
+            },
+            Grid {
+                spacing: 0.25,
+                line_width: 0.0,
+                color: Vec3::ZERO,
+            },
+        ];
+        let mut state = 0x2545_f491_u32;
+        let mut random = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state as f32 / u32::MAX as f32
+        };
+        for grid in &grids {
+            let (spacing, half) = (grid.spacing, 0.5 * grid.line_width.min(grid.spacing));
+            for _ in 0..200_000 {
+                let width = spacing * (1e-5 + 0.99 * random());
+                let line = (20.0 * random()).floor() - 10.0;
+                // Anywhere, or within a few ulps of a window's edge on a line's edge.
+                let offset = match (random() * 4.0) as u32 {
+                    0 => half + 0.5 * width,
+                    1 => spacing - half - 0.5 * width,
+                    2 => -half - 0.5 * width,
+                    _ => spacing * (random() - 0.5),
+                };
+                let nudge = (random() * 8.0) as u32;
+                let x = f32::from_bits((line * spacing + offset).to_bits().wrapping_add(nudge) - 4);
+                let d = x - round(x / spacing) * spacing;
+                let (a, b) = (d - 0.5 * width, d + 0.5 * width);
+                let expected = if a >= -half && b <= half {
+                    1.0
+                } else {
+                    let overlap =
+                        |centre: f32| (b.min(centre + half) - a.max(centre - half)).max(0.0);
+                    ((overlap(-spacing) + overlap(0.0) + overlap(spacing)) / width).clamp(0.0, 1.0)
+                };
+                let got = line_coverage(x, width, grid);
+                assert_eq!(
+                    got.to_bits(),
+                    expected.to_bits(),
+                    "x {x} width {width}: {got}, expected {expected}"
+                );
+            }
+        }
     }
 
     #[test]
