@@ -42,10 +42,26 @@ const MANY_CHILDREN: u32 = 6;
 /// Stack entry flag: the child is to be handed to single rays.
 const SINGLE: u32 = 1 << 31;
 
+/// Each lane's slab numbers (see [`slab_numbers`]), per axis, four lanes per vector.
+#[derive(Clone, Debug)]
+struct LaneNumbers {
+    origin_near: [Lanes; 3],
+    origin_far: [Lanes; 3],
+    inverse: [Lanes; 3],
+}
+
+impl LaneNumbers {
+    const EMPTY: Self = Self {
+        origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+    };
+}
+
 /// The rays of a packet prepared for box tests: each ray's slab numbers (as in
 /// [`BoxRay`]), four rays per vector, and their bounds for the packet's interval test.
 #[derive(Clone, Debug)]
-pub(crate) struct BoxPacket {
+pub(crate) struct BoxPacket<'a> {
     len: usize,
     /// The index of each lane's ray in the slice the packet was filled from.
     rays: [u8; PACKET_SIZE],
@@ -53,9 +69,9 @@ pub(crate) struct BoxPacket {
     /// Whether the directions are close enough for the interval test to pay (see
     /// [`MAX_DIRECTION_SPREAD`]); otherwise each ray is traced alone.
     coherent: bool,
-    origin_near: [Lanes; 3],
-    origin_far: [Lanes; 3],
-    inverse: [Lanes; 3],
+    /// The lanes' slab numbers: the chunk's own when the packet holds all of its rays
+    /// (the common case, with no copy), else gathered from them.
+    numbers: &'a LaneNumbers,
     /// Per axis, the origin that makes the near plane's distance smallest for every
     /// ray (the largest `origin_near` on a positive axis, the smallest on a negative one).
     bound_origin_near: [Vec4; 3],
@@ -65,44 +81,26 @@ pub(crate) struct BoxPacket {
     inverse_max: [Vec4; 3],
 }
 
-impl BoxPacket {
-    /// An empty packet, to be filled with [`BoxPacket::fill`].
-    pub(crate) const EMPTY: Self = Self {
-        len: 0,
-        rays: [0; PACKET_SIZE],
-        octant: 0,
-        coherent: false,
-        origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        bound_origin_near: [Vec4::ZERO; 3],
-        bound_origin_far: [Vec4::ZERO; 3],
-        inverse_min: [Vec4::ZERO; 3],
-        inverse_max: [Vec4::ZERO; 3],
-    };
-
+impl<'a> BoxPacket<'a> {
     /// The mask of all the packet's rays.
     pub(crate) fn all_lanes(&self) -> u64 {
         lanes_below(self.len)
     }
 
-    /// Makes this the packet of the rays of `chunk` in `mask` (at least one): valid
-    /// rays of octant `octant`.
-    fn fill(&mut self, chunk: &ChunkNumbers, octant: u8, mask: u64) {
+    /// The packet of the rays of `chunk` in `mask` (at least one): valid rays of octant
+    /// `octant`. Unless they are all of the chunk's rays, their numbers are gathered
+    /// into `gathered`.
+    fn new(chunk: &'a ChunkNumbers, gathered: &'a mut LaneNumbers, octant: u8, mask: u64) -> Self {
+        let mut rays = [0; PACKET_SIZE];
         let mut direction_min = [Vec4::INFINITY; 3];
         let mut direction_max = [Vec4::NEG_INFINITY; 3];
         let mut length_squared_min = Vec4::INFINITY;
-        let len;
-        if mask == chunk.all {
-            // The whole chunk, the common case: copy its numbers.
-            len = chunk.len;
-            self.origin_near = chunk.origin_near;
-            self.origin_far = chunk.origin_far;
-            self.inverse = chunk.inverse;
-            for (lane, ray) in self.rays.iter_mut().enumerate().take(len) {
+        let (len, numbers) = if mask == chunk.all {
+            // The whole chunk, the common case: its own numbers.
+            for (lane, ray) in rays.iter_mut().enumerate().take(chunk.len) {
                 *ray = lane as u8;
             }
-            for group in 0..len.div_ceil(4) {
+            for group in 0..chunk.len.div_ceil(4) {
                 let d = [0, 1, 2].map(|axis| chunk.direction[axis][group]);
                 for axis in 0..3 {
                     direction_min[axis] = direction_min[axis].min(d[axis]);
@@ -111,8 +109,10 @@ impl BoxPacket {
                 length_squared_min =
                     length_squared_min.min(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             }
+            (chunk.len, &chunk.numbers)
         } else {
             // Gather the rays of `mask`, lane by lane.
+            let (from_numbers, to_numbers) = (&chunk.numbers, &mut *gathered);
             let mut lane = 0;
             for i in lanes_of(mask) {
                 let (from, to) = ((i / 4, i % 4), (lane / 4, lane % 4));
@@ -120,39 +120,45 @@ impl BoxPacket {
                 length_squared_min =
                     length_squared_min.min(Vec4::splat(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
                 for axis in 0..3 {
-                    self.origin_near[axis][to.0][to.1] = chunk.origin_near[axis][from.0][from.1];
-                    self.origin_far[axis][to.0][to.1] = chunk.origin_far[axis][from.0][from.1];
-                    self.inverse[axis][to.0][to.1] = chunk.inverse[axis][from.0][from.1];
+                    let (source, target) = (from_numbers, &mut *to_numbers);
+                    target.origin_near[axis][to.0][to.1] = source.origin_near[axis][from.0][from.1];
+                    target.origin_far[axis][to.0][to.1] = source.origin_far[axis][from.0][from.1];
+                    target.inverse[axis][to.0][to.1] = source.inverse[axis][from.0][from.1];
                     direction_min[axis] = direction_min[axis].min(Vec4::splat(d[axis]));
                     direction_max[axis] = direction_max[axis].max(Vec4::splat(d[axis]));
                 }
-                self.rays[lane] = i as u8;
+                rays[lane] = i as u8;
                 lane += 1;
             }
-            len = lane;
             // Fill the last group's unused lanes with copies of the first ray: they are
             // never in a mask, but must not widen the bounds.
-            for slot in len..len.next_multiple_of(4) {
+            for slot in lane..lane.next_multiple_of(4) {
+                let target = &mut *to_numbers;
                 for axis in 0..3 {
-                    self.origin_near[axis][slot / 4][slot % 4] = self.origin_near[axis][0][0];
-                    self.origin_far[axis][slot / 4][slot % 4] = self.origin_far[axis][0][0];
-                    self.inverse[axis][slot / 4][slot % 4] = self.inverse[axis][0][0];
+                    target.origin_near[axis][slot / 4][slot % 4] = target.origin_near[axis][0][0];
+                    target.origin_far[axis][slot / 4][slot % 4] = target.origin_far[axis][0][0];
+                    target.inverse[axis][slot / 4][slot % 4] = target.inverse[axis][0][0];
                 }
             }
-        }
+            (lane, &*gathered)
+        };
         debug_assert!(len > 0);
         let groups = len.div_ceil(4);
+        let mut bound_origin_near = [Vec4::ZERO; 3];
+        let mut bound_origin_far = [Vec4::ZERO; 3];
+        let mut inverse_min = [Vec4::ZERO; 3];
+        let mut inverse_max = [Vec4::ZERO; 3];
         for axis in 0..3 {
             let (mut near_min, mut near_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
             let (mut far_min, mut far_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
-            let (mut inverse_min, mut inverse_max) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
+            let (mut low, mut high) = (Vec4::INFINITY, Vec4::NEG_INFINITY);
             for group in 0..groups {
-                near_min = near_min.min(self.origin_near[axis][group]);
-                near_max = near_max.max(self.origin_near[axis][group]);
-                far_min = far_min.min(self.origin_far[axis][group]);
-                far_max = far_max.max(self.origin_far[axis][group]);
-                inverse_min = inverse_min.min(self.inverse[axis][group]);
-                inverse_max = inverse_max.max(self.inverse[axis][group]);
+                near_min = near_min.min(numbers.origin_near[axis][group]);
+                near_max = near_max.max(numbers.origin_near[axis][group]);
+                far_min = far_min.min(numbers.origin_far[axis][group]);
+                far_max = far_max.max(numbers.origin_far[axis][group]);
+                low = low.min(numbers.inverse[axis][group]);
+                high = high.max(numbers.inverse[axis][group]);
             }
             // Rounding is monotonic, so (plane - o) * inverse computed for the bounding
             // numbers bounds it for every ray of the packet (see `hit_children`).
@@ -161,20 +167,28 @@ impl BoxPacket {
             } else {
                 (near_max.max_element(), far_min.min_element())
             };
-            self.bound_origin_near[axis] = Vec4::splat(near);
-            self.bound_origin_far[axis] = Vec4::splat(far);
-            self.inverse_min[axis] = Vec4::splat(inverse_min.min_element());
-            self.inverse_max[axis] = Vec4::splat(inverse_max.max_element());
+            bound_origin_near[axis] = Vec4::splat(near);
+            bound_origin_far[axis] = Vec4::splat(far);
+            inverse_min[axis] = Vec4::splat(low.min_element());
+            inverse_max[axis] = Vec4::splat(high.max_element());
         }
-        self.len = len;
-        self.octant = octant;
         // The spread of the unit directions is at most the spread of the directions
         // over the shortest one's length. (A chunk's padding lanes copy a ray of the
         // packet whenever the packet is the whole chunk; a lone lane is never padding.)
         let spread = (0..3)
             .map(|axis| direction_max[axis].max_element() - direction_min[axis].min_element())
             .fold(0.0, f32::max);
-        self.coherent = spread <= MAX_DIRECTION_SPREAD * length_squared_min.min_element().sqrt();
+        Self {
+            len,
+            rays,
+            octant,
+            coherent: spread <= MAX_DIRECTION_SPREAD * length_squared_min.min_element().sqrt(),
+            numbers,
+            bound_origin_near,
+            bound_origin_far,
+            inverse_min,
+            inverse_max,
+        }
     }
 
     /// For each lane, the index of its ray in the slice the packet was filled from.
@@ -186,7 +200,8 @@ impl BoxPacket {
     #[inline(always)]
     fn lane_ray(&self, lane: usize) -> BoxRay {
         let (group, i) = (lane / 4, lane % 4);
-        let (o, f, v) = (&self.origin_near, &self.origin_far, &self.inverse);
+        let numbers = self.numbers;
+        let (o, f, v) = (&numbers.origin_near, &numbers.origin_far, &numbers.inverse);
         BoxRay::from_lanes(
             [o[0][group][i], o[1][group][i], o[2][group][i]],
             [f[0][group][i], f[1][group][i], f[2][group][i]],
@@ -255,9 +270,9 @@ impl BoxPacket {
             let (near, far) = plane_distances(
                 near_plane,
                 far_plane,
-                per_axis(|axis| self.origin_near[axis][group]),
-                per_axis(|axis| self.origin_far[axis][group]),
-                per_axis(|axis| self.inverse[axis][group]),
+                per_axis(|axis| self.numbers.origin_near[axis][group]),
+                per_axis(|axis| self.numbers.origin_far[axis][group]),
+                per_axis(|axis| self.numbers.inverse[axis][group]),
             );
             let (group_hit, _) = slab_test(near, far, t_min, t_max[group]);
             hit |= u64::from(group_hit) << (4 * group);
@@ -323,9 +338,7 @@ struct ChunkNumbers {
     all: u64,
     /// The masks of the valid rays of each octant.
     octants: [u64; 8],
-    origin_near: [Lanes; 3],
-    origin_far: [Lanes; 3],
-    inverse: [Lanes; 3],
+    numbers: LaneNumbers,
     direction: [Lanes; 3],
 }
 
@@ -335,9 +348,7 @@ impl ChunkNumbers {
         len: 0,
         all: 0,
         octants: [0; 8],
-        origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
-        inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        numbers: LaneNumbers::EMPTY,
         direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
     };
 
@@ -374,9 +385,9 @@ impl ChunkNumbers {
                 nonzero |= d.cmpne(Vec4::ZERO);
                 *negative |= u64::from(d.is_negative_bitmask()) << (4 * group);
                 let (near, far, inverse) = slab_numbers(o, d);
-                chunk.origin_near[axis][group] = near;
-                chunk.origin_far[axis][group] = far;
-                chunk.inverse[axis][group] = inverse;
+                chunk.numbers.origin_near[axis][group] = near;
+                chunk.numbers.origin_far[axis][group] = far;
+                chunk.numbers.inverse[axis][group] = inverse;
                 chunk.direction[axis][group] = d;
             }
             valid_lanes |= u64::from((valid & nonzero).bitmask()) << (4 * group);
@@ -397,18 +408,19 @@ impl ChunkNumbers {
     }
 }
 
-/// What splitting rays into packets works in: a chunk's numbers and the packet being
-/// filled, some seven kilobytes, reused from a thread-local (zeroing them for every
-/// batch of shadow rays cost more than tracing the batch).
+/// What splitting rays into packets works in: a chunk's numbers and room for the
+/// numbers of a packet gathered from some of them, some seven kilobytes, reused from a
+/// thread-local (zeroing them for every batch of shadow rays cost more than tracing
+/// the batch).
 struct PacketBuffers {
     chunk: ChunkNumbers,
-    packet: BoxPacket,
+    gathered: LaneNumbers,
 }
 
 impl PacketBuffers {
     const EMPTY: Self = Self {
         chunk: ChunkNumbers::EMPTY,
-        packet: BoxPacket::EMPTY,
+        gathered: LaneNumbers::EMPTY,
     };
 }
 
@@ -427,17 +439,17 @@ thread_local! {
 /// Splits `rays` (at most [`PACKET_SIZE`]) into packets of one octant each and calls
 /// `trace(packet)` for each (see [`BoxPacket::rays`]). Rays that hit nothing by
 /// definition (a non-finite origin or direction, a zero direction) are in no packet.
-pub(crate) fn for_each_packet(rays: &[Ray], mut trace: impl FnMut(&BoxPacket)) {
+pub(crate) fn for_each_packet(rays: &[Ray], mut trace: impl FnMut(&BoxPacket<'_>)) {
     if rays.is_empty() {
         return;
     }
     let mut split = |buffers: &mut PacketBuffers| {
-        let PacketBuffers { chunk, packet } = buffers;
+        let PacketBuffers { chunk, gathered } = buffers;
         chunk.fill(rays);
+        let chunk = &*chunk;
         for (octant, &mask) in chunk.octants.iter().enumerate() {
             if mask != 0 {
-                packet.fill(chunk, octant as u8, mask);
-                trace(packet);
+                trace(&BoxPacket::new(chunk, gathered, octant as u8, mask));
             }
         }
     };
@@ -460,7 +472,7 @@ pub(crate) fn for_each_packet(rays: &[Ray], mut trace: impl FnMut(&BoxPacket)) {
 /// rays, and each lane's closest hit so far, which the query lowers.
 pub(crate) struct PacketQuery<'a> {
     /// The packet, filled from `rays`.
-    pub(crate) packet: &'a BoxPacket,
+    pub(crate) packet: &'a BoxPacket<'a>,
     /// The rays the packet was filled from (see [`BoxPacket::rays`]).
     pub(crate) rays: &'a [Ray],
     /// The lanes to trace.
@@ -503,7 +515,7 @@ pub(crate) trait PacketVisitor {
 /// the packet, where hits may start, what happens at leaves, and a stack for the rays
 /// that finish subtrees on their own.
 struct PacketTraversal<'a, V, P> {
-    packet: &'a BoxPacket,
+    packet: &'a BoxPacket<'a>,
     t_min: f32,
     visitor: &'a mut V,
     /// Starts loading the items of a leaf a ray will visit.
@@ -520,7 +532,7 @@ impl Bvh {
     /// loading the items of a leaf a ray will visit.
     pub(crate) fn closest_packet(
         &self,
-        packet: &BoxPacket,
+        packet: &BoxPacket<'_>,
         lanes: u64,
         t_min: f32,
         t_max: &mut Lanes,
@@ -705,7 +717,7 @@ impl Bvh {
     /// its single-ray traversal ([`Bvh::any`]) would visit, and so gets its answer.
     pub(crate) fn any_packet(
         &self,
-        packet: &BoxPacket,
+        packet: &BoxPacket<'_>,
         lanes: u64,
         t_min: f32,
         t_max: f32,
@@ -742,7 +754,7 @@ impl Bvh {
 
     fn any_packet_with_stack<const OCTANT: u8>(
         &self,
-        packet: &BoxPacket,
+        packet: &BoxPacket<'_>,
         lanes: u64,
         t_min: f32,
         t_max: f32,
@@ -874,8 +886,8 @@ mod tests {
             let mut chunk = ChunkNumbers::EMPTY;
             chunk.fill(&rays);
             // Every direction is positive: octant 0.
-            let mut packet = BoxPacket::EMPTY;
-            packet.fill(&chunk, 0, chunk.octants[0]);
+            let mut gathered = LaneNumbers::EMPTY;
+            let packet = BoxPacket::new(&chunk, &mut gathered, 0, chunk.octants[0]);
             let (t_min4, t_max4) = (Vec4::ZERO, Vec4::splat(t_max));
             let (packet_mask, packet_near) = packet.hit_children::<0>(&node, t_min4, t_max4);
             for ray in &rays {
@@ -908,8 +920,8 @@ mod tests {
             // Octant 0b100: negative z only.
             assert_eq!(chunk.octants[4], 0b11);
             assert_eq!(chunk.octants[4] == chunk.all, !gathered);
-            let mut packet = BoxPacket::EMPTY;
-            packet.fill(&chunk, 4, chunk.octants[4]);
+            let mut gathered = LaneNumbers::EMPTY;
+            let packet = BoxPacket::new(&chunk, &mut gathered, 4, chunk.octants[4]);
             packet.coherent
         };
         for (length, gathered) in [(1.0, false), (3.0, false), (1.0, true), (3.0, true)] {
@@ -961,8 +973,8 @@ mod tests {
             let mut chunk = ChunkNumbers::EMPTY;
             chunk.fill(&rays);
             let octant = usize::from(direction.x < 0.0);
-            let mut packet = BoxPacket::EMPTY;
-            packet.fill(&chunk, octant as u8, chunk.octants[octant]);
+            let mut gathered = LaneNumbers::EMPTY;
+            let packet = BoxPacket::new(&chunk, &mut gathered, octant as u8, chunk.octants[octant]);
             assert!(packet.coherent);
             let mut t_max = [Vec4::INFINITY; PACKET_GROUPS];
             let mut nearest = Nearest {
@@ -1032,9 +1044,15 @@ mod tests {
                 for axis in 0..3 {
                     let lane = |lanes: &[Lanes; 3]| lane(&lanes[axis], i).to_bits();
                     let single = |lanes: &[Vec4; 3]| lanes[axis].x.to_bits();
-                    assert_eq!(lane(&chunk.origin_near), single(&single_ray.origin_near));
-                    assert_eq!(lane(&chunk.origin_far), single(&single_ray.origin_far));
-                    assert_eq!(lane(&chunk.inverse), single(&single_ray.inverse));
+                    assert_eq!(
+                        lane(&chunk.numbers.origin_near),
+                        single(&single_ray.origin_near)
+                    );
+                    assert_eq!(
+                        lane(&chunk.numbers.origin_far),
+                        single(&single_ray.origin_far)
+                    );
+                    assert_eq!(lane(&chunk.numbers.inverse), single(&single_ray.inverse));
                 }
             }
         }

@@ -511,7 +511,7 @@ pub struct ObjectHit {
 /// rays that reach the leaf.
 struct WorldVisitor<'a> {
     world: &'a World,
-    packet: &'a BoxPacket,
+    packet: &'a BoxPacket<'a>,
     rays: &'a [Ray],
     t_min: f32,
     best: &'a mut [Option<RawHit>; PACKET_SIZE],
