@@ -101,37 +101,39 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 0.9 to 1.2), and
+//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 1.1 to 1.5), and
 //! the three runs of the previous round; Embree's own figures move by a tenth to a third
-//! between runs (its 2-thread build took 0.239 to 0.316 s below), so read the ratios
+//! between runs (its 2-thread build took 0.222 to 0.302 s below), so read the ratios
 //! within a run:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | previous round (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.425 s (Embree 0.310: 0.73x) | 0.422 s (0.207: 0.49x) | 0.426 s (0.232: 0.54x) | 0.53x, 0.51x, 0.55x |
-//! | build, 2 threads | 0.226 s (0.239: 1.06x) | 0.251 s (0.279: 1.11x) | 0.275 s (0.316: 1.15x) | 0.92x, 0.98x, 0.92x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 14.18 Mrays/s (0.76x) | 12.45 (0.81x) | 14.48 (0.81x) | 0.72x, 0.81x, 0.80x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 0.92x | 0.93x | 0.96x | 0.85x, 1.01x, 0.97x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.21 Mrays/s (0.79x) | 5.53 (0.62x) | 6.95 (0.76x) | 0.73x, 0.71x, 0.78x |
-//! | incoherent vs `rtcIntersect1` | 1.69 Mrays/s (0.83x) | 1.53 (0.84x) | 1.32 (0.77x) | 0.84x, 0.82x, 0.74x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 25.36 Mrays/s (0.70x) | 28.70 (0.93x) | 28.68 (0.78x) | 0.67x, 0.69x, 0.81x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 2.81 Mrays/s (0.83x) | 3.38 (0.88x) | 3.43 (0.92x) | 0.95x, 0.93x, 0.96x |
+//! | build | 0.403 s (Embree 0.295: 0.73x) | 0.405 s (0.214: 0.53x) | 0.407 s (0.222: 0.55x) | 0.73x, 0.49x, 0.54x |
+//! | build, 2 threads | 0.233 s (0.222: 0.95x) | 0.230 s (0.255: 1.11x) | 0.229 s (0.302: 1.32x) | 1.06x, 1.11x, 1.15x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 14.04 Mrays/s (0.79x) | 15.42 (0.83x) | 15.29 (0.81x) | 0.76x, 0.81x, 0.81x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 0.92x | 1.00x | 1.03x | 0.92x, 0.93x, 0.96x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.37 Mrays/s (0.80x) | 6.62 (0.71x) | 7.44 (0.81x) | 0.79x, 0.62x, 0.76x |
+//! | incoherent vs `rtcIntersect1` | 1.72 Mrays/s (0.82x) | 1.67 (0.83x) | 1.76 (0.84x) | 0.83x, 0.84x, 0.77x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 30.24 Mrays/s (0.83x) | 30.48 (0.85x) | 28.02 (0.77x) | 0.70x, 0.93x, 0.78x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 2.82 Mrays/s (0.80x) | 3.53 (0.84x) | 3.47 (0.88x) | 0.83x, 0.88x, 0.92x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.3x to 4.0x faster than obvhs everywhere. Neither the tree nor the traversal changed
-//! between the two rounds, so the differences are the machine's: the 2-thread build,
-//! at 0.92x to 1.15x over six runs, is level with Embree's.
+//! 1.4x to 3.4x faster than obvhs everywhere. This round changed the packets' setup
+//! (each chunk's octant masks from per-axis sign bits; a packet holding all of a chunk's
+//! rays reads the chunk's numbers instead of a copy) and compiles this crate and
+//! `viewray-render` as one codegen unit each (see the workspace's `Cargo.toml`); the
+//! tree did not change. The 2-thread build is level with Embree's (0.92x to 1.32x over
+//! nine runs in three rounds).
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
-//! primary rays executes 49.5 M instructions in packets of 64 (`Bvh::closest_packet`),
-//! 77.5 M one by one (`Bvh::closest_prepared`, 81.4 M before the fixed-size push), and
-//! of 100,000 incoherent rays 151.8 M (158.5 M before). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 1,223 M instructions (1,849 M
-//! before the builder's rewrite). Instruction counts are no substitute for the table
-//! (Embree uses AVX-512 and its rays wait on memory), but two builds of viewray compare
-//! reliably.
+//! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
+//! 48.8 M instructions (49.6 M at the start of this round). Its `build` workload (the
+//! icosphere generated once, then built five times) executes 1,179 M instructions for the
+//! whole program (1,849 M before the builder's rewrite). Instruction counts are no
+//! substitute for the table (Embree uses AVX-512 and its rays wait on memory), but two
+//! builds of viewray compare reliably.
 //!
 //! Wider instruction sets, measured and left out:
 //!
@@ -159,26 +161,35 @@
 //!   time, `viewray-render`'s `examples/icosphere.rs` times the render against the same
 //!   rays traced as the same packets: the fastest of 11 runs gives 1.07x to 1.14x on 1
 //!   thread (before: 1.34x to 1.39x), the medians 1.16x to 1.18x (before: 1.31x to 1.40x),
-//!   three runs each, the two versions alternated; the aim is 1.10x. What is left is the
+//!   three runs each, the two versions alternated; the aim is 1.10x. This round, with the
+//!   packets 2% to 5% faster and the block loop unchanged: 1.15x by the fastest runs on
+//!   1 and 2 threads, 1.15x to 1.28x by the medians (two runs). What is left is the
 //!   camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping and Flat
 //!   shading, about 150 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 1,920 instructions per sample (442.7 M, the render
-//!   loop alone; 453.8 M before the world kept each plane's unit normal and uv axes and
-//!   grid lines stopped calling `roundf` and `floorf`): shadow-ray packets
-//!   ([`World::any_hits`], 84 M), primary and mirror packets (79 M), and shading and
-//!   bookkeeping, which is more than half: grid lines filtered over each sample's
-//!   footprint (`line_coverage` 37 M, the footprint and the ray differentials 32 M),
-//!   surface details (`World::surface`, 27 M), Blinn-Phong with `powf`, and each
-//!   sample's view, offset origin and shadow-ray directions. With so few objects a
-//!   packet's setup (its slab numbers, 52 M) costs as much as its traversal.
+//!   1`, 16 objects) executes about 1,800 instructions per sample (414.3 M, the render
+//!   loop alone; 442.7 M at the start of this round: octant masks 433.0 M, grid windows
+//!   between two lines returning 0 at once 421.1 M, one codegen unit 417.4 M, packets
+//!   without a copy 414.3 M): shadow-ray packets ([`World::any_hits`], 79 M), primary and
+//!   mirror packets (73 M), and shading and bookkeeping, which is more than half: grid
+//!   lines filtered over each sample's footprint (`line_coverage` 25 M; the footprint and
+//!   the ray differentials about 30 M), surface details (`World::surface`, 27 M),
+//!   Blinn-Phong with `powf`, and each sample's view, offset origin and shadow-ray
+//!   directions. With so few objects a packet's setup (its slab numbers and bounds,
+//!   43 M) costs as much as its traversal.
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
-//! --threads 2 --stats`, 38,387,820 rays), six runs on a quiet machine take 0.99 to
-//! 1.15 s (median 1.03 s). The renderer before shadow and mirror rays went as packets
-//! took 4.91 s (median) on the busier machine of that day against 3.91 s after; the 2x
-//! aimed for is far off, and shading and ray generation, which packets do not touch, are
-//! most of what is left.
+//! --threads 2 --stats`, 38,387,820 rays), seven runs alternated with the renderer of
+//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.897
+//! to 0.994 s, median 0.928 s, against 1.408 to 1.564 s, median 1.459 s: 1.57x by the
+//! medians (five alternated runs after this round's first two changes: 0.974 s against
+//! 1.433 s, 1.47x). The 2x aimed for
+//! is not reached; shading and ray generation, which packets do not touch, are most of
+//! what is left, spread over many small steps (the largest, the shadow rays' setup and
+//! Blinn-Phong in `lit_batch`, is a sixth of a sample), and two that looked like
+//! stalls in `perf` did not pay when changed: `line_coverage` inlined into its caller
+//! (0.882 s against 0.884 s, medians of 7) and `World::surface` inlined across crates
+//! (0.962 s against 0.911 s).
 
 mod aabb;
 mod bvh;
