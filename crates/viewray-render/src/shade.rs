@@ -687,7 +687,9 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
             return 1.0;
         }
         // Between two lines, touching neither (most samples): every overlap below is
-        // zero, and so is the coverage.
+        // zero, and so is the coverage. (The far edge's test decides only where rounding
+        // put `d` a little past half a spacing, far from the origin: there a window
+        // can reach the next line.)
         if (a >= half && b <= spacing - half) || (a >= -spacing + half && b <= -half) {
             return 0.0;
         }
@@ -864,7 +866,9 @@ mod tests {
 
     /// Windows narrower than a spacing: the coverage is the window's overlap with the
     /// nearest line and its two neighbours, bit for bit, also where a window lies between
-    /// two lines and the overlaps are not computed.
+    /// two lines and the overlaps are not computed. Windows are placed with an edge within
+    /// ulps of a line's edge, also far from the origin, where the offset from the nearest
+    /// line can come out a little over half a spacing.
     #[test]
     fn narrow_windows_cover_the_three_nearest_lines() {
         let grids = [
@@ -879,6 +883,17 @@ mod tests {
                 line_width: 0.0,
                 color: Vec3::ZERO,
             },
+            // Spacings that are not powers of two round `x / spacing`.
+            Grid {
+                spacing: 0.1,
+                line_width: 0.006,
+                color: Vec3::ZERO,
+            },
+            Grid {
+                spacing: 3.0,
+                line_width: 0.4,
+                color: Vec3::ZERO,
+            },
         ];
         let mut state = 0x2545_f491_u32;
         let mut random = move || {
@@ -887,37 +902,57 @@ mod tests {
             state ^= state << 5;
             state as f32 / u32::MAX as f32
         };
+        let mut beyond_half = 0;
         for grid in &grids {
             let (spacing, half) = (grid.spacing, 0.5 * grid.line_width.min(grid.spacing));
-            for _ in 0..200_000 {
-                let width = spacing * (1e-5 + 0.99 * random());
-                let line = (20.0 * random()).floor() - 10.0;
-                // Anywhere, or within a few ulps of a window's edge on a line's edge.
-                let offset = match (random() * 4.0) as u32 {
-                    0 => half + 0.5 * width,
-                    1 => spacing - half - 0.5 * width,
-                    2 => -half - 0.5 * width,
-                    _ => spacing * (random() - 0.5),
+            for _ in 0..100_000 {
+                // Up to 2,000 spacings from the origin, on a line, half-way between two,
+                // or anywhere.
+                let line = (4000.0 * random()).floor() - 2000.0;
+                let x = match (random() * 3.0) as u32 {
+                    0 => line * spacing,
+                    1 => (line + 0.5) * spacing,
+                    _ => (line + random()) * spacing,
                 };
-                let nudge = (random() * 8.0) as u32;
-                let x = f32::from_bits((line * spacing + offset).to_bits().wrapping_add(nudge) - 4);
                 let d = x - round(x / spacing) * spacing;
-                let (a, b) = (d - 0.5 * width, d + 0.5 * width);
-                let expected = if a >= -half && b <= half {
-                    1.0
-                } else {
-                    let overlap =
-                        |centre: f32| (b.min(centre + half) - a.max(centre - half)).max(0.0);
-                    ((overlap(-spacing) + overlap(0.0) + overlap(spacing)) / width).clamp(0.0, 1.0)
-                };
-                let got = line_coverage(x, width, grid);
-                assert_eq!(
-                    got.to_bits(),
-                    expected.to_bits(),
-                    "x {x} width {width}: {got}, expected {expected}"
-                );
+                if d.abs() > 0.5 * spacing {
+                    beyond_half += 1;
+                }
+                // Windows anywhere, and windows whose left edge is on the right edge of
+                // the nearest line or of the one before, or whose right edge is on the
+                // left edge of the nearest line or of the one after.
+                let edges = [
+                    spacing * (1e-5 + 0.99 * random()),
+                    2.0 * (d - half),
+                    2.0 * (d + spacing - half),
+                    2.0 * (-half - d),
+                    2.0 * (spacing - half - d),
+                ];
+                for edge in edges {
+                    let nudge = (random() * 8.0) as u32;
+                    let width = f32::from_bits(edge.to_bits().wrapping_add(nudge).wrapping_sub(4));
+                    if !(width > 1e-6 * spacing && width < spacing) {
+                        continue;
+                    }
+                    let (a, b) = (d - 0.5 * width, d + 0.5 * width);
+                    let expected = if a >= -half && b <= half {
+                        1.0
+                    } else {
+                        let overlap =
+                            |centre: f32| (b.min(centre + half) - a.max(centre - half)).max(0.0);
+                        ((overlap(-spacing) + overlap(0.0) + overlap(spacing)) / width)
+                            .clamp(0.0, 1.0)
+                    };
+                    let got = line_coverage(x, width, grid);
+                    assert_eq!(
+                        got.to_bits(),
+                        expected.to_bits(),
+                        "x {x} width {width}: {got}, expected {expected}"
+                    );
+                }
             }
         }
+        assert!(beyond_half > 0, "no offset past half a spacing was tried");
     }
 
     #[test]
