@@ -112,7 +112,7 @@ impl<'a> BoxPacket<'a> {
             (chunk.len, &chunk.numbers)
         } else {
             // Gather the rays of `mask`, lane by lane.
-            let (from_numbers, to_numbers) = (&chunk.numbers, &mut *gathered);
+            let (source, target) = (&chunk.numbers, gathered);
             let mut lane = 0;
             for i in lanes_of(mask) {
                 let (from, to) = ((i / 4, i % 4), (lane / 4, lane % 4));
@@ -120,7 +120,6 @@ impl<'a> BoxPacket<'a> {
                 length_squared_min =
                     length_squared_min.min(Vec4::splat(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
                 for axis in 0..3 {
-                    let (source, target) = (from_numbers, &mut *to_numbers);
                     target.origin_near[axis][to.0][to.1] = source.origin_near[axis][from.0][from.1];
                     target.origin_far[axis][to.0][to.1] = source.origin_far[axis][from.0][from.1];
                     target.inverse[axis][to.0][to.1] = source.inverse[axis][from.0][from.1];
@@ -133,14 +132,14 @@ impl<'a> BoxPacket<'a> {
             // Fill the last group's unused lanes with copies of the first ray: they are
             // never in a mask, but must not widen the bounds.
             for slot in lane..lane.next_multiple_of(4) {
-                let target = &mut *to_numbers;
                 for axis in 0..3 {
                     target.origin_near[axis][slot / 4][slot % 4] = target.origin_near[axis][0][0];
                     target.origin_far[axis][slot / 4][slot % 4] = target.origin_far[axis][0][0];
                     target.inverse[axis][slot / 4][slot % 4] = target.inverse[axis][0][0];
                 }
             }
-            (lane, &*gathered)
+            let target: &'a LaneNumbers = target;
+            (lane, target)
         };
         debug_assert!(len > 0);
         let groups = len.div_ceil(4);
