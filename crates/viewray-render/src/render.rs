@@ -159,7 +159,8 @@ const BLOCK_SIZE: u32 = 8;
 struct TileBuffers {
     /// The tile's pixels, row by row.
     pixels: Vec<Vec3>,
-    /// Each pixel's ray differentials, worked out by the first sample that needs them.
+    /// Each pixel's ray differentials, worked out by the first sample that needs them
+    /// (empty when the shading asks for no film points).
     differentials: Vec<OnceCell<Option<RayDifferentials>>>,
     /// A block's rays, and for each the pixel it belongs to: its index in `pixels`,
     /// its row and its column.
@@ -202,8 +203,12 @@ impl TileBuffers {
         let pixel_count = tile.width as usize * tile.height as usize;
         self.pixels.clear();
         self.pixels.resize(pixel_count, Vec3::ZERO);
+        // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
+        // shading that may ask for film points.
         self.differentials.clear();
-        self.differentials.resize_with(pixel_count, OnceCell::new);
+        if shader.uses_film_points() {
+            self.differentials.resize_with(pixel_count, OnceCell::new);
+        }
         let mut rays = 0;
         for index in 0..samples {
             for block_row in (tile.row..tile.row + tile.height).step_by(BLOCK_SIZE as usize) {

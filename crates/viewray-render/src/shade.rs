@@ -193,6 +193,16 @@ impl<'a> Shader<'a> {
         }
     }
 
+    /// Whether [`Shader::shade_primaries`] may ask for film points: Lit shading always,
+    /// Flat shading where a material has grid lines, the data images never.
+    pub(crate) fn uses_film_points(&self) -> bool {
+        match self.shading {
+            Shading::Lit => true,
+            Shading::Flat => self.scene.materials().iter().any(|m| m.grid.is_some()),
+            Shading::Normals | Shading::Depth => false,
+        }
+    }
+
     /// The value stored where a ray hits nothing (or where a camera has no ray).
     #[inline]
     pub(crate) fn background(&self) -> Vec3 {
