@@ -48,8 +48,10 @@
 //!   aligned SIMD registers with the index in a spare lane, and the three bins of an item
 //!   are one SSE2 conversion. Large ranges bin their even and odd items into two sets of
 //!   bins merged after (neighbouring items fall in the same bins, and one set would make
-//!   each update wait for the last). Each of these leaves the tree the same, node for
-//!   node. Around the tree, a mesh writes its build items in place in parallel and fills
+//!   each update wait for the last). A split moves the items first and then folds each
+//!   side's bounds, even and odd items in two chains (gathered while moving, both sides'
+//!   eight accumulators spilled out of the SSE registers). Each of these leaves the tree
+//!   the same, node for node. Around the tree, a mesh writes its build items in place in parallel and fills
 //!   its triangle packets in parallel too: on 2 threads these serial steps had been a
 //!   fifth of the build.
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
@@ -130,8 +132,11 @@
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
 //! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
 //! 48.8 M instructions (49.6 M at the start of this round). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 1,179 M instructions for the
-//! whole program (1,849 M before the builder's rewrite). Instruction counts are no
+//! icosphere generated once, then built five times) executes 1,151 M instructions for the
+//! whole program (1,179 M before a split's bounds were folded after the partition,
+//! 1,849 M before the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in
+//! 2.39 s against 2.50 s on 1 thread and 1.37 s against 1.49 s on 2 (medians of seven
+//! alternated runs; the table above is from before that change). Instruction counts are no
 //! substitute for the table (Embree uses AVX-512 and its rays wait on memory), but two
 //! builds of viewray compare reliably.
 //!
@@ -154,7 +159,7 @@
 //! bin's three boxes unioned, the three half areas in one `Vec3A` with the same
 //! operations in the same order, the choice then made axis by axis as before) builds the
 //! same tree, node for node, but executes 5.6% more instructions (1,245 M against
-//! 1,179 M for the `build` workload): the sweep axis by axis skips empty bins, and most
+//! 1,179 M for the `build` workload, before the partition change): the sweep axis by axis skips empty bins, and most
 //! of the ranges a build sees are small ones with many.
 //!
 //! Where the time goes (callgrind, one thread):
