@@ -103,29 +103,30 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load average 1.1 to 1.5), and
-//! the three runs of the previous round; Embree's own figures move by a tenth to a third
-//! between runs (its 2-thread build took 0.222 to 0.302 s below), so read the ratios
-//! within a run:
+//! at the end of this round (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load
+//! average 1.5 to 1.9), and the three runs of the previous round; Embree's own figures
+//! move by a tenth to a third between runs (its 1-thread build took 0.216 to 0.332 s
+//! below), so read the ratios within a run:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | previous round (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.403 s (Embree 0.295: 0.73x) | 0.405 s (0.214: 0.53x) | 0.407 s (0.222: 0.55x) | 0.73x, 0.49x, 0.54x |
-//! | build, 2 threads | 0.233 s (0.222: 0.95x) | 0.230 s (0.255: 1.11x) | 0.229 s (0.302: 1.32x) | 1.06x, 1.11x, 1.15x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 14.04 Mrays/s (0.79x) | 15.42 (0.83x) | 15.29 (0.81x) | 0.76x, 0.81x, 0.81x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 0.92x | 1.00x | 1.03x | 0.92x, 0.93x, 0.96x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.37 Mrays/s (0.80x) | 6.62 (0.71x) | 7.44 (0.81x) | 0.79x, 0.62x, 0.76x |
-//! | incoherent vs `rtcIntersect1` | 1.72 Mrays/s (0.82x) | 1.67 (0.83x) | 1.76 (0.84x) | 0.83x, 0.84x, 0.77x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 30.24 Mrays/s (0.83x) | 30.48 (0.85x) | 28.02 (0.77x) | 0.70x, 0.93x, 0.78x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 2.82 Mrays/s (0.80x) | 3.53 (0.84x) | 3.47 (0.88x) | 0.83x, 0.88x, 0.92x |
+//! | build | 0.384 s (Embree 0.298: 0.78x) | 0.394 s (0.216: 0.55x) | 0.399 s (0.332: 0.83x) | 0.73x, 0.49x, 0.54x |
+//! | build, 2 threads | 0.205 s (0.212: 1.03x) | 0.258 s (0.213: 0.83x) | 0.213 s (0.221: 1.03x) | 1.06x, 1.11x, 1.15x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 15.57 Mrays/s (0.83x) | 15.54 (0.83x) | 15.45 (0.87x) | 0.76x, 0.81x, 0.81x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.00x | 1.01x | 1.04x | 0.92x, 0.93x, 0.96x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.30 Mrays/s (0.78x) | 7.21 (0.78x) | 7.08 (0.76x) | 0.79x, 0.62x, 0.76x |
+//! | incoherent vs `rtcIntersect1` | 1.99 Mrays/s (0.97x) | 1.80 (0.81x) | 1.69 (0.85x) | 0.83x, 0.84x, 0.77x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 30.43 Mrays/s (0.81x) | 30.30 (0.83x) | 22.58 (0.68x) | 0.70x, 0.93x, 0.78x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.90 Mrays/s (0.93x) | 3.27 (0.77x) | 2.74 (0.80x) | 0.83x, 0.88x, 0.92x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.4x to 3.4x faster than obvhs everywhere. This round changed the packets' setup
+//! 1.4x to 3.7x faster than obvhs everywhere. This round changed the packets' setup
 //! (each chunk's octant masks from per-axis sign bits; a packet holding all of a chunk's
 //! rays reads the chunk's numbers instead of a copy) and compiles this crate and
-//! `viewray-render` as one codegen unit each (see the workspace's `Cargo.toml`); the
-//! tree did not change. The 2-thread build is level with Embree's (0.92x to 1.32x over
-//! nine runs in three rounds).
+//! `viewray-render` as one codegen unit each (see the workspace's `Cargo.toml`), and
+//! its build folds a split's bounds after the partition; the tree did not change. The
+//! 2-thread build is level with Embree's (0.83x to 1.32x over twelve runs in three
+//! rounds).
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
@@ -136,7 +137,7 @@
 //! whole program (1,179 M before a split's bounds were folded after the partition,
 //! 1,849 M before the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in
 //! 2.39 s against 2.50 s on 1 thread and 1.37 s against 1.49 s on 2 (medians of seven
-//! alternated runs; the table above is from before that change). Instruction counts are no
+//! alternated runs). Instruction counts are no
 //! substitute for the table (Embree uses AVX-512 and its rays wait on memory), but two
 //! builds of viewray compare reliably.
 //!
