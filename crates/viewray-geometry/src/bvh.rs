@@ -1357,21 +1357,15 @@ impl Builder {
 /// accumulators and the split plane do not fit the sixteen SSE registers, and each
 /// item's update went through the stack.)
 fn partition(items: &mut [BuildItem], goes_left: impl Fn(&BuildItem) -> bool) -> usize {
-    let (mut i, mut j) = (0, items.len());
-    loop {
-        while i < j && goes_left(&items[i]) {
-            i += 1;
-        }
-        while i < j && !goes_left(&items[j - 1]) {
-            j -= 1;
-        }
-        if i >= j {
-            return i;
-        }
-        items.swap(i, j - 1);
-        i += 1;
-        j -= 1;
+    let mut left = 0;
+    for i in 0..items.len() {
+        let item = items[i];
+        let go = goes_left(&item);
+        items[i] = items[left];
+        items[left] = item;
+        left += usize::from(go);
     }
+    left
 }
 
 #[cfg(test)]

@@ -50,10 +50,15 @@
 //!   bins merged after (neighbouring items fall in the same bins, and one set would make
 //!   each update wait for the last). A split moves the items first and then folds each
 //!   side's bounds, even and odd items in two chains (gathered while moving, both sides'
-//!   eight accumulators spilled out of the SSE registers). Each of these leaves the tree
-//!   the same, node for node. Around the tree, a mesh writes its build items in place in parallel and fills
-//!   its triangle packets in parallel too: on 2 threads these serial steps had been a
-//!   fifth of the build.
+//!   eight accumulators spilled out of the SSE registers). The move is one pass without
+//!   a branch on the side: each item is swapped with the first item not yet known to go
+//!   left, and the count of left items grows by 0 or 1 (the two-ended partition it
+//!   replaced branched on every item's side, which a processor cannot predict). Each of these
+//!   leaves the nodes the same; the last one changes the order of a leaf's triangles,
+//!   which matters only where a ray meets two of them at exactly the same distance (no
+//!   image or hit checksum changed). Around the tree, a mesh writes its build items in
+//!   place in parallel and fills its triangle packets in parallel too: on 2 threads
+//!   these serial steps had been a fifth of the build.
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
 //!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
 //!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
@@ -133,11 +138,12 @@
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
 //! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
 //! 48.8 M instructions (49.6 M at the start of this round). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 1,151 M instructions for the
-//! whole program (1,179 M before a split's bounds were folded after the partition,
-//! 1,849 M before the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in
-//! 2.39 s against 2.50 s on 1 thread and 1.37 s against 1.49 s on 2 (medians of seven
-//! alternated runs). Instruction counts are no
+//! icosphere generated once, then built five times) executes 1,187 M instructions for the
+//! whole program (1,151 M before the partition lost its branches: more instructions, less
+//! time; 1,179 M before a split's bounds were folded after the partition, 1,849 M before
+//! the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in 2.29 s on 1
+//! thread against 2.46 s with the branching partition (medians of seven alternated runs),
+//! and in 1.50 s against 1.57 s on 2 (nine, on a busy machine). Instruction counts are no
 //! substitute for the table (Embree uses AVX-512 and its rays wait on memory), but two
 //! builds of viewray compare reliably.
 //!
