@@ -66,8 +66,10 @@
 //! together: their shadow rays toward each light go to
 //! [`World::any_hits`](viewray_geometry::World::any_hits) as one batch, their reflected
 //! rays to `closest_objects`, and the reflected hits are shaded as a batch one bounce
-//! deeper; each sample still sums its lights in order with the same numbers, so the
-//! image is the same as sample by sample.
+//! deeper. The lighting itself is worked out four samples at a time, light by light,
+//! in SIMD lanes (structure of arrays) that do glam's operations in glam's order, `powf`
+//! lane by lane; each sample still sums its lights in order with the same numbers, so
+//! the image is the same, bit for bit, as sample by sample.
 //!
 //! # Output
 //!
@@ -96,6 +98,7 @@
 //! ```
 
 mod image;
+mod lanes;
 mod render;
 mod sampling;
 mod shade;

@@ -2,13 +2,14 @@
 
 use std::cell::OnceCell;
 
-use glam::{DVec2, Vec3};
+use glam::{DVec2, Vec3, Vec4};
 use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Hit, Object, ObjectHit, Ray};
 use viewray_output::linear_to_srgb;
 use viewray_scene::{Grid, Light, Material, Scene, Shading};
 
 use crate::View;
+use crate::lanes::{self, Vec3x4};
 
 /// Where primary rays start their search: `t > 0`, as the camera contract says.
 const T_MIN: f32 = f32::MIN_POSITIVE;
@@ -294,9 +295,10 @@ impl<'a> Shader<'a> {
     ///
     /// The batch's shadow rays toward each light are traced together
     /// ([`World::any_hits`](viewray_geometry::World::any_hits)), and so are its
-    /// reflected rays, whose hits are then shaded as a batch one bounce deeper. Each
-    /// sample's colour is summed in the same order and with the same numbers as one
-    /// sample shaded alone, so the batch changes no pixel.
+    /// reflected rays, whose hits are then shaded as a batch one bounce deeper. The
+    /// lighting is worked out four samples at a time ([`Vec3x4`]), light by light;
+    /// each sample's colour is summed in the same order and with the same numbers as
+    /// one sample shaded alone, so neither the batch nor the lanes change a pixel.
     fn lit_batch(
         &self,
         rays: &[Ray],
@@ -310,47 +312,109 @@ impl<'a> Shader<'a> {
         let lights = self.scene.lights();
         let n = rays.len();
 
-        // Find each sample's material, surface colour and where its secondary rays start.
-        let samples: Vec<LitSample<'_>> = rays
-            .iter()
-            .zip(hits)
-            .enumerate()
-            .map(|(i, (ray, hit))| {
+        // Each sample's material and surface colour, one by one (grid lines branch);
+        // then, four at a time, where its secondary rays start and the view direction.
+        let mut materials = Vec::with_capacity(n);
+        let mut groups: Vec<LitGroup> = Vec::with_capacity(n.div_ceil(4));
+        for (g, (rays, hits)) in rays.chunks(4).zip(hits.chunks(4)).enumerate() {
+            let mut base = [Vec3::ZERO; 4];
+            let mut specular = [Vec3::ZERO; 4];
+            let mut shininess = [0.0; 4];
+            let mut specular_lanes = 0;
+            for (j, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 let material = self.scene.material(hit);
-                let base = surface_color(material, hit, || {
-                    films.map_or(Footprint::Point, |f| self.footprint(&f[i], ray, hit))
+                base[j] = surface_color(material, hit, || {
+                    films.map_or(Footprint::Point, |f| {
+                        self.footprint(&f[4 * g + j], ray, hit)
+                    })
                 });
-                LitSample {
-                    material,
-                    base,
-                    view: -ray.direction.normalize_or_zero(),
-                    origin: offset_origin(hit, ray),
+                specular[j] = material.specular;
+                shininess[j] = material.shininess;
+                if material.specular != Vec3::ZERO {
+                    specular_lanes |= 1 << j;
                 }
-            })
-            .collect();
+                materials.push(material);
+            }
+            // Spare lanes repeat the last sample; no light adds to them.
+            let last = rays.len() - 1;
+            let lanes = |f: &dyn Fn(usize) -> Vec3| {
+                Vec3x4::from_lanes(std::array::from_fn(|j| f(j.min(last))))
+            };
+            let direction = lanes(&|j| rays[j].direction);
+            let point = lanes(&|j| hits[j].point);
+            let normal = lanes(&|j| hits[j].normal);
+            let t = Vec4::from_array(std::array::from_fn(|j| hits[j.min(last)].t));
+            groups.push(LitGroup {
+                lanes: (1 << rays.len()) - 1,
+                base: lanes(&|j| base[j]),
+                specular: lanes(&|j| specular[j]),
+                shininess,
+                specular_lanes,
+                normal,
+                shading_normal: lanes(&|j| hits[j].shading_normal),
+                view: -direction.normalize_or_zero(),
+                origin: offset_origin(point, normal, t, direction),
+                color: Vec3x4::ZERO,
+            });
+        }
 
-        // Cast the shadow rays, light by light; `lit[light * n + sample]` is what the
-        // light gives the sample, `None` where it is ambient, behind the surface or
-        // blocked.
-        let mut lit: Vec<Option<Lighting>> = vec![None; lights.len() * n];
+        // Headlight: a light at the eye, so a scene without lights is still visible.
+        if lights.is_empty() {
+            for group in &mut groups {
+                let lit = group.blinn_phong(group.view, group.lanes);
+                group.color = group.color
+                    + (group.base * Vec4::splat(HEADLIGHT_AMBIENT)
+                        + lit * Vec4::splat(1.0 - HEADLIGHT_AMBIENT));
+            }
+        }
+
+        // The lights in order: each light's shadow rays traced together, then what it
+        // gives the samples that face it and see it added to their colours.
         let mut shadow_rays = Vec::with_capacity(n);
         let mut shadow_samples = Vec::with_capacity(n);
         let mut answers = Vec::with_capacity(n);
-        for (k, light) in lights.iter().enumerate() {
-            let t_range = match light {
-                Light::Ambient { .. } => continue,
-                // The light sits at t = 1.
-                Light::Point { .. } => 0.0..1.0,
-                Light::Directional { .. } => 0.0..f32::INFINITY,
+        // Per group: the lanes facing the light, the direction to it and the squared
+        // distance (point lights).
+        let mut toward = vec![(0_u32, Vec3x4::ZERO, Vec4::ONE); groups.len()];
+        for light in lights {
+            let (intensity, t_range) = match *light {
+                Light::Ambient { intensity } => {
+                    for group in &mut groups {
+                        group.color = group.color + group.base * Vec3x4::splat(intensity);
+                    }
+                    continue;
+                }
+                // The light sits at t = 1 of the ray toward it.
+                Light::Point { intensity, .. } => (intensity, 0.0..1.0),
+                Light::Directional { intensity, .. } => (intensity, 0.0..f32::INFINITY),
             };
             shadow_rays.clear();
             shadow_samples.clear();
-            let lit = &mut lit[k * n..(k + 1) * n];
-            for (i, (sample, hit)) in samples.iter().zip(hits).enumerate() {
-                if let Some((ray, lighting)) = toward_light(light, sample.origin, hit.normal) {
-                    shadow_rays.push(ray);
-                    shadow_samples.push(i);
-                    lit[i] = Some(lighting);
+            for (g, (group, toward)) in groups.iter().zip(&mut toward).enumerate() {
+                // The direction toward the light, and the ray's: to the light itself for
+                // a point light (the light at t = 1), along the direction for a
+                // directional one. No light where it is behind the surface or at the
+                // point itself.
+                let (l, ray_direction, distance_squared, facing) = match *light {
+                    Light::Point { position, .. } => {
+                        let to_light = Vec3x4::splat(position) - group.origin;
+                        let distance_squared = to_light.dot(to_light);
+                        let l = to_light / distance_squared.sqrt();
+                        let behind = distance_squared.cmple(Vec4::ZERO)
+                            | group.normal.dot(l).cmple(Vec4::ZERO);
+                        (l, to_light, distance_squared, behind)
+                    }
+                    Light::Directional { direction, .. } => {
+                        let l = Vec3x4::splat(-direction);
+                        (l, l, Vec4::ONE, group.normal.dot(l).cmple(Vec4::ZERO))
+                    }
+                    Light::Ambient { .. } => unreachable!("ambient lights are added above"),
+                };
+                let facing = !lanes::bits(facing) & group.lanes;
+                *toward = (facing, l, distance_squared);
+                for j in lanes_of(facing) {
+                    shadow_rays.push(Ray::new(group.origin.lane(j), ray_direction.lane(j)));
+                    shadow_samples.push(4 * g + j);
                 }
             }
             *count += shadow_rays.len() as u64;
@@ -359,57 +423,31 @@ impl<'a> Shader<'a> {
             world.any_hits(&shadow_rays, t_range, &mut answers);
             for (&i, &blocked) in shadow_samples.iter().zip(&answers) {
                 if blocked {
-                    lit[i] = None;
+                    toward[i / 4].0 &= !(1 << (i % 4));
                 }
+            }
+            let point = matches!(light, Light::Point { .. });
+            for (group, &(seen, l, distance_squared)) in groups.iter_mut().zip(&toward) {
+                if seen == 0 {
+                    continue;
+                }
+                let lit = group.blinn_phong(l, seen);
+                let added = if point {
+                    // Inverse-square falloff: intensity / d^2, then times Blinn-Phong.
+                    (Vec3x4::splat(intensity) / distance_squared) * lit
+                } else {
+                    Vec3x4::splat(intensity) * lit
+                };
+                group.color = Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
             }
         }
-
-        // Sum the lights in order.
-        for (i, (sample, hit)) in samples.iter().zip(hits).enumerate() {
-            let LitSample {
-                material,
-                base,
-                view,
-                ..
-            } = *sample;
-            let n_shading = hit.shading_normal;
-            let mut color = Vec3::ZERO;
-            if lights.is_empty() {
-                // Headlight: a light at the eye, so a scene without lights is still visible.
-                color += base * HEADLIGHT_AMBIENT
-                    + (1.0 - HEADLIGHT_AMBIENT)
-                        * blinn_phong(base, material, n_shading, view, view);
-            }
-            for (k, light) in lights.iter().enumerate() {
-                if let Light::Ambient { intensity } = *light {
-                    color += base * intensity;
-                    continue;
-                }
-                let Some(lighting) = lit[k * n + i] else {
-                    continue;
-                };
-                color += match lighting {
-                    Lighting::Point {
-                        l,
-                        distance_squared,
-                        intensity,
-                    } => {
-                        intensity / distance_squared
-                            * blinn_phong(base, material, n_shading, l, view)
-                    }
-                    Lighting::Directional { l, intensity } => {
-                        intensity * blinn_phong(base, material, n_shading, l, view)
-                    }
-                };
-            }
-            colors[i] = color;
+        for (i, color) in colors.iter_mut().enumerate().take(n) {
+            *color = groups[i / 4].color.lane(i % 4);
         }
 
         // Follow the mirrors: the reflected rays of the batch are traced and shaded
         // together, one bounce deeper.
-        let mirrors: Vec<usize> = (0..n)
-            .filter(|&i| samples[i].material.mirror > 0.0)
-            .collect();
+        let mirrors: Vec<usize> = (0..n).filter(|&i| materials[i].mirror > 0.0).collect();
         if mirrors.is_empty() {
             return;
         }
@@ -418,9 +456,10 @@ impl<'a> Shader<'a> {
             let mirror_rays: Vec<Ray> = mirrors
                 .iter()
                 .map(|&i| {
-                    let sample = &samples[i];
-                    let direction = reflect(-sample.view, hits[i].shading_normal, hits[i].normal);
-                    Ray::new(sample.origin, direction)
+                    let group = &groups[i / 4];
+                    let view = group.view.lane(i % 4);
+                    let direction = reflect(-view, hits[i].shading_normal, hits[i].normal);
+                    Ray::new(group.origin.lane(i % 4), direction)
                 })
                 .collect();
             *count += mirror_rays.len() as u64;
@@ -454,7 +493,7 @@ impl<'a> Shader<'a> {
             }
         }
         for (&i, reflected) in mirrors.iter().zip(reflected) {
-            colors[i] = colors[i].lerp(reflected, samples[i].material.mirror);
+            colors[i] = colors[i].lerp(reflected, materials[i].mirror);
         }
     }
 
@@ -520,92 +559,68 @@ impl<'a> Shader<'a> {
     }
 }
 
-/// A lit sample between its shadow rays and its sum over the lights.
+/// Four samples of a lit batch, side by side (see [`Vec3x4`]), from their surface
+/// details to their colours.
 #[derive(Clone, Copy)]
-struct LitSample<'m> {
-    material: &'m Material,
+struct LitGroup {
+    /// The lanes that hold a sample (the others repeat the last one).
+    lanes: u32,
     /// The surface colour (with grid lines).
-    base: Vec3,
+    base: Vec3x4,
+    /// The material's specular colour and exponent, and the lanes where the specular
+    /// colour is not zero.
+    specular: Vec3x4,
+    shininess: [f32; 4],
+    specular_lanes: u32,
+    /// The geometric normal and the normal to shade with.
+    normal: Vec3x4,
+    shading_normal: Vec3x4,
     /// The unit direction toward the eye.
-    view: Vec3,
+    view: Vec3x4,
     /// Where secondary rays start (see [`offset_origin`]).
-    origin: Vec3,
+    origin: Vec3x4,
+    /// The colour summed so far.
+    color: Vec3x4,
 }
 
-/// What a point or directional light gives a surface point that faces it.
-#[derive(Clone, Copy)]
-enum Lighting {
-    /// A point light: the unit direction to it, the squared distance and the intensity.
-    Point {
-        l: Vec3,
-        distance_squared: f32,
-        intensity: Vec3,
-    },
-    /// A directional light: the unit direction toward it and the intensity.
-    Directional { l: Vec3, intensity: Vec3 },
-}
-
-/// The shadow ray from `origin` (on a surface with geometric normal `normal`) toward
-/// `light` and what the light gives the point if that ray is not blocked; `None` for an
-/// ambient light, and for a light behind the surface or at the point itself. A point
-/// light sits at `t = 1` of its shadow ray.
-#[inline]
-fn toward_light(light: &Light, origin: Vec3, normal: Vec3) -> Option<(Ray, Lighting)> {
-    match *light {
-        Light::Ambient { .. } => None,
-        Light::Point {
-            position,
-            intensity,
-        } => {
-            // Find the direction to the light and the inverse-square falloff.
-            let to_light = position - origin;
-            let distance_squared = to_light.length_squared();
-            let l = to_light / distance_squared.sqrt();
-            if distance_squared <= 0.0 || normal.dot(l) <= 0.0 {
-                return None;
+impl LitGroup {
+    /// Blinn-Phong for the light direction `l` (unit vectors), per unit of the light's
+    /// irradiance, in the lanes of `lanes` (zero in the others):
+    ///
+    /// ```text
+    /// color max(0, n.l) + specular max(0, n.h)^shininess,   h = (l + v) / |l + v|
+    /// ```
+    ///
+    /// (zero where `n.l <= 0`; no specular term where the specular colour is zero).
+    /// `powf` is taken lane by lane.
+    #[inline]
+    fn blinn_phong(&self, l: Vec3x4, lanes: u32) -> Vec3x4 {
+        let n = self.shading_normal;
+        let n_dot_l = n.dot(l);
+        let lit = !lanes::bits(n_dot_l.cmple(Vec4::ZERO)) & lanes;
+        let mut color = self.base * n_dot_l;
+        let specular = lit & self.specular_lanes;
+        if specular != 0 {
+            let h = (l + self.view).normalize_or_zero();
+            let n_dot_h = n.dot(h);
+            let mut power = [0.0; 4];
+            for j in lanes_of(specular) {
+                power[j] = n_dot_h[j].max(0.0).powf(self.shininess[j]);
             }
-            Some((
-                Ray::new(origin, to_light),
-                Lighting::Point {
-                    l,
-                    distance_squared,
-                    intensity,
-                },
-            ))
+            color = Vec3x4::select(
+                lanes::mask(specular),
+                color + self.specular * Vec4::from_array(power),
+                color,
+            );
         }
-        Light::Directional {
-            direction,
-            intensity,
-        } => {
-            let l = -direction;
-            if normal.dot(l) <= 0.0 {
-                return None;
-            }
-            Some((Ray::new(origin, l), Lighting::Directional { l, intensity }))
-        }
+        Vec3x4::select(lanes::mask(lit), color, Vec3x4::ZERO)
     }
 }
 
-/// Blinn-Phong for one light direction `l` and view direction `v` (unit vectors), per
-/// unit of the light's irradiance:
-///
-/// ```text
-/// color max(0, n.l) + specular max(0, n.h)^shininess,   h = (l + v) / |l + v|
-/// ```
-///
-/// (no specular where `n.l <= 0`).
+/// The set bits of `mask`, lowest first.
 #[inline]
-fn blinn_phong(base: Vec3, material: &Material, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
-    let n_dot_l = n.dot(l);
-    if n_dot_l <= 0.0 {
-        return Vec3::ZERO;
-    }
-    let mut color = base * n_dot_l;
-    if material.specular != Vec3::ZERO {
-        let h = (l + v).normalize_or_zero();
-        color += material.specular * n.dot(h).max(0.0).powf(material.shininess);
-    }
-    color
+fn lanes_of(mask: u32) -> impl Iterator<Item = usize> {
+    (0..4).filter(move |j| mask & (1 << j) != 0)
 }
 
 /// The mirror direction of the unit direction `d` about the shading normal `n`,
@@ -621,14 +636,22 @@ fn reflect(d: Vec3, n: Vec3, ng: Vec3) -> Vec3 {
     }
 }
 
-/// Where secondary rays from `hit` start: the hit point moved off the surface along the
-/// geometric normal, on the side the ray came from, by [`OFFSET_SCALE`] of the size of
-/// its coordinates plus [`OFFSET_PER_DISTANCE`] of the distance the ray travelled.
+/// Where secondary rays start, four hits at a time: the hit point `point` moved off
+/// the surface along the geometric normal `normal` (on the side the ray came from), by
+/// [`OFFSET_SCALE`] of the size of its coordinates plus [`OFFSET_PER_DISTANCE`] of the
+/// distance the ray travelled (`t` times the length of its direction `direction`):
+///
+/// ```text
+/// point + normal (OFFSET_SCALE (1 + max |coordinate|) + OFFSET_PER_DISTANCE t |direction|)
+/// ```
 #[inline]
-fn offset_origin(hit: &Hit, ray: &Ray) -> Vec3 {
-    let magnitude = hit.point.abs().max_element();
-    let travelled = hit.t * ray.direction.length();
-    hit.point + hit.normal * (OFFSET_SCALE * (1.0 + magnitude) + OFFSET_PER_DISTANCE * travelled)
+fn offset_origin(point: Vec3x4, normal: Vec3x4, t: Vec4, direction: Vec3x4) -> Vec3x4 {
+    let magnitude = point.abs_max_element();
+    let travelled = t * direction.dot(direction).sqrt();
+    point
+        + normal
+            * (Vec4::splat(OFFSET_SCALE) * (Vec4::ONE + magnitude)
+                + Vec4::splat(OFFSET_PER_DISTANCE) * travelled)
 }
 
 /// The part of a surface one sample stands for, over which grid lines are averaged.
@@ -963,6 +986,122 @@ mod tests {
             }
         }
         assert!(beyond_half > 0, "no offset past half a spacing was tried");
+    }
+
+    /// Random vectors from a fixed seed: unit vectors, or colours in `[0, 1)`.
+    struct Numbers(u32);
+
+    impl Numbers {
+        fn uniform(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            (self.0 >> 8) as f32 / (1 << 24) as f32
+        }
+
+        fn color(&mut self) -> Vec3 {
+            Vec3::new(self.uniform(), self.uniform(), self.uniform())
+        }
+
+        fn unit(&mut self) -> Vec3 {
+            (self.color() * 2.0 - 1.0).normalize_or(Vec3::Y)
+        }
+    }
+
+    /// Blinn-Phong for one sample, as the crate docs write it (the scalar code the
+    /// four-lane one replaced).
+    fn blinn_phong(base: Vec3, specular: Vec3, shininess: f32, n: Vec3, l: Vec3, v: Vec3) -> Vec3 {
+        let n_dot_l = n.dot(l);
+        if n_dot_l <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let mut color = base * n_dot_l;
+        if specular != Vec3::ZERO {
+            let h = (l + v).normalize_or_zero();
+            color += specular * n.dot(h).max(0.0).powf(shininess);
+        }
+        color
+    }
+
+    #[test]
+    fn four_lanes_of_blinn_phong_are_the_formula_bit_for_bit() {
+        let mut numbers = Numbers(0x0bad_5eed);
+        for round in 0..20_000 {
+            let base: [Vec3; 4] = std::array::from_fn(|_| numbers.color());
+            // Some materials without a specular colour, some with a zero component.
+            let specular: [Vec3; 4] = std::array::from_fn(|j| match (round + j) % 5 {
+                0 => Vec3::ZERO,
+                1 => Vec3::new(0.0, 0.5, 0.0),
+                _ => numbers.color(),
+            });
+            let shininess: [f32; 4] = std::array::from_fn(|_| 1.0 + 299.0 * numbers.uniform());
+            let n: [Vec3; 4] = std::array::from_fn(|_| numbers.unit());
+            let l: [Vec3; 4] = std::array::from_fn(|_| numbers.unit());
+            // Also the headlight's case, v = l.
+            let v: [Vec3; 4] =
+                std::array::from_fn(|j| if round % 7 == 0 { l[j] } else { numbers.unit() });
+            let lanes = (round % 16) as u32;
+            let group = LitGroup {
+                lanes: 0b1111,
+                base: Vec3x4::from_lanes(base),
+                specular: Vec3x4::from_lanes(specular),
+                shininess,
+                specular_lanes: (0..4)
+                    .filter(|&j| specular[j] != Vec3::ZERO)
+                    .fold(0, |m, j| m | 1 << j),
+                normal: Vec3x4::from_lanes(n),
+                shading_normal: Vec3x4::from_lanes(n),
+                view: Vec3x4::from_lanes(v),
+                origin: Vec3x4::ZERO,
+                color: Vec3x4::ZERO,
+            };
+            let got = group.blinn_phong(Vec3x4::from_lanes(l), lanes);
+            for j in 0..4 {
+                let expected = if lanes & (1 << j) != 0 {
+                    blinn_phong(base[j], specular[j], shininess[j], n[j], l[j], v[j])
+                } else {
+                    Vec3::ZERO
+                };
+                assert_eq!(
+                    got.lane(j).to_array().map(f32::to_bits),
+                    expected.to_array().map(f32::to_bits),
+                    "lane {j}: {} against {expected}",
+                    got.lane(j)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn four_lanes_of_offset_origins_are_the_formula_bit_for_bit() {
+        let mut numbers = Numbers(0x5eed_0ff5);
+        for _ in 0..20_000 {
+            // Points from near the origin to far out, hits near and far along the ray.
+            let scale = 10.0_f32.powf(6.0 * numbers.uniform() - 2.0);
+            let point: [Vec3; 4] = std::array::from_fn(|_| (numbers.color() - 0.5) * scale);
+            let normal: [Vec3; 4] = std::array::from_fn(|_| numbers.unit());
+            let direction: [Vec3; 4] =
+                std::array::from_fn(|_| numbers.unit() * (0.1 + numbers.uniform()));
+            let t: [f32; 4] = std::array::from_fn(|_| 1e3 * numbers.uniform());
+            let got = offset_origin(
+                Vec3x4::from_lanes(point),
+                Vec3x4::from_lanes(normal),
+                Vec4::from_array(t),
+                Vec3x4::from_lanes(direction),
+            );
+            for j in 0..4 {
+                // `OFFSET_SCALE (1 + max |coordinate|) + OFFSET_PER_DISTANCE t |direction|`.
+                let magnitude = point[j].abs().max_element();
+                let travelled = t[j] * direction[j].length();
+                let expected = point[j]
+                    + normal[j]
+                        * (OFFSET_SCALE * (1.0 + magnitude) + OFFSET_PER_DISTANCE * travelled);
+                assert_eq!(
+                    got.lane(j).to_array().map(f32::to_bits),
+                    expected.to_array().map(f32::to_bits)
+                );
+            }
+        }
     }
 
     #[test]
