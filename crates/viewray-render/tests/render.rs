@@ -127,6 +127,94 @@ fn a_shadowed_point_is_darker_than_a_lit_one() {
     );
 }
 
+/// Lit shading's sum over the lights, written out for a point with normal `n` seen from
+/// `v` (unit vectors), with colour `color`, specular colour `specular` and exponent
+/// `shininess`: ambient `color I`, a point light `(I / r^2) (color n.l + specular
+/// (n.h)^shininess)`, a directional light the same without the falloff.
+fn blinn_phong_sum(p: DVec3, n: DVec3, v: DVec3, color: DVec3, specular: DVec3) -> DVec3 {
+    let shininess = 20.0;
+    let term = |l: DVec3| {
+        let h = (l + v).normalize();
+        color * n.dot(l).max(0.0) + specular * n.dot(h).max(0.0).powf(shininess)
+    };
+    let to_point = DVec3::new(1.0, 3.0, -0.5) - p;
+    let point = DVec3::new(9.0, 8.0, 7.0) / to_point.length_squared() * term(to_point.normalize());
+    let directional = DVec3::new(0.5, 0.6, 0.7) * term(-DVec3::new(1.0, -1.0, 0.0).normalize());
+    let ambient = color * DVec3::splat(0.1);
+    point + directional + ambient
+}
+
+#[test]
+fn lit_pixels_are_the_sum_of_their_lights() {
+    // Seen from straight above (v = +y): a glossy ground and, on it, the top of a matte
+    // sphere (normal +y there too), under a point light, a directional light and an
+    // ambient one. 300 x 300 pixels over 6 x 6 units: pixel (row, col) shows the
+    // centre x = 0.02 (col + 1/2) - 3, z = 0.02 (row + 1/2) - 3.
+    let scene = scene(
+        "(image: (width: 300, height: 300), shading: Lit,
+          camera: (eye: (0.0, 20.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0),
+                   projection: Orthographic(viewport: (6.0, 6.0))),
+          materials: {
+            \"glossy\": (color: (0.5, 0.4, 0.3), specular: (0.3, 0.3, 0.3), shininess: 20.0),
+            \"matte\": (color: (0.2, 0.6, 0.3)),
+          },
+          lights: [Point(position: (1.0, 3.0, -0.5), intensity: (9.0, 8.0, 7.0)),
+                   Directional(direction: (1.0, -1.0, 0.0), intensity: (0.5, 0.6, 0.7)),
+                   Ambient(intensity: (0.1, 0.1, 0.1))],
+          objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"glossy\"),
+                    Sphere(center: (2.01, 0.5, 2.01), radius: 0.5, material: \"matte\")])",
+    );
+    let image = render_with(&scene, RenderSettings::default()).image;
+    let up = DVec3::Y;
+    let centre = |row: u32, col: u32, y: f64| {
+        DVec3::new(
+            0.02 * (f64::from(col) + 0.5) - 3.0,
+            y,
+            0.02 * (f64::from(row) + 0.5) - 3.0,
+        )
+    };
+    // The ground, at pixels near the point light (a strong highlight), far from it, and
+    // in between.
+    for (row, col) in [
+        (125, 200),
+        (126, 201),
+        (10, 20),
+        (290, 30),
+        (150, 150),
+        (77, 233),
+    ] {
+        let p = centre(row, col, 0.0);
+        assert_eq!(pixel_of(&scene, p), (row, col));
+        let expected = blinn_phong_sum(p, up, up, DVec3::new(0.5, 0.4, 0.3), DVec3::splat(0.3));
+        assert_close(image.pixel(row, col), expected.as_vec3(), 2e-3);
+    }
+    // The top of the matte sphere, (2.01, 1, 2.01): no specular term.
+    let p = centre(250, 250, 1.0);
+    assert_eq!(pixel_of(&scene, p), (250, 250));
+    let expected = blinn_phong_sum(p, up, up, DVec3::new(0.2, 0.6, 0.3), DVec3::ZERO);
+    assert_close(image.pixel(250, 250), expected.as_vec3(), 2e-3);
+}
+
+#[test]
+fn lit_renders_count_one_shadow_ray_per_light_above_each_hit() {
+    // A ground seen from above and two lights above it: every pixel's ray hits, and
+    // each hit sends one shadow ray to each of the two lights (the ambient one needs
+    // none). 301 x 299 pixels, so that blocks hold numbers of rays that are not
+    // multiples of four.
+    let scene = scene(
+        "(image: (width: 301, height: 299), shading: Lit,
+          camera: (eye: (0.0, 20.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0),
+                   projection: Orthographic(viewport: (6.02, 5.98))),
+          materials: { \"grey\": (color: (0.5, 0.5, 0.5)) },
+          lights: [Point(position: (1.0, 3.0, -0.5), intensity: (9.0, 8.0, 7.0)),
+                   Directional(direction: (1.0, -1.0, 0.0), intensity: (0.5, 0.6, 0.7)),
+                   Ambient(intensity: (0.1, 0.1, 0.1))],
+          objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"grey\")])",
+    );
+    let rendered = render_with(&scene, RenderSettings::default());
+    assert_eq!(rendered.stats.rays, 301 * 299 * 3);
+}
+
 #[test]
 fn shadows_have_no_acne_and_touch_the_objects_that_cast_them() {
     let scene = top_view("Box(min: (-1.0, 0.0, -1.0), max: (1.0, 1.0, 1.0), material: \"grey\")");
