@@ -108,30 +108,28 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! at the end of this round (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3; load
-//! average 1.5 to 1.9), and the three runs of the previous round; Embree's own figures
-//! move by a tenth to a third between runs (its 1-thread build took 0.216 to 0.332 s
-//! below), so read the ratios within a run:
+//! after this session's changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3),
+//! and the three runs of the session before; Embree's own figures move by a tenth to a
+//! third between runs and sessions (its 1-thread build took 0.212 to 0.250 s below,
+//! 0.216 to 0.332 s the session before), so read the ratios within a run:
 //!
-//! | 1 thread unless stated | run 1 | run 2 | run 3 | previous round (three runs) |
+//! | 1 thread unless stated | run 1 | run 2 | run 3 | session before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.384 s (Embree 0.298: 0.78x) | 0.394 s (0.216: 0.55x) | 0.399 s (0.332: 0.83x) | 0.73x, 0.49x, 0.54x |
-//! | build, 2 threads | 0.205 s (0.212: 1.03x) | 0.258 s (0.213: 0.83x) | 0.213 s (0.221: 1.03x) | 1.06x, 1.11x, 1.15x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 15.57 Mrays/s (0.83x) | 15.54 (0.83x) | 15.45 (0.87x) | 0.76x, 0.81x, 0.81x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.00x | 1.01x | 1.04x | 0.92x, 0.93x, 0.96x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.30 Mrays/s (0.78x) | 7.21 (0.78x) | 7.08 (0.76x) | 0.79x, 0.62x, 0.76x |
-//! | incoherent vs `rtcIntersect1` | 1.99 Mrays/s (0.97x) | 1.80 (0.81x) | 1.69 (0.85x) | 0.83x, 0.84x, 0.77x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 30.43 Mrays/s (0.81x) | 30.30 (0.83x) | 22.58 (0.68x) | 0.70x, 0.93x, 0.78x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.90 Mrays/s (0.93x) | 3.27 (0.77x) | 2.74 (0.80x) | 0.83x, 0.88x, 0.92x |
+//! | build | 0.356 s (Embree 0.212: 0.59x) | 0.380 s (0.221: 0.58x) | 0.355 s (0.250: 0.70x) | 0.384 to 0.399 s: 0.78x, 0.55x, 0.83x |
+//! | build, 2 threads | 0.191 s (0.212: 1.11x) | 0.220 s (0.245: 1.11x) | 0.208 s (0.224: 1.07x) | 1.03x, 0.83x, 1.03x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 15.51 Mrays/s (0.82x) | 13.78 (0.77x) | 15.54 (0.83x) | 0.83x, 0.83x, 0.87x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.00x | 0.92x | 1.01x | 1.00x, 1.01x, 1.04x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.31 Mrays/s (0.78x) | 6.90 (0.75x) | 7.45 (0.80x) | 0.78x, 0.78x, 0.76x |
+//! | incoherent vs `rtcIntersect1` | 1.84 Mrays/s (0.99x) | 1.83 (0.87x) | 1.71 (0.79x) | 0.97x, 0.81x, 0.85x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 30.24 Mrays/s (0.83x) | 29.83 (0.80x) | 27.45 (0.74x) | 0.81x, 0.83x, 0.68x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.70 Mrays/s (0.87x) | 4.01 (0.99x) | 3.54 (0.77x) | 0.93x, 0.77x, 0.80x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.4x to 3.7x faster than obvhs everywhere. This round changed the packets' setup
-//! (each chunk's octant masks from per-axis sign bits; a packet holding all of a chunk's
-//! rays reads the chunk's numbers instead of a copy) and compiles this crate and
-//! `viewray-render` as one codegen unit each (see the workspace's `Cargo.toml`), and
-//! its build folds a split's bounds after the partition; the tree did not change. The
-//! 2-thread build is level with Embree's (0.83x to 1.32x over twelve runs in three
-//! rounds).
+//! 1.5x to 3.7x faster than obvhs everywhere. The tracing did not change this session;
+//! the build's partition lost its branch on each item's side (below), and the 1-thread
+//! build went from 0.384-0.399 s to 0.355-0.380 s. The 2-thread build is at or above
+//! Embree's in all three runs (1.07x to 1.11x), and 0.83x to 1.32x over fifteen runs in
+//! four sessions.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
@@ -180,35 +178,48 @@
 //!   time, `viewray-render`'s `examples/icosphere.rs` times the render against the same
 //!   rays traced as the same packets: the fastest of 11 runs gives 1.07x to 1.14x on 1
 //!   thread (before: 1.34x to 1.39x), the medians 1.16x to 1.18x (before: 1.31x to 1.40x),
-//!   three runs each, the two versions alternated; the aim is 1.10x. This round, with the
-//!   packets 2% to 5% faster and the block loop unchanged: 1.15x by the fastest runs on
-//!   1 and 2 threads, 1.15x to 1.28x by the medians (two runs). What is left is the
-//!   camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping and Flat
-//!   shading, about 150 instructions a ray together.
+//!   three runs each, the two versions alternated; the aim is 1.10x. The session before:
+//!   1.15x by the fastest runs on 1 and 2 threads, 1.15x to 1.28x by the medians (two
+//!   runs). This session (868.5 M instructions, 711.6 M of them tracing: 1.22x), two
+//!   runs: 1.13x and 1.15x by the medians on 1 thread, 1.11x and 1.15x on 2, 1.14x by
+//!   the fastest runs. What is left
+//!   is the camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping
+//!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
+//!   shading, about 140 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 1,800 instructions per sample (414.3 M, the render
-//!   loop alone; 442.7 M at the start of this round: octant masks 433.0 M, grid windows
-//!   between two lines returning 0 at once 421.1 M, one codegen unit 417.4 M, packets
-//!   without a copy 414.3 M): shadow-ray packets ([`World::any_hits`], 79 M), primary and
-//!   mirror packets (73 M), and shading and bookkeeping, which is more than half: grid
-//!   lines filtered over each sample's footprint (`line_coverage` 25 M; the footprint and
-//!   the ray differentials about 30 M), surface details (`World::surface`, 27 M),
-//!   Blinn-Phong with `powf`, and each sample's view, offset origin and shadow-ray
-//!   directions. With so few objects a packet's setup (its slab numbers and bounds,
-//!   43 M) costs as much as its traversal.
+//!   1`, 16 objects) executes about 1,780 instructions per sample (410.0 M, the render
+//!   loop alone; 442.7 M two sessions ago, 414.3 M before the lights were worked out four
+//!   samples at a time in `viewray-render`): shadow-ray packets ([`World::any_hits`],
+//!   79 M), primary and mirror packets (73 M), and shading and bookkeeping, which is
+//!   more than half: grid lines filtered over each sample's footprint (`line_coverage`
+//!   25 M; the footprint and the ray differentials about 30 M), surface details
+//!   (`World::surface`, 27 M), Blinn-Phong (10 M, with `powf`), and each sample's
+//!   view, offset origin and shadow-ray directions. With so few objects a packet's setup
+//!   (its slab numbers and bounds, 43 M) costs as much as its traversal. In `perf`, at
+//!   1280 x 720 x 16 on 1 thread, the largest single places are the footprint's two
+//!   ray-plane divisions (about 6% of the time), copying each returned `Hit` into the
+//!   batch (about 5%: the copy waits for the stores that wrote it), the camera's `f64`
+//!   ray (about 4%) and `powf` (2%).
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
 //! --threads 2 --stats`, 38,387,820 rays), seven runs alternated with the renderer of
-//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.897
-//! to 0.994 s, median 0.928 s, against 1.408 to 1.564 s, median 1.459 s: 1.57x by the
-//! medians (five alternated runs after this round's first two changes: 0.974 s against
-//! 1.433 s, 1.47x). The 2x aimed for
-//! is not reached; shading and ray generation, which packets do not touch, are most of
-//! what is left, spread over many small steps (the largest, the shadow rays' setup and
-//! Blinn-Phong in `lit_batch`, is a sixth of a sample), and two that looked like
-//! stalls in `perf` did not pay when changed: `line_coverage` inlined into its caller
-//! (0.882 s against 0.884 s, medians of 7) and `World::surface` inlined across crates
-//! (0.962 s against 0.911 s).
+//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.868
+//! to 0.995 s, median 0.898 s, against 1.409 to 1.548 s, median 1.425 s: 1.59x by the
+//! medians, 1.62x by the fastest runs (the session before: 1.57x). The 2x aimed for is
+//! not reached; shading and ray generation, which packets do not touch, are most of
+//! what is left, spread over many small steps. Measured and set aside:
+//!
+//! - `line_coverage` inlined into its caller (0.882 s against 0.884 s, medians of 7) and
+//!   `World::surface` inlined across crates (0.962 s against 0.911 s).
+//! - The ray prepared for triangles once per leaf rather than once per triangle:
+//!   414.2 M to 417.1 M instructions, because the world's leaves hold one or two
+//!   objects and there is nothing to share.
+//! - The grid footprints four samples at a time, like the lights: 410.0 M to 422.4 M
+//!   instructions and no faster (gathering each sample's differentials into lanes costs
+//!   more than the divisions it shares).
+//! - Each `Hit` written into its place in the batch (`World::surface_into`, the surface
+//!   function inlined into it): the stall moved into the surface function, which copies
+//!   the shape's `Hit` field by field; 1.761 s against 1.734 s (1 thread, medians of 7).
 
 mod aabb;
 mod bvh;
