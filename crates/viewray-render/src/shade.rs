@@ -236,13 +236,14 @@ impl<'a> Shader<'a> {
         if self.shading == Shading::Lit {
             // Shade the hits together; the misses see the background.
             let mut hit_rays = Vec::with_capacity(rays.len());
-            let mut surfaces = Vec::with_capacity(rays.len());
+            let mut surfaces = vec![Hit::default(); hits.iter().flatten().count()];
             let mut hit_films = Vec::with_capacity(rays.len());
             for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 match hit {
                     Some(hit) => {
+                        // Into its place (see `World::surface_into`).
+                        world.surface_into(ray, hit, &mut surfaces[hit_rays.len()]);
                         hit_rays.push(*ray);
-                        surfaces.push(world.surface(ray, hit));
                         hit_films.push(film(i));
                     }
                     None => colors[i] = self.background,
@@ -466,12 +467,12 @@ impl<'a> Shader<'a> {
             let mut mirror_hits = vec![None; mirror_rays.len()];
             world.closest_objects(&mirror_rays, 0.0..f32::INFINITY, &mut mirror_hits);
             let mut next_rays = Vec::with_capacity(mirror_rays.len());
-            let mut next_hits = Vec::with_capacity(mirror_rays.len());
+            let mut next_hits = vec![Hit::default(); mirror_hits.iter().flatten().count()];
             for ((ray, hit), color) in mirror_rays.iter().zip(&mirror_hits).zip(&mut reflected) {
                 match hit {
                     Some(hit) => {
+                        world.surface_into(ray, hit, &mut next_hits[next_rays.len()]);
                         next_rays.push(*ray);
-                        next_hits.push(world.surface(ray, hit));
                     }
                     None => *color = self.background,
                 }
