@@ -187,9 +187,10 @@
 //!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
 //!   shading, about 140 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 1,780 instructions per sample (410.0 M, the render
+//!   1`, 16 objects) executes about 1,760 instructions per sample (405.3 M, the render
 //!   loop alone; 442.7 M two sessions ago, 414.3 M before the lights were worked out four
-//!   samples at a time in `viewray-render`): shadow-ray packets ([`World::any_hits`],
+//!   samples at a time in `viewray-render`, 410.0 M before the surfaces were written in
+//!   place): shadow-ray packets ([`World::any_hits`],
 //!   79 M), primary and mirror packets (73 M), and shading and bookkeeping, which is
 //!   more than half: grid lines filtered over each sample's footprint (`line_coverage`
 //!   25 M; the footprint and the ray differentials about 30 M), surface details
@@ -197,15 +198,17 @@
 //!   view, offset origin and shadow-ray directions. With so few objects a packet's setup
 //!   (its slab numbers and bounds, 43 M) costs as much as its traversal. In `perf`, at
 //!   1280 x 720 x 16 on 1 thread, the largest single places are the footprint's two
-//!   ray-plane divisions (about 6% of the time), copying each returned `Hit` into the
-//!   batch (about 5%: the copy waits for the stores that wrote it), the camera's `f64`
-//!   ray (about 4%) and `powf` (2%).
+//!   ray-plane divisions (about 6% of the time), the camera's `f64` ray (about 4%) and
+//!   `powf` (2%). Copying each returned `Hit` into the batch took about 7% (the copy
+//!   waited for the stores that had just written it) until [`World::surface_into`]
+//!   wrote the surfaces in place: 1.724 s to 1.696 s on 1 thread (medians of 7).
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
 //! --threads 2 --stats`, 38,387,820 rays), seven runs alternated with the renderer of
-//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.868
-//! to 0.995 s, median 0.898 s, against 1.409 to 1.548 s, median 1.425 s: 1.59x by the
-//! medians, 1.62x by the fastest runs (the session before: 1.57x). The 2x aimed for is
+//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.867
+//! to 0.951 s, median 0.886 s, against 1.408 to 1.471 s, median 1.416 s: 1.60x by the
+//! medians, 1.62x by the fastest runs (after the lights four at a time alone: median
+//! 0.898 s against 1.425 s, 1.59x; the session before: 1.57x). The 2x aimed for is
 //! not reached; shading and ray generation, which packets do not touch, are most of
 //! what is left, spread over many small steps. Measured and set aside:
 //!
@@ -217,9 +220,6 @@
 //! - The grid footprints four samples at a time, like the lights: 410.0 M to 422.4 M
 //!   instructions and no faster (gathering each sample's differentials into lanes costs
 //!   more than the divisions it shares).
-//! - Each `Hit` written into its place in the batch (`World::surface_into`, the surface
-//!   function inlined into it): the stall moved into the surface function, which copies
-//!   the shape's `Hit` field by field; 1.761 s against 1.734 s (1 thread, medians of 7).
 
 mod aabb;
 mod bvh;
