@@ -378,26 +378,31 @@ impl<'a> Shader<'a> {
         // distance (point lights).
         let mut toward = vec![(0_u32, Vec3x4::ZERO, Vec4::ONE); groups.len()];
         for light in lights {
-            let (intensity, t_range) = match *light {
+            let (intensity, source) = match *light {
                 Light::Ambient { intensity } => {
                     for group in &mut groups {
                         group.color = group.color + group.base * Vec3x4::splat(intensity);
                     }
                     continue;
                 }
-                // The light sits at t = 1 of the ray toward it.
-                Light::Point { intensity, .. } => (intensity, 0.0..1.0),
-                Light::Directional { intensity, .. } => (intensity, 0.0..f32::INFINITY),
+                Light::Point {
+                    position,
+                    intensity,
+                } => (intensity, Source::At(position)),
+                Light::Directional {
+                    direction,
+                    intensity,
+                } => (intensity, Source::Along(-direction)),
             };
             shadow_rays.clear();
             shadow_samples.clear();
             for (g, (group, toward)) in groups.iter().zip(&mut toward).enumerate() {
                 // The direction toward the light, and the ray's: to the light itself for
                 // a point light (the light at t = 1), along the direction for a
-                // directional one. No light where it is behind the surface or at the
-                // point itself.
-                let (l, ray_direction, distance_squared, facing) = match *light {
-                    Light::Point { position, .. } => {
+                // directional one (whose squared distance is taken as 1: no falloff).
+                // No light where it is behind the surface or at the point itself.
+                let (l, ray_direction, distance_squared, behind) = match source {
+                    Source::At(position) => {
                         let to_light = Vec3x4::splat(position) - group.origin;
                         let distance_squared = to_light.dot(to_light);
                         let l = to_light / distance_squared.sqrt();
@@ -405,13 +410,12 @@ impl<'a> Shader<'a> {
                             | group.normal.dot(l).cmple(Vec4::ZERO);
                         (l, to_light, distance_squared, behind)
                     }
-                    Light::Directional { direction, .. } => {
-                        let l = Vec3x4::splat(-direction);
+                    Source::Along(l) => {
+                        let l = Vec3x4::splat(l);
                         (l, l, Vec4::ONE, group.normal.dot(l).cmple(Vec4::ZERO))
                     }
-                    Light::Ambient { .. } => unreachable!("ambient lights are added above"),
                 };
-                let facing = !lanes::bits(facing) & group.lanes;
+                let facing = !lanes::bits(behind) & group.lanes;
                 *toward = (facing, l, distance_squared);
                 for j in lanes_of(facing) {
                     shadow_rays.push(Ray::new(group.origin.lane(j), ray_direction.lane(j)));
@@ -421,24 +425,20 @@ impl<'a> Shader<'a> {
             *count += shadow_rays.len() as u64;
             answers.clear();
             answers.resize(shadow_rays.len(), false);
-            world.any_hits(&shadow_rays, t_range, &mut answers);
+            world.any_hits(&shadow_rays, source.t_range(), &mut answers);
             for (&i, &blocked) in shadow_samples.iter().zip(&answers) {
                 if blocked {
                     toward[i / 4].0 &= !(1 << (i % 4));
                 }
             }
-            let point = matches!(light, Light::Point { .. });
             for (group, &(seen, l, distance_squared)) in groups.iter_mut().zip(&toward) {
                 if seen == 0 {
                     continue;
                 }
-                let lit = group.blinn_phong(l, seen);
-                let added = if point {
-                    // Inverse-square falloff: intensity / d^2, then times Blinn-Phong.
-                    (Vec3x4::splat(intensity) / distance_squared) * lit
-                } else {
-                    Vec3x4::splat(intensity) * lit
-                };
+                // Inverse-square falloff, intensity / d^2, then times Blinn-Phong (a
+                // directional light's d^2 is 1, and dividing by 1 is exact).
+                let added =
+                    (Vec3x4::splat(intensity) / distance_squared) * group.blinn_phong(l, seen);
                 group.color = Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
             }
         }
@@ -615,6 +615,25 @@ impl LitGroup {
             );
         }
         Vec3x4::select(lanes::mask(lit), color, Vec3x4::ZERO)
+    }
+}
+
+/// Where a point or directional light is, as its shadow rays see it.
+#[derive(Clone, Copy)]
+enum Source {
+    /// A point light at this position: shadow rays end at it, at `t = 1`.
+    At(Vec3),
+    /// A directional light: the unit direction toward it; shadow rays never end.
+    Along(Vec3),
+}
+
+impl Source {
+    /// Where along a shadow ray a blocker counts.
+    fn t_range(self) -> std::ops::Range<f32> {
+        match self {
+            Source::At(_) => 0.0..1.0,
+            Source::Along(_) => 0.0..f32::INFINITY,
+        }
     }
 }
 

@@ -127,6 +127,25 @@ fn a_shadowed_point_is_darker_than_a_lit_one() {
     );
 }
 
+/// A Lit scene of `objects` seen from straight above (v = +y) through an orthographic
+/// camera of 0.02 units per pixel, centred on the origin, under the lights
+/// [`blinn_phong_sum`] adds: a point light, a directional light and an ambient one.
+fn under_three_lights(width: u32, height: u32, materials: &str, objects: &str) -> Scene {
+    let viewport = |pixels: u32| f64::from(pixels) / 50.0;
+    scene(&format!(
+        "(image: (width: {width}, height: {height}), shading: Lit,
+          camera: (eye: (0.0, 20.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0),
+                   projection: Orthographic(viewport: ({:?}, {:?}))),
+          materials: {{ {materials} }},
+          lights: [Point(position: (1.0, 3.0, -0.5), intensity: (9.0, 8.0, 7.0)),
+                   Directional(direction: (1.0, -1.0, 0.0), intensity: (0.5, 0.6, 0.7)),
+                   Ambient(intensity: (0.1, 0.1, 0.1))],
+          objects: [{objects}])",
+        viewport(width),
+        viewport(height),
+    ))
+}
+
 /// Lit shading's sum over the lights, written out for a point with normal `n` seen from
 /// `v` (unit vectors), with colour `color`, specular colour `specular` and exponent
 /// `shininess`: ambient `color I`, a point light `(I / r^2) (color n.l + specular
@@ -150,19 +169,13 @@ fn lit_pixels_are_the_sum_of_their_lights() {
     // sphere (normal +y there too), under a point light, a directional light and an
     // ambient one. 300 x 300 pixels over 6 x 6 units: pixel (row, col) shows the
     // centre x = 0.02 (col + 1/2) - 3, z = 0.02 (row + 1/2) - 3.
-    let scene = scene(
-        "(image: (width: 300, height: 300), shading: Lit,
-          camera: (eye: (0.0, 20.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0),
-                   projection: Orthographic(viewport: (6.0, 6.0))),
-          materials: {
-            \"glossy\": (color: (0.5, 0.4, 0.3), specular: (0.3, 0.3, 0.3), shininess: 20.0),
-            \"matte\": (color: (0.2, 0.6, 0.3)),
-          },
-          lights: [Point(position: (1.0, 3.0, -0.5), intensity: (9.0, 8.0, 7.0)),
-                   Directional(direction: (1.0, -1.0, 0.0), intensity: (0.5, 0.6, 0.7)),
-                   Ambient(intensity: (0.1, 0.1, 0.1))],
-          objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"glossy\"),
-                    Sphere(center: (2.01, 0.5, 2.01), radius: 0.5, material: \"matte\")])",
+    let scene = under_three_lights(
+        300,
+        300,
+        "\"glossy\": (color: (0.5, 0.4, 0.3), specular: (0.3, 0.3, 0.3), shininess: 20.0),
+         \"matte\": (color: (0.2, 0.6, 0.3))",
+        "Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"glossy\"),
+         Sphere(center: (2.01, 0.5, 2.01), radius: 0.5, material: \"matte\")",
     );
     let image = render_with(&scene, RenderSettings::default()).image;
     let up = DVec3::Y;
@@ -201,15 +214,11 @@ fn lit_renders_count_one_shadow_ray_per_light_above_each_hit() {
     // each hit sends one shadow ray to each of the two lights (the ambient one needs
     // none). 301 x 299 pixels, so that blocks hold numbers of rays that are not
     // multiples of four.
-    let scene = scene(
-        "(image: (width: 301, height: 299), shading: Lit,
-          camera: (eye: (0.0, 20.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0),
-                   projection: Orthographic(viewport: (6.02, 5.98))),
-          materials: { \"grey\": (color: (0.5, 0.5, 0.5)) },
-          lights: [Point(position: (1.0, 3.0, -0.5), intensity: (9.0, 8.0, 7.0)),
-                   Directional(direction: (1.0, -1.0, 0.0), intensity: (0.5, 0.6, 0.7)),
-                   Ambient(intensity: (0.1, 0.1, 0.1))],
-          objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"grey\")])",
+    let scene = under_three_lights(
+        301,
+        299,
+        "\"grey\": (color: (0.5, 0.5, 0.5))",
+        "Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"grey\")",
     );
     let rendered = render_with(&scene, RenderSettings::default());
     assert_eq!(rendered.stats.rays, 301 * 299 * 3);
