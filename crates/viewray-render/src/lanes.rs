@@ -46,7 +46,16 @@ impl Vec3x4 {
     /// The vector of lane `lane`.
     #[inline]
     pub(crate) fn lane(&self, lane: usize) -> Vec3 {
-        Vec3::new(self.x[lane], self.y[lane], self.z[lane])
+        // Through arrays: indexing a `Vec4` by a variable lane is a `match`.
+        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        Vec3::new(x[lane], y[lane], z[lane])
+    }
+
+    /// The four vectors, lane by lane.
+    #[inline]
+    pub(crate) fn to_lanes(self) -> [Vec3; 4] {
+        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        std::array::from_fn(|j| Vec3::new(x[j], y[j], z[j]))
     }
 
     /// Lane by lane, [`Vec3::dot`].
@@ -164,11 +173,23 @@ pub(crate) fn bits(mask: BVec4A) -> u32 {
     mask.bitmask()
 }
 
-/// The mask with lane `j` set where bit `j` of `bits` is.
+/// The mask with lane `j` set where bit `j` of `bits` is (bits above the fourth are
+/// ignored).
 #[inline]
 pub(crate) fn mask(bits: u32) -> BVec4A {
-    BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0)
+    MASKS[(bits & 0xf) as usize]
 }
+
+/// [`mask`] of each four bits, looked up rather than built lane by lane.
+const MASKS: [BVec4A; 16] = {
+    let mut masks = [BVec4A::new(false, false, false, false); 16];
+    let mut bits = 0;
+    while bits < 16 {
+        masks[bits] = BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0);
+        bits += 1;
+    }
+    masks
+};
 
 #[cfg(test)]
 mod tests {

@@ -338,21 +338,20 @@ impl<'a> Shader<'a> {
             }
             // Spare lanes repeat the last sample; no light adds to them.
             let last = rays.len() - 1;
-            let lanes = |f: &dyn Fn(usize) -> Vec3| {
-                Vec3x4::from_lanes(std::array::from_fn(|j| f(j.min(last))))
-            };
-            let direction = lanes(&|j| rays[j].direction);
-            let point = lanes(&|j| hits[j].point);
-            let normal = lanes(&|j| hits[j].normal);
-            let t = Vec4::from_array(std::array::from_fn(|j| hits[j.min(last)].t));
+            let lane = |j: usize| j.min(last);
+            let (ray, hit) = (|j| &rays[lane(j)], |j| &hits[lane(j)]);
+            let direction = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| ray(j).direction));
+            let point = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).point));
+            let normal = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).normal));
+            let t = Vec4::from_array([0, 1, 2, 3].map(|j| hit(j).t));
             groups.push(LitGroup {
                 lanes: (1 << rays.len()) - 1,
-                base: lanes(&|j| base[j]),
-                specular: lanes(&|j| specular[j]),
+                base: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| base[lane(j)])),
+                specular: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| specular[lane(j)])),
                 shininess,
                 specular_lanes,
                 normal,
-                shading_normal: lanes(&|j| hits[j].shading_normal),
+                shading_normal: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).shading_normal)),
                 view: -direction.normalize_or_zero(),
                 origin: offset_origin(point, normal, t, direction),
                 color: Vec3x4::ZERO,
@@ -417,9 +416,12 @@ impl<'a> Shader<'a> {
                 };
                 let facing = !lanes::bits(behind) & group.lanes;
                 *toward = (facing, l, distance_squared);
-                for j in lanes_of(facing) {
-                    shadow_rays.push(Ray::new(group.origin.lane(j), ray_direction.lane(j)));
-                    shadow_samples.push(4 * g + j);
+                if facing != 0 {
+                    let (origins, directions) = (group.origin.to_lanes(), ray_direction.to_lanes());
+                    for j in lanes_of(facing) {
+                        shadow_rays.push(Ray::new(origins[j], directions[j]));
+                        shadow_samples.push(4 * g + j);
+                    }
                 }
             }
             *count += shadow_rays.len() as u64;
@@ -442,8 +444,8 @@ impl<'a> Shader<'a> {
                 group.color = Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
             }
         }
-        for (i, color) in colors.iter_mut().enumerate().take(n) {
-            *color = groups[i / 4].color.lane(i % 4);
+        for (colors, group) in colors[..n].chunks_mut(4).zip(&groups) {
+            colors.copy_from_slice(&group.color.to_lanes()[..colors.len()]);
         }
 
         // Follow the mirrors: the reflected rays of the batch are traced and shaded
