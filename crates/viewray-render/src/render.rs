@@ -12,7 +12,7 @@ use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
 use crate::sampling::Strata;
-use crate::shade::{DepthMap, DepthRange, FilmPoint, RayDifferentials, Shader};
+use crate::shade::{DepthMap, DepthRange, FilmPoint, LitScratch, RayDifferentials, Shader};
 
 /// The default number of mirror bounces a ray follows.
 pub const MAX_REFLECTION_DEPTH: u32 = 4;
@@ -169,6 +169,8 @@ struct TileBuffers {
     hits: Vec<Option<ObjectHit>>,
     /// The colours the block's samples see.
     colors: Vec<Vec3>,
+    /// What Lit shading reuses from block to block.
+    lit: LitScratch,
 }
 
 impl TileBuffers {
@@ -182,6 +184,7 @@ impl TileBuffers {
             ray_pixels: Vec::with_capacity(block),
             hits: Vec::with_capacity(block),
             colors: Vec::with_capacity(block),
+            lit: LitScratch::default(),
         }
     }
 
@@ -250,6 +253,7 @@ impl TileBuffers {
                                 differentials: &differentials[pixel],
                             }
                         },
+                        &mut self.lit,
                         &mut self.colors,
                         &mut rays,
                     );

@@ -228,6 +228,7 @@ impl<'a> Shader<'a> {
         rays: &[Ray],
         hits: &[Option<ObjectHit>],
         film: impl Fn(usize) -> FilmPoint<'f>,
+        scratch: &mut LitScratch,
         colors: &mut [Vec3],
         count: &mut u64,
     ) {
@@ -235,27 +236,34 @@ impl<'a> Shader<'a> {
         let world = &self.scene.world();
         if self.shading == Shading::Lit {
             // Shade the hits together; the misses see the background.
-            let mut hit_rays = Vec::with_capacity(rays.len());
-            let mut surfaces = vec![Hit::default(); hits.iter().flatten().count()];
-            let mut hit_films = Vec::with_capacity(rays.len());
+            let LitScratch {
+                rays: hit_rays,
+                surfaces,
+                samples,
+                colors: lit,
+                buffers,
+            } = scratch;
+            hit_rays.clear();
+            surfaces.clear();
+            samples.clear();
             for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 match hit {
                     Some(hit) => {
                         // Into its place (see `World::surface_into`).
+                        surfaces.push(Hit::default());
                         world.surface_into(ray, hit, &mut surfaces[hit_rays.len()]);
                         hit_rays.push(*ray);
-                        hit_films.push(film(i));
+                        samples.push(i);
                     }
                     None => colors[i] = self.background,
                 }
             }
-            let mut lit = vec![Vec3::ZERO; hit_rays.len()];
-            self.lit_batch(&hit_rays, &surfaces, Some(&hit_films), 0, &mut lit, count);
-            let mut lit = lit.into_iter();
-            for (color, hit) in colors.iter_mut().zip(hits) {
-                if hit.is_some() {
-                    *color = lit.next().unwrap_or(Vec3::ZERO);
-                }
+            lit.clear();
+            lit.resize(hit_rays.len(), Vec3::ZERO);
+            let film_of = |k: usize| film(samples[k]);
+            self.lit_batch(hit_rays, surfaces, Some(&film_of), 0, buffers, lit, count);
+            for (&i, &color) in samples.iter().zip(lit.iter()) {
+                colors[i] = color;
             }
             return;
         }
@@ -300,23 +308,41 @@ impl<'a> Shader<'a> {
     /// lighting is worked out four samples at a time ([`Vec3x4`]), light by light;
     /// each sample's colour is summed in the same order and with the same numbers as
     /// one sample shaded alone, so neither the batch nor the lanes change a pixel.
-    fn lit_batch(
+    #[allow(clippy::too_many_arguments)]
+    fn lit_batch<'f, F: Fn(usize) -> FilmPoint<'f>>(
         &self,
         rays: &[Ray],
         hits: &[Hit],
-        films: Option<&[FilmPoint<'_>]>,
+        film: Option<&F>,
         depth: u32,
+        buffers: &mut LitBuffers,
         colors: &mut [Vec3],
         count: &mut u64,
     ) {
         let world = &self.scene.world();
         let lights = self.scene.lights();
         let n = rays.len();
+        let LitBuffers {
+            groups,
+            mirror,
+            shadow_rays,
+            shadow_samples,
+            answers,
+            toward,
+            mirrors,
+            reflected,
+            mirror_rays,
+            mirror_hits,
+            next_rays,
+            next_hits,
+            next_colors,
+            deeper,
+        } = buffers;
 
         // Each sample's material and surface colour, one by one (grid lines branch);
         // then, four at a time, where its secondary rays start and the view direction.
-        let mut materials = Vec::with_capacity(n);
-        let mut groups: Vec<LitGroup> = Vec::with_capacity(n.div_ceil(4));
+        mirror.clear();
+        groups.clear();
         for (g, (rays, hits)) in rays.chunks(4).zip(hits.chunks(4)).enumerate() {
             let mut base = [Vec3::ZERO; 4];
             let mut specular = [Vec3::ZERO; 4];
@@ -325,8 +351,8 @@ impl<'a> Shader<'a> {
             for (j, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 let material = self.scene.material(hit);
                 base[j] = surface_color(material, hit, || {
-                    films.map_or(Footprint::Point, |f| {
-                        self.footprint(&f[4 * g + j], ray, hit)
+                    film.map_or(Footprint::Point, |f| {
+                        self.footprint(&f(4 * g + j), ray, hit)
                     })
                 });
                 specular[j] = material.specular;
@@ -334,7 +360,7 @@ impl<'a> Shader<'a> {
                 if material.specular != Vec3::ZERO {
                     specular_lanes |= 1 << j;
                 }
-                materials.push(material);
+                mirror.push(material.mirror);
             }
             // Spare lanes repeat the last sample; no light adds to them.
             let last = rays.len() - 1;
@@ -360,7 +386,7 @@ impl<'a> Shader<'a> {
 
         // Headlight: a light at the eye, so a scene without lights is still visible.
         if lights.is_empty() {
-            for group in &mut groups {
+            for group in groups.iter_mut() {
                 let lit = group.blinn_phong(group.view, group.lanes);
                 group.color = group.color
                     + (group.base * Vec4::splat(HEADLIGHT_AMBIENT)
@@ -370,16 +396,14 @@ impl<'a> Shader<'a> {
 
         // The lights in order: each light's shadow rays traced together, then what it
         // gives the samples that face it and see it added to their colours.
-        let mut shadow_rays = Vec::with_capacity(n);
-        let mut shadow_samples = Vec::with_capacity(n);
-        let mut answers = Vec::with_capacity(n);
         // Per group: the lanes facing the light, the direction to it and the squared
         // distance (point lights).
-        let mut toward = vec![(0_u32, Vec3x4::ZERO, Vec4::ONE); groups.len()];
+        toward.clear();
+        toward.resize(groups.len(), (0_u32, Vec3x4::ZERO, Vec4::ONE));
         for light in lights {
             let (intensity, source) = match *light {
                 Light::Ambient { intensity } => {
-                    for group in &mut groups {
+                    for group in groups.iter_mut() {
                         group.color = group.color + group.base * Vec3x4::splat(intensity);
                     }
                     continue;
@@ -395,7 +419,7 @@ impl<'a> Shader<'a> {
             };
             shadow_rays.clear();
             shadow_samples.clear();
-            for (g, (group, toward)) in groups.iter().zip(&mut toward).enumerate() {
+            for (g, (group, toward)) in groups.iter().zip(toward.iter_mut()).enumerate() {
                 // The direction toward the light, and the ray's: to the light itself for
                 // a point light (the light at t = 1), along the direction for a
                 // directional one (whose squared distance is taken as 1: no falloff).
@@ -427,13 +451,13 @@ impl<'a> Shader<'a> {
             *count += shadow_rays.len() as u64;
             answers.clear();
             answers.resize(shadow_rays.len(), false);
-            world.any_hits(&shadow_rays, source.t_range(), &mut answers);
-            for (&i, &blocked) in shadow_samples.iter().zip(&answers) {
+            world.any_hits(shadow_rays, source.t_range(), answers);
+            for (&i, &blocked) in shadow_samples.iter().zip(answers.iter()) {
                 if blocked {
                     toward[i / 4].0 &= !(1 << (i % 4));
                 }
             }
-            for (group, &(seen, l, distance_squared)) in groups.iter_mut().zip(&toward) {
+            for (group, &(seen, l, distance_squared)) in groups.iter_mut().zip(toward.iter()) {
                 if seen == 0 {
                     continue;
                 }
@@ -444,59 +468,67 @@ impl<'a> Shader<'a> {
                 group.color = Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
             }
         }
-        for (colors, group) in colors[..n].chunks_mut(4).zip(&groups) {
+        for (colors, group) in colors[..n].chunks_mut(4).zip(groups.iter()) {
             colors.copy_from_slice(&group.color.to_lanes()[..colors.len()]);
         }
 
         // Follow the mirrors: the reflected rays of the batch are traced and shaded
         // together, one bounce deeper.
-        let mirrors: Vec<usize> = (0..n).filter(|&i| materials[i].mirror > 0.0).collect();
+        mirrors.clear();
+        mirrors.extend((0..n).filter(|&i| mirror[i] > 0.0));
         if mirrors.is_empty() {
             return;
         }
-        let mut reflected = vec![Vec3::ZERO; mirrors.len()];
+        reflected.clear();
+        reflected.resize(mirrors.len(), Vec3::ZERO);
         if depth < self.max_depth {
-            let mirror_rays: Vec<Ray> = mirrors
-                .iter()
-                .map(|&i| {
-                    let group = &groups[i / 4];
-                    let view = group.view.lane(i % 4);
-                    let direction = reflect(-view, hits[i].shading_normal, hits[i].normal);
-                    Ray::new(group.origin.lane(i % 4), direction)
-                })
-                .collect();
+            mirror_rays.clear();
+            mirror_rays.extend(mirrors.iter().map(|&i| {
+                let group = &groups[i / 4];
+                let view = group.view.lane(i % 4);
+                let direction = reflect(-view, hits[i].shading_normal, hits[i].normal);
+                Ray::new(group.origin.lane(i % 4), direction)
+            }));
             *count += mirror_rays.len() as u64;
-            let mut mirror_hits = vec![None; mirror_rays.len()];
-            world.closest_objects(&mirror_rays, 0.0..f32::INFINITY, &mut mirror_hits);
-            let mut next_rays = Vec::with_capacity(mirror_rays.len());
-            let mut next_hits = vec![Hit::default(); mirror_hits.iter().flatten().count()];
-            for ((ray, hit), color) in mirror_rays.iter().zip(&mirror_hits).zip(&mut reflected) {
+            mirror_hits.clear();
+            mirror_hits.resize(mirror_rays.len(), None);
+            world.closest_objects(mirror_rays, 0.0..f32::INFINITY, mirror_hits);
+            next_rays.clear();
+            next_hits.clear();
+            for ((ray, hit), color) in mirror_rays
+                .iter()
+                .zip(mirror_hits.iter())
+                .zip(reflected.iter_mut())
+            {
                 match hit {
                     Some(hit) => {
+                        next_hits.push(Hit::default());
                         world.surface_into(ray, hit, &mut next_hits[next_rays.len()]);
                         next_rays.push(*ray);
                     }
                     None => *color = self.background,
                 }
             }
-            let mut next_colors = vec![Vec3::ZERO; next_rays.len()];
-            self.lit_batch(
-                &next_rays,
-                &next_hits,
+            next_colors.clear();
+            next_colors.resize(next_rays.len(), Vec3::ZERO);
+            self.lit_batch::<F>(
+                next_rays,
+                next_hits,
                 None,
                 depth + 1,
-                &mut next_colors,
+                deeper.get_or_insert_default(),
+                next_colors,
                 count,
             );
-            let mut next_colors = next_colors.into_iter();
-            for (hit, color) in mirror_hits.iter().zip(&mut reflected) {
+            let mut next_colors = next_colors.iter();
+            for (hit, color) in mirror_hits.iter().zip(reflected.iter_mut()) {
                 if hit.is_some() {
-                    *color = next_colors.next().unwrap_or(Vec3::ZERO);
+                    *color = next_colors.next().copied().unwrap_or(Vec3::ZERO);
                 }
             }
         }
-        for (&i, reflected) in mirrors.iter().zip(reflected) {
-            colors[i] = colors[i].lerp(reflected, materials[i].mirror);
+        for (&i, &reflected) in mirrors.iter().zip(reflected.iter()) {
+            colors[i] = colors[i].lerp(reflected, mirror[i]);
         }
     }
 
@@ -560,6 +592,48 @@ impl<'a> Shader<'a> {
             }
         }
     }
+}
+
+/// What Lit shading reuses from batch to batch on one thread, so that a batch of 64
+/// samples allocates nothing: the batch's hits in order, and the buffers of each
+/// mirror bounce.
+#[derive(Default)]
+pub(crate) struct LitScratch {
+    /// The rays that hit something, their surfaces, and each one's place in the batch.
+    rays: Vec<Ray>,
+    surfaces: Vec<Hit>,
+    samples: Vec<usize>,
+    /// Their colours.
+    colors: Vec<Vec3>,
+    buffers: LitBuffers,
+}
+
+/// The buffers of [`Shader::lit_batch`] at one mirror bounce depth, with the next
+/// depth's made when a mirror is first met.
+#[derive(Default)]
+struct LitBuffers {
+    groups: Vec<LitGroup>,
+    /// Each sample's mirror reflectance.
+    mirror: Vec<f32>,
+    /// The shadow rays toward one light, the sample each starts from, and whether it
+    /// is blocked.
+    shadow_rays: Vec<Ray>,
+    shadow_samples: Vec<usize>,
+    answers: Vec<bool>,
+    /// Per group: the lanes facing a light, the direction to it and the squared
+    /// distance.
+    toward: Vec<(u32, Vec3x4, Vec4)>,
+    /// The samples on mirrors, what they reflect, and their reflected rays with the
+    /// rays' hits.
+    mirrors: Vec<usize>,
+    reflected: Vec<Vec3>,
+    mirror_rays: Vec<Ray>,
+    mirror_hits: Vec<Option<ObjectHit>>,
+    /// The reflected rays that hit something, their surfaces and colours.
+    next_rays: Vec<Ray>,
+    next_hits: Vec<Hit>,
+    next_colors: Vec<Vec3>,
+    deeper: Option<Box<LitBuffers>>,
 }
 
 /// Four samples of a lit batch, side by side (see [`Vec3x4`]), from their surface
