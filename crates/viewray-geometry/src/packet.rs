@@ -116,13 +116,16 @@ impl<'a> BoxPacket<'a> {
             let mut lane = 0;
             for i in lanes_of(mask) {
                 let (from, to) = ((i / 4, i % 4), (lane / 4, lane % 4));
-                let d = [0, 1, 2].map(|axis| chunk.direction[axis][from.0][from.1]);
+                let d = [0, 1, 2].map(|axis| at(&chunk.direction[axis][from.0], from.1));
                 length_squared_min =
                     length_squared_min.min(Vec4::splat(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
                 for axis in 0..3 {
-                    target.origin_near[axis][to.0][to.1] = source.origin_near[axis][from.0][from.1];
-                    target.origin_far[axis][to.0][to.1] = source.origin_far[axis][from.0][from.1];
-                    target.inverse[axis][to.0][to.1] = source.inverse[axis][from.0][from.1];
+                    let copy = |to_lanes: &mut Lanes, from_lanes: &Lanes| {
+                        *at_mut(&mut to_lanes[to.0], to.1) = at(&from_lanes[from.0], from.1);
+                    };
+                    copy(&mut target.origin_near[axis], &source.origin_near[axis]);
+                    copy(&mut target.origin_far[axis], &source.origin_far[axis]);
+                    copy(&mut target.inverse[axis], &source.inverse[axis]);
                     direction_min[axis] = direction_min[axis].min(Vec4::splat(d[axis]));
                     direction_max[axis] = direction_max[axis].max(Vec4::splat(d[axis]));
                 }
@@ -133,9 +136,13 @@ impl<'a> BoxPacket<'a> {
             // never in a mask, but must not widen the bounds.
             for slot in lane..lane.next_multiple_of(4) {
                 for axis in 0..3 {
-                    target.origin_near[axis][slot / 4][slot % 4] = target.origin_near[axis][0][0];
-                    target.origin_far[axis][slot / 4][slot % 4] = target.origin_far[axis][0][0];
-                    target.inverse[axis][slot / 4][slot % 4] = target.inverse[axis][0][0];
+                    for lanes in [
+                        &mut target.origin_near[axis],
+                        &mut target.origin_far[axis],
+                        &mut target.inverse[axis],
+                    ] {
+                        set_lane(lanes, slot, lanes[0].x);
+                    }
                 }
             }
             let target: &'a LaneNumbers = target;
@@ -201,12 +208,8 @@ impl<'a> BoxPacket<'a> {
         let (group, i) = (lane / 4, lane % 4);
         let numbers = self.numbers;
         let (o, f, v) = (&numbers.origin_near, &numbers.origin_far, &numbers.inverse);
-        BoxRay::from_lanes(
-            [o[0][group][i], o[1][group][i], o[2][group][i]],
-            [f[0][group][i], f[1][group][i], f[2][group][i]],
-            [v[0][group][i], v[1][group][i], v[2][group][i]],
-            self.octant,
-        )
+        let at = |lanes: &[Lanes; 3]| [0, 1, 2].map(|axis| at(&lanes[axis][group], i));
+        BoxRay::from_lanes(at(o), at(f), at(v), self.octant)
     }
 
     /// Tests the whole packet against a node's eight boxes: returns the mask of boxes
@@ -306,13 +309,26 @@ pub(crate) fn lanes_of(mask: u64) -> impl Iterator<Item = usize> {
 /// Lane `lane` of `lanes`.
 #[inline(always)]
 pub(crate) fn lane(lanes: &Lanes, lane: usize) -> f32 {
-    lanes[lane / 4][lane % 4]
+    at(&lanes[lane / 4], lane % 4)
 }
 
 /// Sets lane `lane` of `lanes`.
 #[inline(always)]
 pub(crate) fn set_lane(lanes: &mut Lanes, lane: usize, value: f32) {
-    lanes[lane / 4][lane % 4] = value;
+    *at_mut(&mut lanes[lane / 4], lane % 4) = value;
+}
+
+/// Lane `i` of `v`, read through its array: indexing a `Vec4` by a lane not known at
+/// compile time is a `match`, which compiles to a jump table.
+#[inline(always)]
+pub(crate) fn at(v: &Vec4, i: usize) -> f32 {
+    AsRef::<[f32; 4]>::as_ref(v)[i]
+}
+
+/// Lane `i` of `v`, to write (see [`at`]).
+#[inline(always)]
+pub(crate) fn at_mut(v: &mut Vec4, i: usize) -> &mut f32 {
+    &mut AsMut::<[f32; 4]>::as_mut(v)[i]
 }
 
 /// The largest number among the lanes of `mask`.
