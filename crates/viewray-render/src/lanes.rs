@@ -33,9 +33,12 @@ impl Vec3x4 {
         }
     }
 
-    /// Four vectors, one per lane.
+    /// Four vectors, one per lane, read where they lie. (Copied first into an array
+    /// written just before, they would be read back sixteen bytes at a time from
+    /// stores of four or eight, which the processor cannot forward: it waits for the
+    /// stores to reach the cache.)
     #[inline]
-    pub(crate) fn from_lanes(v: [Vec3; 4]) -> Self {
+    pub(crate) fn gather(v: [&Vec3; 4]) -> Self {
         Self {
             x: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
             y: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
@@ -244,7 +247,7 @@ mod tests {
         for window in vectors.windows(8).step_by(3) {
             let a: [Vec3; 4] = window[..4].try_into().unwrap();
             let b: [Vec3; 4] = window[4..].try_into().unwrap();
-            let (la, lb) = (Vec3x4::from_lanes(a), Vec3x4::from_lanes(b));
+            let (la, lb) = (Vec3x4::gather(a.each_ref()), Vec3x4::gather(b.each_ref()));
             let s = Vec4::from_array(b.map(|v| v.y));
             for j in 0..4 {
                 assert_eq!(

@@ -323,6 +323,7 @@ impl<'a> Shader<'a> {
         let lights = self.scene.lights();
         let n = rays.len();
         let LitBuffers {
+            bases,
             groups,
             mirror,
             shadow_rays,
@@ -339,45 +340,42 @@ impl<'a> Shader<'a> {
             deeper,
         } = buffers;
 
-        // Each sample's material and surface colour, one by one (grid lines branch);
-        // then, four at a time, where its secondary rays start and the view direction.
+        // Each sample's surface colour, one by one (grid lines branch).
         mirror.clear();
+        bases.clear();
+        for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
+            let material = self.scene.material(hit);
+            bases.push(surface_color(material, hit, || {
+                film.map_or(Footprint::Point, |f| self.footprint(&f(i), ray, hit))
+            }));
+            mirror.push(material.mirror);
+        }
+        // Then, four at a time, where its secondary rays start and the view direction.
+        // Every vector is gathered from where it lies (see `Vec3x4::gather`), and the
+        // surface colours long after they were written: through small arrays filled
+        // just before, the gathering took about a tenth of the render's time.
         groups.clear();
-        for (g, (rays, hits)) in rays.chunks(4).zip(hits.chunks(4)).enumerate() {
-            let mut base = [Vec3::ZERO; 4];
-            let mut specular = [Vec3::ZERO; 4];
-            let mut shininess = [0.0; 4];
-            let mut specular_lanes = 0;
-            for (j, (ray, hit)) in rays.iter().zip(hits).enumerate() {
-                let material = self.scene.material(hit);
-                base[j] = surface_color(material, hit, || {
-                    film.map_or(Footprint::Point, |f| {
-                        self.footprint(&f(4 * g + j), ray, hit)
-                    })
-                });
-                specular[j] = material.specular;
-                shininess[j] = material.shininess;
-                if material.specular != Vec3::ZERO {
-                    specular_lanes |= 1 << j;
-                }
-                mirror.push(material.mirror);
-            }
+        for g in 0..n.div_ceil(4) {
             // Spare lanes repeat the last sample; no light adds to them.
-            let last = rays.len() - 1;
-            let lane = |j: usize| j.min(last);
-            let (ray, hit) = (|j| &rays[lane(j)], |j| &hits[lane(j)]);
-            let direction = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| ray(j).direction));
-            let point = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).point));
-            let normal = Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).normal));
-            let t = Vec4::from_array([0, 1, 2, 3].map(|j| hit(j).t));
+            let len = (n - 4 * g).min(4);
+            let i = [0, 1, 2, 3].map(|j| 4 * g + j.min(len - 1));
+            let hit = i.map(|i| &hits[i]);
+            let material = hit.map(|hit| self.scene.material(hit));
+            let direction = Vec3x4::gather(i.map(|i| &rays[i].direction));
+            let point = Vec3x4::gather(hit.map(|hit| &hit.point));
+            let normal = Vec3x4::gather(hit.map(|hit| &hit.normal));
+            let t = Vec4::new(hit[0].t, hit[1].t, hit[2].t, hit[3].t);
+            let specular_lanes = (0..len)
+                .filter(|&j| material[j].specular != Vec3::ZERO)
+                .fold(0, |lanes, j| lanes | 1 << j);
             groups.push(LitGroup {
-                lanes: (1 << rays.len()) - 1,
-                base: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| base[lane(j)])),
-                specular: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| specular[lane(j)])),
-                shininess,
+                lanes: (1 << len) - 1,
+                base: Vec3x4::gather(i.map(|i| &bases[i])),
+                specular: Vec3x4::gather(material.map(|m| &m.specular)),
+                shininess: material.map(|m| m.shininess),
                 specular_lanes,
                 normal,
-                shading_normal: Vec3x4::from_lanes([0, 1, 2, 3].map(|j| hit(j).shading_normal)),
+                shading_normal: Vec3x4::gather(hit.map(|hit| &hit.shading_normal)),
                 view: -direction.normalize_or_zero(),
                 origin: offset_origin(point, normal, t, direction),
                 color: Vec3x4::ZERO,
@@ -612,6 +610,8 @@ pub(crate) struct LitScratch {
 /// depth's made when a mirror is first met.
 #[derive(Default)]
 struct LitBuffers {
+    /// Each sample's surface colour (with grid lines).
+    bases: Vec<Vec3>,
     groups: Vec<LitGroup>,
     /// Each sample's mirror reflectance.
     mirror: Vec<f32>,
@@ -1139,19 +1139,19 @@ mod tests {
             let lanes = (round % 16) as u32;
             let group = LitGroup {
                 lanes: 0b1111,
-                base: Vec3x4::from_lanes(base),
-                specular: Vec3x4::from_lanes(specular),
+                base: Vec3x4::gather(base.each_ref()),
+                specular: Vec3x4::gather(specular.each_ref()),
                 shininess,
                 specular_lanes: (0..4)
                     .filter(|&j| specular[j] != Vec3::ZERO)
                     .fold(0, |m, j| m | 1 << j),
-                normal: Vec3x4::from_lanes(n),
-                shading_normal: Vec3x4::from_lanes(n),
-                view: Vec3x4::from_lanes(v),
+                normal: Vec3x4::gather(n.each_ref()),
+                shading_normal: Vec3x4::gather(n.each_ref()),
+                view: Vec3x4::gather(v.each_ref()),
                 origin: Vec3x4::ZERO,
                 color: Vec3x4::ZERO,
             };
-            let got = group.blinn_phong(Vec3x4::from_lanes(l), lanes);
+            let got = group.blinn_phong(Vec3x4::gather(l.each_ref()), lanes);
             for j in 0..4 {
                 let expected = if lanes & (1 << j) != 0 {
                     blinn_phong(base[j], specular[j], shininess[j], n[j], l[j], v[j])
@@ -1180,10 +1180,10 @@ mod tests {
                 std::array::from_fn(|_| numbers.unit() * (0.1 + numbers.uniform()));
             let t: [f32; 4] = std::array::from_fn(|_| 1e3 * numbers.uniform());
             let got = offset_origin(
-                Vec3x4::from_lanes(point),
-                Vec3x4::from_lanes(normal),
+                Vec3x4::gather(point.each_ref()),
+                Vec3x4::gather(normal.each_ref()),
                 Vec4::from_array(t),
-                Vec3x4::from_lanes(direction),
+                Vec3x4::gather(direction.each_ref()),
             );
             for j in 0..4 {
                 // `OFFSET_SCALE (1 + max |coordinate|) + OFFSET_PER_DISTANCE t |direction|`.
