@@ -540,21 +540,24 @@ impl<'a> Shader<'a> {
         let Some(differentials) = differentials else {
             return Footprint::Unbounded;
         };
-        let on_plane = |origin: Vec3, direction: Vec3| -> Option<Vec3> {
-            let t = hit.normal.dot(hit.point - origin) / hit.normal.dot(direction);
-            (t > 0.0 && t.is_finite()).then(|| origin + t * direction - hit.point)
-        };
-        let dx = on_plane(
-            ray.origin + differentials.origin_dx,
-            ray.direction + differentials.direction_dx,
-        );
-        let dy = on_plane(
-            ray.origin + differentials.origin_dy,
-            ray.direction + differentials.direction_dy,
-        );
-        match (dx, dy) {
-            (Some(dx), Some(dy)) => Footprint::Area(dx, dy),
-            _ => Footprint::Unbounded,
+        // The two neighbours' rays and where each meets the tangent plane, `t = n.(p -
+        // o) / n.d`: both quotients in one division (each lane rounds as alone).
+        let origin_x = ray.origin + differentials.origin_dx;
+        let direction_x = ray.direction + differentials.direction_dx;
+        let origin_y = ray.origin + differentials.origin_dy;
+        let direction_y = ray.direction + differentials.direction_dy;
+        let (n, p) = (hit.normal, hit.point);
+        let t = Vec4::new(n.dot(p - origin_x), n.dot(p - origin_y), 0.0, 0.0)
+            / Vec4::new(n.dot(direction_x), n.dot(direction_y), 1.0, 1.0);
+        // Positive and finite (a NaN is neither).
+        let (tx, ty) = (t.x, t.y);
+        if tx > 0.0 && tx < f32::INFINITY && ty > 0.0 && ty < f32::INFINITY {
+            Footprint::Area(
+                origin_x + tx * direction_x - p,
+                origin_y + ty * direction_y - p,
+            )
+        } else {
+            Footprint::Unbounded
         }
     }
 
