@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 /// (`normal . direction <= 0`), so shading never has to flip them;
 /// [`Hit::front_face`] keeps the side that was hit. The default hit, all zeros, is
 /// only a placeholder for buffers that
-/// [`World::surface_into`](crate::World::surface_into) fills.
+/// [`World::shading_surface_into`](crate::World::shading_surface_into) fills.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Hit {
     /// The ray parameter of the hit, in units of the ray's (unnormalized) direction.

@@ -200,7 +200,7 @@
 //!   1280 x 720 x 16 on 1 thread, the largest single places are the footprint's two
 //!   ray-plane divisions (about 6% of the time), the camera's `f64` ray (about 4%) and
 //!   `powf` (2%). Copying each returned `Hit` into the batch took about 7% (the copy
-//!   waited for the stores that had just written it) until [`World::surface_into`]
+//!   waited for the stores that had just written it) until [`World::shading_surface_into`]
 //!   wrote the surfaces in place: 1.724 s to 1.696 s on 1 thread (medians of 7).
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16

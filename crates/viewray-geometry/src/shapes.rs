@@ -103,12 +103,23 @@ impl Sphere {
     }
 
     pub(crate) fn surface(&self, ray: &Ray, t: f32) -> Hit {
+        self.surface_with(ray, t, true)
+    }
+
+    /// [`Sphere::surface`], with the uv (an arc tangent and an arc sine) only if
+    /// `with_uv`, else zero.
+    #[inline(always)]
+    pub(crate) fn surface_with(&self, ray: &Ray, t: f32, with_uv: bool) -> Hit {
         let point = ray.at(t);
         let outward = ((point - self.center) / self.radius).normalize_or(Vec3::Y);
-        let uv = Vec2::new(
-            0.5 + outward.x.atan2(outward.z) / std::f32::consts::TAU,
-            0.5 + outward.y.clamp(-1.0, 1.0).asin() / std::f32::consts::PI,
-        );
+        let uv = if with_uv {
+            Vec2::new(
+                0.5 + outward.x.atan2(outward.z) / std::f32::consts::TAU,
+                0.5 + outward.y.clamp(-1.0, 1.0).asin() / std::f32::consts::PI,
+            )
+        } else {
+            Vec2::ZERO
+        };
         let (normal, shading_normal, front_face) = face_toward(ray.direction, outward, outward);
         Hit {
             t,
@@ -157,7 +168,7 @@ impl Plane {
     }
 
     pub(crate) fn surface(&self, ray: &Ray, t: f32) -> Hit {
-        self.surface_in(ray, t, &self.frame())
+        self.surface_in(ray, t, &self.frame(), true)
     }
 
     /// The unit normal and the uv axes, which every hit on the plane shares.
@@ -167,9 +178,10 @@ impl Plane {
         PlaneFrame { normal, s1, s2 }
     }
 
-    /// [`Plane::surface`] with the plane's [`Plane::frame`] already worked out.
+    /// [`Plane::surface`] with the plane's [`Plane::frame`] already worked out, and the
+    /// uv only if `with_uv` (else zero).
     #[inline]
-    pub(crate) fn surface_in(&self, ray: &Ray, t: f32, frame: &PlaneFrame) -> Hit {
+    pub(crate) fn surface_in(&self, ray: &Ray, t: f32, frame: &PlaneFrame, with_uv: bool) -> Hit {
         let point = ray.at(t);
         let PlaneFrame { normal: n, s1, s2 } = *frame;
         let offset = point - self.point;
@@ -180,7 +192,11 @@ impl Plane {
             normal,
             shading_normal,
             front_face,
-            uv: Vec2::new(offset.dot(s1), offset.dot(s2)),
+            uv: if with_uv {
+                Vec2::new(offset.dot(s1), offset.dot(s2))
+            } else {
+                Vec2::ZERO
+            },
             primitive: 0,
             object: 0,
         }

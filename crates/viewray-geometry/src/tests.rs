@@ -122,11 +122,12 @@ proptest! {
                     // The whole surface, uv included, is the object's own.
                     let alone = closest_alone(&objects[hit.object as usize], ray).unwrap();
                     prop_assert_eq!(Hit { object: hit.object, ..alone }, hit);
-                    // Written into a buffer, over a default hit or an earlier one.
+                    // What shading reads, written into a buffer over a default hit or an
+                    // earlier one: all of it but the uv, which is zero.
                     let object_hit = world.closest_object(ray, 0.0..f32::INFINITY).unwrap();
-                    for mut out in [Hit::default(), Hit { t: 7.0, object: 99, primitive: 5, front_face: !hit.front_face, ..hit }] {
-                        world.surface_into(ray, &object_hit, &mut out);
-                        prop_assert_eq!(out, hit);
+                    for mut out in [Hit::default(), Hit { t: 7.0, object: 99, primitive: 5, front_face: !hit.front_face, uv: Vec2::ONE, ..hit }] {
+                        world.shading_surface_into(ray, &object_hit, &mut out);
+                        prop_assert_eq!(out, Hit { uv: Vec2::ZERO, ..hit });
                     }
                 }
                 (a, e) => prop_assert!(false, "world {:?} but scan {:?}", a, e),

@@ -190,13 +190,15 @@ impl World {
         self.surface_of(ray, &hit.raw)
     }
 
-    /// [`World::surface`], written into `out`: for filling a buffer of hits (made with
-    /// [`Hit::default`]). A returned [`Hit`] would be copied into place straight after
-    /// it was written, and the copy would wait for those writes to finish (about a
-    /// twentieth of a Lit render's time).
+    /// What shading reads of [`World::surface`], written into `out`: every field but
+    /// `uv`, which is left zero (a sphere's takes an arc tangent and an arc sine, a
+    /// few percent of a Lit render, and shading never reads it). For filling a buffer
+    /// of hits (made with [`Hit::default`]): a returned [`Hit`] would be copied into
+    /// place straight after it was written, and the copy would wait for those writes
+    /// to finish (about a twentieth of a Lit render's time).
     #[inline(never)]
-    pub fn surface_into(&self, ray: &Ray, hit: &ObjectHit, out: &mut Hit) {
-        self.write_surface(ray, &hit.raw, out);
+    pub fn shading_surface_into(&self, ray: &Ray, hit: &ObjectHit, out: &mut Hit) {
+        self.write_surface(ray, &hit.raw, false, out);
     }
 
     /// The closest object hit of each ray of `rays` with `t` in `t_range`, into `hits`:
@@ -479,24 +481,29 @@ impl World {
 
     fn surface_of(&self, ray: &Ray, raw: &RawHit) -> Hit {
         let mut hit = Hit::default();
-        self.write_surface(ray, raw, &mut hit);
+        self.write_surface(ray, raw, true, &mut hit);
         hit
     }
 
-    /// The surface details of `raw` into `out`, each shape's written straight into it.
+    /// The surface details of `raw` into `out`, each shape's written straight into it;
+    /// the uv only if `with_uv`, else zero.
     #[inline(always)]
-    fn write_surface(&self, ray: &Ray, raw: &RawHit, out: &mut Hit) {
+    fn write_surface(&self, ray: &Ray, raw: &RawHit, with_uv: bool, out: &mut Hit) {
         match &self.objects[raw.object as usize] {
-            Object::Sphere(s) => *out = s.surface(ray, raw.t),
+            Object::Sphere(s) => *out = s.surface_with(ray, raw.t, with_uv),
             Object::Plane(p) => match self.planes.binary_search(&raw.object) {
-                Ok(slot) => *out = p.surface_in(ray, raw.t, &self.plane_frames[slot]),
-                Err(_) => *out = p.surface(ray, raw.t),
+                Ok(slot) => *out = p.surface_in(ray, raw.t, &self.plane_frames[slot], with_uv),
+                Err(_) => *out = p.surface_in(ray, raw.t, &p.frame(), with_uv),
             },
             Object::Triangle(tri) => *out = tri.surface(ray, raw),
             Object::Box(b) => {
                 *out = b.surface(ray, raw.t, raw.primitive / 2, raw.primitive % 2 == 1);
             }
             Object::Instance(i) => *out = i.surface(ray, raw),
+        }
+        if !with_uv {
+            // Spheres and planes skipped it; the others' is a by-product.
+            out.uv = Vec2::ZERO;
         }
         out.object = raw.object;
     }

@@ -249,9 +249,9 @@ impl<'a> Shader<'a> {
             for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 match hit {
                     Some(hit) => {
-                        // Into its place (see `World::surface_into`).
+                        // Into its place (see `World::shading_surface_into`).
                         surfaces.push(Hit::default());
-                        world.surface_into(ray, hit, &mut surfaces[hit_rays.len()]);
+                        world.shading_surface_into(ray, hit, &mut surfaces[hit_rays.len()]);
                         hit_rays.push(*ray);
                         samples.push(i);
                     }
@@ -501,7 +501,7 @@ impl<'a> Shader<'a> {
                 match hit {
                     Some(hit) => {
                         next_hits.push(Hit::default());
-                        world.surface_into(ray, hit, &mut next_hits[next_rays.len()]);
+                        world.shading_surface_into(ray, hit, &mut next_hits[next_rays.len()]);
                         next_rays.push(*ray);
                     }
                     None => *color = self.background,
