@@ -354,8 +354,10 @@ impl<'a> Shader<'a> {
         // Every vector is gathered from where it lies (see `Vec3x4::gather`), and the
         // surface colours long after they were written: through small arrays filled
         // just before, the gathering took about a tenth of the render's time.
-        groups.clear();
-        for g in 0..n.div_ceil(4) {
+        // Each group is written in its slot: pushed, it was built on the stack and copied
+        // (a call to memmove that read back stores still on their way).
+        groups.resize(n.div_ceil(4), LitGroup::EMPTY);
+        for (g, group) in groups.iter_mut().enumerate() {
             // Spare lanes repeat the last sample; no light adds to them.
             let len = (n - 4 * g).min(4);
             let i = [0, 1, 2, 3].map(|j| 4 * g + j.min(len - 1));
@@ -368,7 +370,7 @@ impl<'a> Shader<'a> {
             let specular_lanes = (0..len)
                 .filter(|&j| material[j].specular != Vec3::ZERO)
                 .fold(0, |lanes, j| lanes | 1 << j);
-            groups.push(LitGroup {
+            *group = LitGroup {
                 lanes: (1 << len) - 1,
                 base: Vec3x4::gather(i.map(|i| &bases[i])),
                 specular: Vec3x4::gather(material.map(|m| &m.specular)),
@@ -379,7 +381,7 @@ impl<'a> Shader<'a> {
                 view: -direction.normalize_or_zero(),
                 origin: offset_origin(point, normal, t, direction),
                 color: Vec3x4::ZERO,
-            });
+            };
         }
 
         // Headlight: a light at the eye, so a scene without lights is still visible.
@@ -467,7 +469,11 @@ impl<'a> Shader<'a> {
             }
         }
         for (colors, group) in colors[..n].chunks_mut(4).zip(groups.iter()) {
-            colors.copy_from_slice(&group.color.to_lanes()[..colors.len()]);
+            // Element by element: `copy_from_slice` of a length not known at compile
+            // time is a call to `memcpy`.
+            for (color, lane) in colors.iter_mut().zip(group.color.to_lanes()) {
+                *color = lane;
+            }
         }
 
         // Follow the mirrors: the reflected rays of the batch are traced and shaded
@@ -664,6 +670,20 @@ struct LitGroup {
 }
 
 impl LitGroup {
+    /// A placeholder for a buffer's slots, every one overwritten before it is read.
+    const EMPTY: Self = Self {
+        lanes: 0,
+        base: Vec3x4::ZERO,
+        specular: Vec3x4::ZERO,
+        shininess: [0.0; 4],
+        specular_lanes: 0,
+        normal: Vec3x4::ZERO,
+        shading_normal: Vec3x4::ZERO,
+        view: Vec3x4::ZERO,
+        origin: Vec3x4::ZERO,
+        color: Vec3x4::ZERO,
+    };
+
     /// Blinn-Phong for the light direction `l` (unit vectors), per unit of the light's
     /// irradiance, in the lanes of `lanes` (zero in the others):
     ///
