@@ -42,9 +42,12 @@ const MANY_CHILDREN: u32 = 6;
 /// Stack entry flag: the child is to be handed to single rays.
 const SINGLE: u32 = 1 << 31;
 
-/// Each lane's slab numbers (see [`slab_numbers`]), per axis, four lanes per vector.
+/// Each lane's ray and slab numbers (see [`slab_numbers`]), per axis, four lanes per
+/// vector.
 #[derive(Clone, Debug)]
 struct LaneNumbers {
+    origin: [Lanes; 3],
+    direction: [Lanes; 3],
     origin_near: [Lanes; 3],
     origin_far: [Lanes; 3],
     inverse: [Lanes; 3],
@@ -52,6 +55,8 @@ struct LaneNumbers {
 
 impl LaneNumbers {
     const EMPTY: Self = Self {
+        origin: [[Vec4::ZERO; PACKET_GROUPS]; 3],
+        direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
         origin_near: [[Vec4::ZERO; PACKET_GROUPS]; 3],
         origin_far: [[Vec4::ZERO; PACKET_GROUPS]; 3],
         inverse: [[Vec4::ZERO; PACKET_GROUPS]; 3],
@@ -101,7 +106,7 @@ impl<'a> BoxPacket<'a> {
                 *ray = lane as u8;
             }
             for group in 0..chunk.len.div_ceil(4) {
-                let d = [0, 1, 2].map(|axis| chunk.direction[axis][group]);
+                let d = [0, 1, 2].map(|axis| chunk.numbers.direction[axis][group]);
                 for axis in 0..3 {
                     direction_min[axis] = direction_min[axis].min(d[axis]);
                     direction_max[axis] = direction_max[axis].max(d[axis]);
@@ -116,13 +121,15 @@ impl<'a> BoxPacket<'a> {
             let mut lane = 0;
             for i in lanes_of(mask) {
                 let (from, to) = ((i / 4, i % 4), (lane / 4, lane % 4));
-                let d = [0, 1, 2].map(|axis| at(&chunk.direction[axis][from.0], from.1));
+                let d = [0, 1, 2].map(|axis| at(&source.direction[axis][from.0], from.1));
                 length_squared_min =
                     length_squared_min.min(Vec4::splat(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
                 for axis in 0..3 {
                     let copy = |to_lanes: &mut Lanes, from_lanes: &Lanes| {
                         *at_mut(&mut to_lanes[to.0], to.1) = at(&from_lanes[from.0], from.1);
                     };
+                    copy(&mut target.origin[axis], &source.origin[axis]);
+                    copy(&mut target.direction[axis], &source.direction[axis]);
                     copy(&mut target.origin_near[axis], &source.origin_near[axis]);
                     copy(&mut target.origin_far[axis], &source.origin_far[axis]);
                     copy(&mut target.inverse[axis], &source.inverse[axis]);
@@ -137,6 +144,8 @@ impl<'a> BoxPacket<'a> {
             for slot in lane..lane.next_multiple_of(4) {
                 for axis in 0..3 {
                     for lanes in [
+                        &mut target.origin[axis],
+                        &mut target.direction[axis],
                         &mut target.origin_near[axis],
                         &mut target.origin_far[axis],
                         &mut target.inverse[axis],
@@ -200,6 +209,17 @@ impl<'a> BoxPacket<'a> {
     /// For each lane, the index of its ray in the slice the packet was filled from.
     pub(crate) fn rays(&self) -> &[u8] {
         &self.rays[..self.len]
+    }
+
+    /// The origins and directions of the four lanes of group `group` (lanes past the
+    /// last ray repeat a ray of the packet).
+    #[inline(always)]
+    pub(crate) fn group_rays(&self, group: usize) -> ([Vec4; 3], [Vec4; 3]) {
+        let numbers = self.numbers;
+        (
+            [0, 1, 2].map(|axis| numbers.origin[axis][group]),
+            [0, 1, 2].map(|axis| numbers.direction[axis][group]),
+        )
     }
 
     /// The single ray of lane `lane`.
@@ -318,6 +338,12 @@ pub(crate) fn set_lane(lanes: &mut Lanes, lane: usize, value: f32) {
     *at_mut(&mut lanes[lane / 4], lane % 4) = value;
 }
 
+/// The mask of the lanes whose bits are set in the low four bits of `bits`.
+#[inline(always)]
+pub(crate) fn lane_mask(bits: u32) -> BVec4A {
+    BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0)
+}
+
 /// Lane `i` of `v`, read through its array: indexing a `Vec4` by a lane not known at
 /// compile time is a `match`, which compiles to a jump table.
 #[inline(always)]
@@ -354,7 +380,6 @@ struct ChunkNumbers {
     /// The masks of the valid rays of each octant.
     octants: [u64; 8],
     numbers: LaneNumbers,
-    direction: [Lanes; 3],
 }
 
 impl ChunkNumbers {
@@ -364,7 +389,6 @@ impl ChunkNumbers {
         all: 0,
         octants: [0; 8],
         numbers: LaneNumbers::EMPTY,
-        direction: [[Vec4::ZERO; PACKET_GROUPS]; 3],
     };
 
     /// Makes these the numbers of `rays`, as [`BoxRay::new`] computes them ray by ray,
@@ -403,7 +427,8 @@ impl ChunkNumbers {
                 chunk.numbers.origin_near[axis][group] = near;
                 chunk.numbers.origin_far[axis][group] = far;
                 chunk.numbers.inverse[axis][group] = inverse;
-                chunk.direction[axis][group] = d;
+                chunk.numbers.origin[axis][group] = o;
+                chunk.numbers.direction[axis][group] = d;
             }
             valid_lanes |= u64::from((valid & nonzero).bitmask()) << (4 * group);
         }

@@ -224,16 +224,11 @@ impl World {
             for_each_packet(rays, |packet| {
                 let mut t_max = [Vec4::splat(t_range.end); PACKET_GROUPS];
                 let mut best = [None; PACKET_SIZE];
-                // Planes first, ray by ray, as `intersect` does.
-                if !self.planes.is_empty() {
-                    for (lane, &i) in packet.rays().iter().enumerate() {
-                        let ray = &rays[usize::from(i)];
-                        let mut t = lane_value(&t_max, lane);
-                        best[lane] = self.intersect_planes(ray, t_min, &mut t);
-                        set_lane(&mut t_max, lane, t);
-                    }
-                }
                 let lanes = packet.all_lanes();
+                // Planes first, as `intersect` does, four rays at a time.
+                if !self.planes.is_empty() {
+                    self.closest_planes(packet, lanes, t_min, &mut t_max, &mut best);
+                }
                 match self.single {
                     Some(object) => self.intersect_object_packet(
                         object,
@@ -354,15 +349,10 @@ impl World {
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(false);
             for_each_packet(rays, |packet| {
-                // Planes first, ray by ray, as `any_hit` does.
+                // Planes first, as `any_hit` does, four rays at a time.
                 let mut searching = packet.all_lanes();
                 if !self.planes.is_empty() {
-                    for (lane, &i) in packet.rays().iter().enumerate() {
-                        let ray = &rays[usize::from(i)];
-                        if self.any_plane(ray, t_min, t_max) {
-                            searching &= !(1 << lane);
-                        }
-                    }
+                    searching &= !self.any_planes(packet, t_min, t_max);
                 }
                 let any_object = |object: u32, lanes: u64| {
                     lanes_of(lanes).fold(0, |found, lane| {
@@ -401,6 +391,63 @@ impl World {
                 }
             });
         }
+    }
+
+    /// [`World::intersect_planes`] for the lanes `lanes` of a packet, four at a time:
+    /// each lane's closest plane hit into `best`, and its `t` into `t_max`.
+    #[inline]
+    fn closest_planes(
+        &self,
+        packet: &BoxPacket<'_>,
+        lanes: u64,
+        t_min: f32,
+        t_max: &mut Lanes,
+        best: &mut [Option<RawHit>; PACKET_SIZE],
+    ) {
+        let t_min = Vec4::splat(t_min);
+        for (group, t_max) in t_max
+            .iter_mut()
+            .enumerate()
+            .take(packet.rays().len().div_ceil(4))
+        {
+            let (origin, direction) = packet.group_rays(group);
+            let group_lanes = ((lanes >> (4 * group)) & 0xf) as u32;
+            for &object in &self.planes {
+                if let Object::Plane(plane) = &self.objects[object as usize] {
+                    let (hit, t) = plane.intersect_t_lanes(origin, direction, t_min, *t_max);
+                    let hit = hit & group_lanes;
+                    if hit != 0 {
+                        *t_max = Vec4::select(crate::packet::lane_mask(hit), t, *t_max);
+                        for lane in lanes_of(u64::from(hit)) {
+                            best[4 * group + lane] = Some(RawHit {
+                                t: crate::packet::at(&t, lane),
+                                object,
+                                primitive: 0,
+                                barycentric: Vec2::ZERO,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// [`World::any_plane`] for each ray of a packet, four at a time: the mask of the
+    /// lanes that hit a plane.
+    #[inline]
+    fn any_planes(&self, packet: &BoxPacket<'_>, t_min: f32, t_max: f32) -> u64 {
+        let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
+        let mut found = 0;
+        for group in 0..packet.rays().len().div_ceil(4) {
+            let (origin, direction) = packet.group_rays(group);
+            for &object in &self.planes {
+                if let Object::Plane(plane) = &self.objects[object as usize] {
+                    let (hit, _) = plane.intersect_t_lanes(origin, direction, t_min, t_max);
+                    found |= u64::from(hit) << (4 * group);
+                }
+            }
+        }
+        found & packet.all_lanes()
     }
 
     /// Whether a plane is hit with `t_min <= t < t_max`.
