@@ -1019,3 +1019,54 @@ fn texture_coordinates_of_the_analytic_shapes() {
         .unwrap();
     assert!((a.uv.distance(b.uv) - 5.0).abs() < 1e-5);
 }
+
+/// A sphere's uv are the spherical angles of its outward normal `n`:
+/// `u = 1/2 + atan2(n.x, n.z) / (2 pi)`, `v = 1/2 + asin(n.y) / pi`; a world gives the
+/// same through `surface`, and leaves them zero for shading.
+#[test]
+fn sphere_uv_are_the_angles_of_the_normal() {
+    let center = Vec3::new(1.0, -2.0, 0.5);
+    let sphere = Sphere::new(center, 2.0);
+    let world = World::new(vec![Object::Sphere(sphere)]).unwrap();
+    let tau = std::f64::consts::TAU;
+    for (n, expected) in [
+        (Vec3::Z, Vec2::new(0.5, 0.5)),
+        (Vec3::X, Vec2::new(0.75, 0.5)),
+        (Vec3::NEG_X, Vec2::new(0.25, 0.5)),
+        (
+            Vec3::new(0.6, 0.0, -0.8),
+            Vec2::new((0.5 + 0.6f64.atan2(-0.8) / tau) as f32, 0.5),
+        ),
+        (
+            Vec3::new(0.48, 0.6, 0.64),
+            Vec2::new(
+                (0.5 + 0.48f64.atan2(0.64) / tau) as f32,
+                (0.5 + 0.6f64.asin() / std::f64::consts::PI) as f32,
+            ),
+        ),
+        (
+            Vec3::new(0.0, -0.8, 0.6),
+            Vec2::new(0.5, (0.5 + (-0.8f64).asin() / std::f64::consts::PI) as f32),
+        ),
+    ] {
+        // From outside, straight toward the centre through the point `center + 2 n`.
+        let ray = Ray::new(center + 5.0 * n, -n);
+        let hit = sphere.closest_hit(&ray, 0.0..f32::INFINITY).unwrap();
+        assert!(
+            hit.uv.abs_diff_eq(expected, 1e-5),
+            "n = {n}: {} != {expected}",
+            hit.uv
+        );
+        let object_hit = world.closest_object(&ray, 0.0..f32::INFINITY).unwrap();
+        assert_eq!(world.surface(&ray, &object_hit), hit);
+        let mut shading = Hit::default();
+        world.shading_surface_into(&ray, &object_hit, &mut shading);
+        assert_eq!(
+            shading,
+            Hit {
+                uv: Vec2::ZERO,
+                ..hit
+            }
+        );
+    }
+}

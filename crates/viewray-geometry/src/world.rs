@@ -227,7 +227,7 @@ impl World {
                 let lanes = packet.all_lanes();
                 // Planes first, as `intersect` does, four rays at a time.
                 if !self.planes.is_empty() {
-                    self.closest_planes(packet, lanes, t_min, &mut t_max, &mut best);
+                    self.closest_planes(packet, t_min, &mut t_max, &mut best);
                 }
                 match self.single {
                     Some(object) => self.intersect_object_packet(
@@ -393,13 +393,13 @@ impl World {
         }
     }
 
-    /// [`World::intersect_planes`] for the lanes `lanes` of a packet, four at a time:
-    /// each lane's closest plane hit into `best`, and its `t` into `t_max`.
+    /// [`World::intersect_planes`] for each ray of a packet, four at a time: each
+    /// lane's closest plane hit into `best`, and its `t` into `t_max`. (The spare lanes
+    /// of the last group repeat a ray of the packet; what they record is never read.)
     #[inline]
     fn closest_planes(
         &self,
         packet: &BoxPacket<'_>,
-        lanes: u64,
         t_min: f32,
         t_max: &mut Lanes,
         best: &mut [Option<RawHit>; PACKET_SIZE],
@@ -411,11 +411,9 @@ impl World {
             .take(packet.rays().len().div_ceil(4))
         {
             let (origin, direction) = packet.group_rays(group);
-            let group_lanes = ((lanes >> (4 * group)) & 0xf) as u32;
             for &object in &self.planes {
                 if let Object::Plane(plane) = &self.objects[object as usize] {
                     let (hit, t) = plane.intersect_t_lanes(origin, direction, t_min, *t_max);
-                    let hit = hit & group_lanes;
                     if hit != 0 {
                         *t_max = Vec4::select(crate::packet::lane_mask(hit), t, *t_max);
                         for lane in lanes_of(u64::from(hit)) {
