@@ -895,7 +895,136 @@ fn floor(x: f32) -> f32 {
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
+
+    /// A scene of one ground plane `y = 0` seen by `camera` (a RON camera), 40 x 30.
+    fn ground(camera: &str) -> Scene {
+        let text = format!(
+            "(image: (width: 40, height: 30), camera: {camera}, shading: Lit,
+              materials: {{ \"ground\": (color: (0.5, 0.5, 0.5),
+                              grid: (spacing: 1.0, width: 0.1, color: (0.0, 0.0, 0.0))) }},
+              objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"ground\")])"
+        );
+        Scene::parse(&text, std::path::Path::new("ground.ron")).unwrap()
+    }
+
+    /// The footprint the shader gives the sample through the centre of `pixel` for
+    /// neighbours `spacing` pixels away, and the one worked out in f64: where the
+    /// neighbouring rays (through the lens centre) meet the hit's tangent plane, minus the
+    /// hit point, or `None` where one does not meet it ahead of its origin.
+    fn footprints(scene: &Scene, pixel: DVec2, spacing: f64) -> (Footprint, Option<[DVec3; 2]>) {
+        let view = View::of(scene);
+        let camera = &view.camera;
+        let shader = Shader::new(scene, &view, 4, DepthMap::new(camera));
+        let center = DVec2::splat(0.5);
+        let ray = camera.generate_ray_through(pixel, center).unwrap().as_ray();
+        let world = scene.world();
+        let hit = world.surface(
+            &ray,
+            &world.closest_object(&ray, T_MIN..f32::INFINITY).unwrap(),
+        );
+        let differentials = OnceCell::new();
+        let film = FilmPoint {
+            pixel_center: pixel,
+            spacing,
+            differentials: &differentials,
+        };
+        let got = shader.footprint(&film, &ray, &hit);
+        let (p, n) = (hit.point.as_dvec3(), hit.normal.as_dvec3());
+        let on_plane = |offset: DVec2| {
+            let r = camera
+                .generate_ray_through(pixel + offset * spacing, center)
+                .unwrap();
+            let t = n.dot(p - r.origin) / n.dot(r.direction);
+            (t > 0.0 && t.is_finite()).then(|| r.origin + t * r.direction - p)
+        };
+        let expected = on_plane(DVec2::X)
+            .zip(on_plane(DVec2::Y))
+            .map(|(dx, dy)| [dx, dy]);
+        (got, expected)
+    }
+
+    #[track_caller]
+    fn check_area(got: Footprint, expected: Option<[DVec3; 2]>) {
+        let [ex, ey] = expected.expect("both neighbours meet the plane");
+        let Footprint::Area(dx, dy) = got else {
+            panic!("{got:?}, expected the area {ex} x {ey}");
+        };
+        for (got, expected) in [(dx, ex), (dy, ey)] {
+            assert!(
+                got.as_dvec3()
+                    .abs_diff_eq(expected, 1e-4 * expected.length()),
+                "{got} != {expected}"
+            );
+            assert!(expected.length() > 1e-3, "a footprint that says something");
+        }
+    }
+
+    #[test]
+    fn footprints_are_where_the_neighbouring_rays_meet_the_tangent_plane() {
+        // A perspective camera looking down at the ground: the neighbours' directions
+        // differ, their origin is the eye.
+        let tilted = ground(
+            "(eye: (0.5, 3.0, 4.0), view: (0.1, -1.0, -1.2), up: (0.0, 1.0, 0.0),
+              projection: Perspective(fov_y: 50.0))",
+        );
+        for (pixel, spacing) in [((20.5, 15.5), 1.0), ((7.5, 26.5), 0.25), ((33.0, 4.0), 0.5)] {
+            let (got, expected) = footprints(&tilted, DVec2::from(pixel), spacing);
+            check_area(got, expected);
+        }
+        // An orthographic one: the neighbours' origins differ, their direction is the same.
+        let parallel = ground(
+            "(eye: (0.0, 5.0, 3.0), view: (0.2, -1.0, -0.7), up: (0.0, 1.0, 0.0),
+              projection: Orthographic(viewport: (8.0, 6.0)))",
+        );
+        for (pixel, spacing) in [((20.5, 15.5), 1.0), ((3.5, 2.5), 0.5)] {
+            let (got, expected) = footprints(&parallel, DVec2::from(pixel), spacing);
+            check_area(got, expected);
+        }
+    }
+
+    #[test]
+    fn footprints_are_unbounded_where_a_neighbour_misses_the_plane() {
+        // Level and upside down: image rows run up the world, the horizon at row 15.
+        let level = ground(
+            "(eye: (0.0, 1.0, 0.0), view: (0.0, 0.0, -1.0), up: (0.0, -1.0, 0.0),
+              projection: Perspective(fov_y: 60.0))",
+        );
+        // Half a pixel below the horizon: the neighbour a pixel up looks above it.
+        let (got, expected) = footprints(&level, DVec2::new(20.5, 14.5), 1.0);
+        assert!(expected.is_none());
+        assert!(matches!(got, Footprint::Unbounded), "{got:?}");
+        // Half a pixel up, the neighbour looks along the horizon: parallel to the
+        // plane, it meets it at infinity.
+        let (got, expected) = footprints(&level, DVec2::new(20.5, 14.5), 0.5);
+        assert!(expected.is_none());
+        assert!(matches!(got, Footprint::Unbounded), "{got:?}");
+        // A whole pixel below the horizon, a pixel up still meets the plane.
+        let (got, expected) = footprints(&level, DVec2::new(20.5, 13.5), 1.0);
+        check_area(got, expected);
+        // From below the ground, upright, looking along +z: the neighbour half a pixel
+        // down looks along the horizon, and with every product of its `n.d` a negative
+        // zero (left of centre its x is positive) it meets the plane at t = +infinity,
+        // which is no footprint either.
+        let below = ground(
+            "(eye: (0.0, -1.0, 0.0), view: (0.0, 0.0, 1.0), up: (0.0, 1.0, 0.0),
+              projection: Perspective(fov_y: 60.0))",
+        );
+        let (got, expected) = footprints(&below, DVec2::new(10.5, 14.5), 0.5);
+        assert!(expected.is_none());
+        assert!(matches!(got, Footprint::Unbounded), "{got:?}");
+        // The same turned a quarter (image x runs down the world, the horizon is column
+        // 20): now the neighbour along x meets the plane at t = +infinity.
+        let turned = ground(
+            "(eye: (0.0, -1.0, 0.0), view: (0.0, 0.0, 1.0), up: (-1.0, 0.0, 0.0),
+              projection: Perspective(fov_y: 60.0))",
+        );
+        let (got, expected) = footprints(&turned, DVec2::new(19.5, 20.5), 0.5);
+        assert!(expected.is_none());
+        assert!(matches!(got, Footprint::Unbounded), "{got:?}");
+    }
 
     #[track_caller]
     fn check_rounding(x: f32) {
