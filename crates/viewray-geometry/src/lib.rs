@@ -108,28 +108,29 @@
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! after this session's changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3),
-//! and the three runs of the session before; Embree's own figures move by a tenth to a
-//! third between runs and sessions (its 1-thread build took 0.212 to 0.250 s below,
-//! 0.216 to 0.332 s the session before), so read the ratios within a run:
+//! after the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median
+//! of 3), and the three runs of the round before; Embree's own figures move by a tenth
+//! to a third between runs and rounds (its 1-thread build took 0.230 to 0.316 s below,
+//! 0.212 to 0.250 s the round before), so read the ratios within a run:
 //!
-//! | 1 thread unless stated | run 1 | run 2 | run 3 | session before (three runs) |
+//! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.356 s (Embree 0.212: 0.59x) | 0.380 s (0.221: 0.58x) | 0.355 s (0.250: 0.70x) | 0.384 to 0.399 s: 0.78x, 0.55x, 0.83x |
-//! | build, 2 threads | 0.191 s (0.212: 1.11x) | 0.220 s (0.245: 1.11x) | 0.208 s (0.224: 1.07x) | 1.03x, 0.83x, 1.03x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 15.51 Mrays/s (0.82x) | 13.78 (0.77x) | 15.54 (0.83x) | 0.83x, 0.83x, 0.87x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.00x | 0.92x | 1.01x | 1.00x, 1.01x, 1.04x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.31 Mrays/s (0.78x) | 6.90 (0.75x) | 7.45 (0.80x) | 0.78x, 0.78x, 0.76x |
-//! | incoherent vs `rtcIntersect1` | 1.84 Mrays/s (0.99x) | 1.83 (0.87x) | 1.71 (0.79x) | 0.97x, 0.81x, 0.85x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 30.24 Mrays/s (0.83x) | 29.83 (0.80x) | 27.45 (0.74x) | 0.81x, 0.83x, 0.68x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.70 Mrays/s (0.87x) | 4.01 (0.99x) | 3.54 (0.77x) | 0.93x, 0.77x, 0.80x |
+//! | build | 0.394 s (Embree 0.230: 0.58x) | 0.352 s (0.316: 0.90x) | 0.349 s (0.302: 0.86x) | 0.355 to 0.380 s: 0.59x, 0.58x, 0.70x |
+//! | build, 2 threads | 0.201 s (0.235: 1.17x) | 0.193 s (0.235: 1.21x) | 0.194 s (0.209: 1.08x) | 1.11x, 1.11x, 1.07x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 16.18 Mrays/s (0.87x) | 14.29 (0.83x) | 16.60 (0.89x) | 0.82x, 0.77x, 0.83x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.06x | 0.92x | 1.07x | 1.00x, 0.92x, 1.01x |
+//! | primary, ray by ray vs `rtcIntersect1` | 6.23 Mrays/s (0.67x) | 7.00 (0.75x) | 7.04 (0.75x) | 0.78x, 0.75x, 0.80x |
+//! | incoherent vs `rtcIntersect1` | 1.69 Mrays/s (0.77x) | 1.86 (0.81x) | 1.98 (0.82x) | 0.99x, 0.87x, 0.79x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 31.12 Mrays/s (0.83x) | 30.11 (0.81x) | 32.93 (0.88x) | 0.83x, 0.80x, 0.74x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 4.22 Mrays/s (0.92x) | 4.20 (0.90x) | 4.46 (0.85x) | 0.87x, 0.99x, 0.77x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.5x to 3.7x faster than obvhs everywhere. The tracing did not change this session;
-//! the build's partition lost its branch on each item's side (below), and the 1-thread
-//! build went from 0.384-0.399 s to 0.355-0.380 s. The 2-thread build is at or above
-//! Embree's in all three runs (1.07x to 1.11x), and 0.83x to 1.32x over fifteen runs in
-//! four sessions.
+//! 1.4x to 3.7x faster than obvhs everywhere. The latest round changed the packets
+//! (single lanes read through arrays, origins and directions kept beside the slab
+//! numbers for the plane tests) and left the single-ray paths and the build alone; the
+//! spread of the ray-by-ray and build figures is the machine's. The 2-thread build is
+//! at or above Embree's in all three runs (1.08x to 1.21x), and 0.83x to 1.32x over
+//! eighteen runs in five rounds.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
@@ -180,46 +181,65 @@
 //!   thread (before: 1.34x to 1.39x), the medians 1.16x to 1.18x (before: 1.31x to 1.40x),
 //!   three runs each, the two versions alternated; the aim is 1.10x. The session before:
 //!   1.15x by the fastest runs on 1 and 2 threads, 1.15x to 1.28x by the medians (two
-//!   runs). This session (868.5 M instructions, 711.6 M of them tracing: 1.22x), two
+//!   runs). The round after (868.5 M instructions, 711.6 M of them tracing: 1.22x), two
 //!   runs: 1.13x and 1.15x by the medians on 1 thread, 1.11x and 1.15x on 2, 1.14x by
-//!   the fastest runs. What is left
+//!   the fastest runs; the latest round (which did not touch this path), three runs:
+//!   1.15x to 1.23x by the medians on 1 thread, 1.14x to 1.16x on 2, 1.14x to 1.16x
+//!   by the fastest runs. Splitting the block loop in two (camera samples, then rays)
+//!   so that its iterations overlap gained nothing measurable. What is left
 //!   is the camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping
 //!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
 //!   shading, about 140 instructions a ray together.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
-//!   1`, 16 objects) executes about 1,760 instructions per sample (405.3 M, the render
-//!   loop alone; 442.7 M two sessions ago, 414.3 M before the lights were worked out four
-//!   samples at a time in `viewray-render`, 410.0 M before the surfaces were written in
-//!   place): shadow-ray packets ([`World::any_hits`],
-//!   79 M), primary and mirror packets (73 M), and shading and bookkeeping, which is
-//!   more than half: grid lines filtered over each sample's footprint (`line_coverage`
-//!   25 M; the footprint and the ray differentials about 30 M), surface details
-//!   (`World::surface`, 27 M), Blinn-Phong (10 M, with `powf`), and each sample's
-//!   view, offset origin and shadow-ray directions. With so few objects a packet's setup
-//!   (its slab numbers and bounds, 43 M) costs as much as its traversal. In `perf`, at
-//!   1280 x 720 x 16 on 1 thread, the largest single places are the footprint's two
-//!   ray-plane divisions (about 6% of the time), the camera's `f64` ray (about 4%) and
-//!   `powf` (2%). Copying each returned `Hit` into the batch took about 7% (the copy
-//!   waited for the stores that had just written it) until [`World::shading_surface_into`]
-//!   wrote the surfaces in place: 1.724 s to 1.696 s on 1 thread (medians of 7).
+//!   1`, 16 objects on a ground plane) executed about 1,760 instructions per sample
+//!   (405.8 M, the render loop alone) at the start of the latest round of work on it and
+//!   about 1,430 (330.4 M) after: shadow-ray packets ([`World::any_hits`]), primary
+//!   and mirror packets ([`World::closest_objects`]), and shading and bookkeeping,
+//!   which is more than half (grid lines filtered over each sample's footprint, surface
+//!   details, Blinn-Phong with `powf`, each sample's view, offset origin and shadow
+//!   rays). With so few objects a packet's setup (its slab numbers and bounds) costs as
+//!   much as its traversal.
+//!
+//! Instruction counts misled on the Lit render: the latest round removed 8% of its
+//! instructions (the shading buffers reused from batch to batch) for 2% of its time,
+//! and the largest gain of the round removed almost none. The render waited on
+//! memory it had just written: four samples' vectors copied into small arrays lane by
+//! lane and read back sixteen bytes at a time, which the processor cannot forward
+//! from its pending stores (`perf` put 7.7% of the time on glam's `Vec4::new`); a
+//! `Hit` returned and copied into place straight after its fields were written (7%,
+//! hence [`World::shading_surface_into`]); a group of lanes built on the stack and
+//! copied with `memcpy`. Reading each vector where it lies took the Lit render from
+//! 1.649 s to 1.504 s on 1 thread (medians of 5). The other gains of that round: the
+//! ground plane tested four rays at a time in every packet (about 8% of the time had
+//! gone to the per-ray plane tests; 1.449 s to 1.379 s, medians of 9), single lanes
+//! of a packet read through arrays instead of glam's `match` on the lane (a jump
+//! table, mispredicted whenever the lane changes: 1.692 s to 1.652 s), the two
+//! footprint divisions in one, and no spherical uv for shading (the renderer never
+//! reads it; `atan2f` and `asinf` were 1.6% of the time).
 //!
 //! At 1280 x 720, 16 samples, 2 threads (`viewray render --size 1280x720 --samples 16
-//! --threads 2 --stats`, 38,387,820 rays), seven runs alternated with the renderer of
-//! the start of this work (401e71b, before shadow and mirror rays went as packets): 0.867
-//! to 0.951 s, median 0.886 s, against 1.408 to 1.471 s, median 1.416 s: 1.60x by the
-//! medians, 1.62x by the fastest runs (after the lights four at a time alone: median
-//! 0.898 s against 1.425 s, 1.59x; the session before: 1.57x). The 2x aimed for is
-//! not reached; shading and ray generation, which packets do not touch, are most of
-//! what is left, spread over many small steps. Measured and set aside:
+//! --threads 2 --stats`, 38,387,820 rays), nine runs alternated with the renderer this
+//! work started from (401e71b, before shadow and mirror rays went as packets): 0.664 to
+//! 0.787 s, median 0.680 s, against 1.411 to 1.593 s, median 1.437 s: 2.11x by the
+//! medians, 2.12x by the fastest runs (the round before ended at 1.60x; against that
+//! round's last renderer, 0.665 s against 0.871 s, medians of 7). Images identical
+//! byte for byte.
 //!
-//! - `line_coverage` inlined into its caller (0.882 s against 0.884 s, medians of 7) and
-//!   `World::surface` inlined across crates (0.962 s against 0.911 s).
+//! Measured and set aside on the Lit render:
+//!
+//! - `line_coverage` inlined into its caller (0.882 s against 0.884 s, medians of 7),
+//!   `World::surface` inlined across crates (0.962 s against 0.911 s), and its
+//!   division by the grid spacing replaced with a multiplication (for a unit grid the
+//!   same bits; no faster, so the division is not what it waits on).
+//! - `line_coverage` without branches (all three windows worked out, one picked by
+//!   masks): a third fewer simulated mispredictions, 1.69 s to 1.85 s.
 //! - The ray prepared for triangles once per leaf rather than once per triangle:
 //!   414.2 M to 417.1 M instructions, because the world's leaves hold one or two
 //!   objects and there is nothing to share.
 //! - The grid footprints four samples at a time, like the lights: 410.0 M to 422.4 M
-//!   instructions and no faster (gathering each sample's differentials into lanes costs
-//!   more than the divisions it shares).
+//!   instructions and no faster (measured before the gathering was fixed).
+//! - The whole program built for `x86-64-v3` without fused multiply-adds (the same
+//!   bits): 4% faster (medians of 5), not worth a second build of the renderer.
 
 mod aabb;
 mod bvh;
