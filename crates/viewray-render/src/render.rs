@@ -263,8 +263,12 @@ impl TileBuffers {
                 }
             }
         }
-        for pixel in &mut self.pixels {
-            *pixel /= samples as f32;
+        // The mean of each pixel's samples (one sample is its own mean: dividing by 1
+        // changes no bit, and is a million divisions for a megapixel image).
+        if samples > 1 {
+            for pixel in &mut self.pixels {
+                *pixel /= samples as f32;
+            }
         }
         rays
     }
