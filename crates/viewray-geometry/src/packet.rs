@@ -364,8 +364,7 @@ fn max_lane(values: &Lanes, mask: u64) -> f32 {
     for (group, v) in values.iter().enumerate() {
         let bits = (mask >> (4 * group)) & 0xf;
         if bits != 0 {
-            let selected = BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0);
-            max = max.max(Vec4::select(selected, *v, Vec4::NEG_INFINITY));
+            max = max.max(Vec4::select(lane_mask(bits as u32), *v, Vec4::NEG_INFINITY));
         }
     }
     max.max_element()

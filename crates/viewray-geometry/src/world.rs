@@ -7,8 +7,8 @@ use glam::{Vec2, Vec4};
 use crate::bvh::{BoxRay, BuildParams, Bvh};
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
-    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet,
-    lane as lane_value, lanes_of, set_lane,
+    BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, at, for_each_packet,
+    lane as lane_value, lane_mask, lanes_of, set_lane,
 };
 use crate::shapes::{PlaneFrame, WatertightRay};
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
@@ -415,10 +415,10 @@ impl World {
                 if let Object::Plane(plane) = &self.objects[object as usize] {
                     let (hit, t) = plane.intersect_t_lanes(origin, direction, t_min, *t_max);
                     if hit != 0 {
-                        *t_max = Vec4::select(crate::packet::lane_mask(hit), t, *t_max);
+                        *t_max = Vec4::select(lane_mask(hit), t, *t_max);
                         for lane in lanes_of(u64::from(hit)) {
                             best[4 * group + lane] = Some(RawHit {
-                                t: crate::packet::at(&t, lane),
+                                t: at(&t, lane),
                                 object,
                                 primitive: 0,
                                 barycentric: Vec2::ZERO,

@@ -702,7 +702,8 @@ impl LitGroup {
         let specular = lit & self.specular_lanes;
         if specular != 0 {
             let h = (l + self.view).normalize_or_zero();
-            let n_dot_h = n.dot(h);
+            // Read lane by lane through an array (indexing a `Vec4` is a `match`).
+            let n_dot_h = n.dot(h).to_array();
             let mut power = [0.0; 4];
             for j in lanes_of(specular) {
                 power[j] = n_dot_h[j].max(0.0).powf(self.shininess[j]);
