@@ -6,8 +6,8 @@ use std::sync::{Mutex, PoisonError};
 
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
-use viewray_camera::Camera;
-use viewray_geometry::{ObjectHit, Ray};
+use viewray_camera::{Camera, CameraSample};
+use viewray_geometry::{DRay, ObjectHit, Ray};
 use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
@@ -216,21 +216,29 @@ impl TileBuffers {
         for index in 0..samples {
             for block_row in (tile.row..tile.row + tile.height).step_by(BLOCK_SIZE as usize) {
                 for block_col in (tile.col..tile.col + tile.width).step_by(BLOCK_SIZE as usize) {
-                    // Generate the block's rays.
+                    // Generate the block's rays: with one sample, every pixel's through
+                    // its centre, which the camera does a block at a time.
                     self.rays.clear();
                     self.ray_pixels.clear();
                     let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
-                    for row in rows {
-                        let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
-                        for col in cols {
-                            let pixel = ((row - tile.row) * tile.width + (col - tile.col)) as usize;
-                            let sample = strata.camera_sample(row, col, index);
-                            match camera.generate_ray(row, col, sample) {
-                                Some(ray) => {
-                                    self.rays.push(ray.as_ray());
-                                    self.ray_pixels.push((pixel, row, col));
-                                }
-                                None => self.pixels[pixel] += shader.background(),
+                    let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
+                    let mut take = |row: u32, col: u32, ray: Option<DRay>| {
+                        let pixel = ((row - tile.row) * tile.width + (col - tile.col)) as usize;
+                        match ray {
+                            Some(ray) => {
+                                self.rays.push(ray.as_ray());
+                                self.ray_pixels.push((pixel, row, col));
+                            }
+                            None => self.pixels[pixel] += shader.background(),
+                        }
+                    };
+                    if samples == 1 {
+                        camera.generate_block_rays(rows, cols, CameraSample::CENTER, take);
+                    } else {
+                        for row in rows {
+                            for col in cols.clone() {
+                                let sample = strata.camera_sample(row, col, index);
+                                take(row, col, camera.generate_ray(row, col, sample));
                             }
                         }
                     }
@@ -325,12 +333,15 @@ fn render_on_current_pool(
                 let rows = band * BLOCK_SIZE..((band + 1) * BLOCK_SIZE).min(height);
                 for block_col in (0..width).step_by(BLOCK_SIZE as usize) {
                     rays.clear();
-                    for row in rows.clone() {
-                        for col in block_col..(block_col + BLOCK_SIZE).min(width) {
-                            let sample = viewray_camera::CameraSample::CENTER;
-                            rays.extend(camera.generate_ray(row, col, sample).map(|r| r.as_ray()));
-                        }
-                    }
+                    let cols = block_col..(block_col + BLOCK_SIZE).min(width);
+                    camera.generate_block_rays(
+                        rows.clone(),
+                        cols,
+                        CameraSample::CENTER,
+                        |_, _, ray| {
+                            rays.extend(ray.map(|r| r.as_ray()));
+                        },
+                    );
                     count += rays.len() as u64;
                     hits.clear();
                     hits.resize(rays.len(), None);
