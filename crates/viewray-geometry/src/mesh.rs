@@ -258,7 +258,8 @@ impl PacketRay {
     }
 
     /// The four triangles' lanes that the ray hits with `t_min <= t < t_max`, with
-    /// their `t`, edge functions and determinants (see [`WatertightRay`]).
+    /// their `t`, edge functions and determinants (see [`WatertightRay`]); `t` and the
+    /// determinants are meaningful only in the lanes hit.
     #[inline(always)]
     fn test(
         &self,
@@ -286,10 +287,16 @@ impl PacketRay {
         }
         let negative = u.cmplt(zero) | v.cmplt(zero) | w.cmplt(zero);
         let positive = u.cmpgt(zero) | v.cmpgt(zero) | w.cmpgt(zero);
+        let inside = !(negative & positive);
+        // Most triangles of a leaf lie beside the ray: decided by the edges alone,
+        // before the division for `t` (whose lanes are then never read).
+        if !inside.any() {
+            return (inside, zero, [u, v, w], zero);
+        }
         let det = u + v + w;
         let sz = self.shear[2];
         let t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det;
-        let valid = !(negative & positive) & det.cmpne(zero) & t.cmpge(t_min) & t.cmplt(t_max);
+        let valid = inside & det.cmpne(zero) & t.cmpge(t_min) & t.cmplt(t_max);
         (valid, t, [u, v, w], det)
     }
 }
