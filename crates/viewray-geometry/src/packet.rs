@@ -37,8 +37,13 @@ pub(crate) type Lanes = [Vec4; PACKET_GROUPS];
 const MAX_DIRECTION_SPREAD: f32 = 0.05;
 
 /// When the packet enters this many children of a node or more, they are small next to
-/// the packet, and its rays finish them one by one.
+/// the packet, and its rays finish them one by one, unless [`KEEP_PACKET`] of them enter
+/// the same child.
 const MANY_CHILDREN: u32 = 6;
+/// A child marked for single rays stays with the packet if at least this many of its
+/// rays (a quarter of a full packet) enter its box: a subtree that many rays need is
+/// walked once more cheaply than by each of them.
+const KEEP_PACKET: u32 = 16;
 /// Stack entry flag: the child is to be handed to single rays.
 const SINGLE: u32 = 1 << 31;
 
@@ -565,8 +570,8 @@ struct PacketTraversal<'a, V, P> {
 impl Bvh {
     /// The closest-hit traversal of a packet: visits, nearest first, the nodes that
     /// some ray of `lanes` may reach, and hands leaves, and the children of nodes where
-    /// the packet enters [`MANY_CHILDREN`] or more, to the rays that hit their box,
-    /// which finish them one by one; leaves go to `visitor`. `t_max[lane]` holds each
+    /// the packet enters [`MANY_CHILDREN`] or more (unless [`KEEP_PACKET`] rays enter
+    /// the child), to the rays that hit their box, which finish them one by one; leaves go to `visitor`. `t_max[lane]` holds each
     /// ray's closest hit so far and is updated. `prefetch_leaf(start, count)` may start
     /// loading the items of a leaf a ray will visit.
     pub(crate) fn closest_packet(
@@ -705,6 +710,11 @@ impl Bvh {
                     continue 'nodes;
                 }
                 let rays = packet.rays_hitting::<OCTANT>(parent, slot, lanes, t_min4, t_max);
+                // A subtree a quarter of the packet enters is still the packet's.
+                if child & LEAF == 0 && rays.count_ones() >= KEEP_PACKET {
+                    current = child as usize;
+                    continue 'nodes;
+                }
                 if rays != 0 {
                     self.single_rays::<OCTANT, V, P>(traversal, child, rays, t_max);
                     t_max_all = max_lane(t_max, lanes);
