@@ -1042,6 +1042,103 @@ mod tests {
         }
     }
 
+    /// A subtree that a quarter of the packet enters stays with the packet even where
+    /// the packet enters many children of a node: eight plates stacked along the view,
+    /// each of sixteen tiles, seen by an 8 x 8 packet of parallel rays. The root's
+    /// children are the plates, all entered by every ray; the nearest plate is walked by
+    /// the packet, so its leaves are tested through `leaf_lanes` and never by a ray
+    /// finishing the plate alone.
+    #[test]
+    fn a_subtree_most_rays_enter_is_walked_as_a_packet() {
+        struct Counting<'a> {
+            boxes: &'a [Aabb],
+            order: &'a [u32],
+            rays: &'a [Ray],
+            in_lanes: bool,
+            alone: u32,
+            together: u32,
+        }
+        impl PacketVisitor for Counting<'_> {
+            fn leaf(&mut self, lane: usize, start: u32, count: u32, t_max: f32) -> f32 {
+                if !self.in_lanes {
+                    self.alone += 1;
+                }
+                (start..start + count)
+                    .filter_map(|p| {
+                        self.boxes[self.order[p as usize] as usize].slab_interval(&self.rays[lane])
+                    })
+                    .map(|(t_enter, _)| t_enter)
+                    .fold(t_max, f32::min)
+            }
+            fn leaf_lanes(&mut self, lanes: u64, start: u32, count: u32, t_max: &mut Lanes) {
+                self.in_lanes = true;
+                for i in lanes_of(lanes) {
+                    self.together += 1;
+                    let t = self.leaf(i, start, count, lane(t_max, i));
+                    set_lane(t_max, i, t);
+                }
+                self.in_lanes = false;
+            }
+        }
+        // Plates at z = 0, -1, ..., -7, each 4 x 4 tiles of 2 x 2 over [0, 8]^2.
+        let boxes: Vec<Aabb> = (0..8)
+            .flat_map(|plate| (0..16).map(move |tile| (plate, tile)))
+            .map(|(plate, tile)| {
+                let (x, y, z) = (
+                    2.0 * (tile % 4) as f32,
+                    2.0 * (tile / 4) as f32,
+                    -(plate as f32),
+                );
+                Aabb::new(Vec3::new(x, y, z - 0.1), Vec3::new(x + 2.0, y + 2.0, z))
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes, crate::BuildParams::default());
+        let root = &bvh.nodes()[0];
+        assert!(
+            root.children.iter().all(|&c| c & LEAF == 0),
+            "the root's children are the plates' nodes"
+        );
+        let rays: Vec<Ray> = (0..64)
+            .map(|k| {
+                let (x, y) = ((k % 8) as f32 + 0.5, (k / 8) as f32 + 0.5);
+                Ray::new(Vec3::new(x, y, 10.0), Vec3::NEG_Z)
+            })
+            .collect();
+        let mut chunk = ChunkNumbers::EMPTY;
+        chunk.fill(&rays);
+        let octant = 0b100;
+        let mut gathered = LaneNumbers::EMPTY;
+        let packet = BoxPacket::new(
+            &chunk,
+            &mut gathered,
+            octant,
+            chunk.octants[octant as usize],
+        );
+        assert!(packet.coherent);
+        let mut t_max = [Vec4::INFINITY; PACKET_GROUPS];
+        let mut counting = Counting {
+            boxes: &boxes,
+            order: bvh.item_order(),
+            rays: &rays,
+            in_lanes: false,
+            alone: 0,
+            together: 0,
+        };
+        bvh.closest_packet(
+            &packet,
+            chunk.all,
+            0.0,
+            &mut t_max,
+            &mut counting,
+            |_, _| {},
+        );
+        for i in 0..64 {
+            assert_eq!(lane(&t_max, i), 10.0, "ray {i} stops at the nearest plate");
+        }
+        assert_eq!(counting.alone, 0, "no ray finished a plate alone");
+        assert!(counting.together >= 64, "{} lane tests", counting.together);
+    }
+
     /// The four-at-a-time slab numbers are bit for bit those of single rays, octants
     /// and validity included, for directions with zero, negative-zero, tiny and
     /// non-finite components.

@@ -279,6 +279,45 @@ fn curved_surfaces_far_from_the_camera_have_no_acne() {
     assert_eq!(unlit, 0, "{unlit} pixels in shadow of their own surface");
 }
 
+/// Outside a fisheye's image circle there is no viewing ray: those pixels are the
+/// background, exactly, with one sample (the block of centre rays) and with several.
+#[test]
+fn pixels_outside_the_fisheye_circle_are_the_background() {
+    for samples in [1, 4] {
+        let image = image(&format!(
+            "(image: (width: 24, height: 16, samples: {samples}), shading: Flat,
+              background: (0.25, 0.5, 0.75),
+              camera: (eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0),
+                       projection: Fisheye(fov: 180.0)),
+              objects: [Sphere(center: (0.0, 0.0, -5.0), radius: 1.0)])"
+        ));
+        for (row, col) in [(0, 0), (0, 23), (15, 0), (15, 23), (0, 3), (8, 0)] {
+            assert_eq!(
+                image.pixel(row, col),
+                Vec3::new(0.25, 0.5, 0.75),
+                "{samples} samples, ({row}, {col})"
+            );
+        }
+    }
+}
+
+/// One sample per pixel is the pixel centre, so a silhouette is hard; more samples
+/// are jittered over the pixel, so pixels on the silhouette mix the sphere's colour with
+/// the background.
+#[test]
+fn more_samples_soften_a_silhouette_and_one_does_not() {
+    let mixed = |samples: u32| {
+        let image = image(&sphere_ahead(33, 33, samples, "Flat", ""));
+        image
+            .pixels()
+            .iter()
+            .filter(|p| p.x > 0.0 && p.x < 0.8)
+            .count()
+    };
+    assert_eq!(mixed(1), 0);
+    assert!(mixed(4) > 10, "{} mixed pixels", mixed(4));
+}
+
 #[test]
 fn depth_falls_off_along_a_ground_plane() {
     let scene = scene(
@@ -287,7 +326,10 @@ fn depth_falls_off_along_a_ground_plane() {
                    projection: Perspective(distance: 1.0, viewport: (1.0, 1.5))),
           objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0))])",
     );
-    let image = render_with(&scene, RenderSettings::default()).image;
+    let rendered = render_with(&scene, RenderSettings::default());
+    // One pre-pass ray and one sample per pixel.
+    assert_eq!(rendered.stats.rays, 2 * 40 * 60);
+    let image = rendered.image;
     let column: Vec<f32> = (0..60).rev().map(|row| image.pixel(row, 20).x).collect();
     // The bottom row is the nearest: white.
     assert!(column[0] > 0.9999, "{}", column[0]);
@@ -495,6 +537,12 @@ fn every_projection_family_renders() {
         let image = image(&text);
         let centre = image.pixel(15, 20);
         assert_close(centre, Vec3::X, 1e-6);
+        if projection.starts_with("Fisheye") {
+            // A corner lies outside the image circle, where no ray exists: the
+            // background, exactly.
+            assert_eq!(image.pixel(0, 0), Vec3::Z);
+            assert_eq!(image.pixel(29, 39), Vec3::Z);
+        }
         let background = image.pixels().iter().filter(|p| **p == Vec3::Z).count();
         assert!(
             background > 100,
