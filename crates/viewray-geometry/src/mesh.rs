@@ -257,16 +257,13 @@ impl PacketRay {
         }
     }
 
-    /// The four triangles' lanes that the ray hits with `t_min <= t < t_max`, with
-    /// their `t`, edge functions and determinants (see [`WatertightRay`]); `t` and the
-    /// determinants are meaningful only in the lanes hit.
+    /// The four triangles' edge functions for this ray (see [`WatertightRay`]), or
+    /// `None` when the ray passes beside all four: most of a leaf's triangles do, and
+    /// their edges alone decide it, before the division for `t` in
+    /// [`PacketEdges::hits`]. (Callers skip to the next packet on `None`; folded into
+    /// one expression with the hits, the check was compiled away in some builds.)
     #[inline(always)]
-    fn test(
-        &self,
-        packet: &TrianglePacket,
-        t_min: Vec4,
-        t_max: Vec4,
-    ) -> (BVec4A, Vec4, [Vec4; 3], Vec4) {
+    fn edges(&self, packet: &TrianglePacket) -> Option<PacketEdges> {
         let [kx, ky, kz] = self.k;
         let corner = |i: usize| {
             let v = &packet.vertices[i];
@@ -288,16 +285,39 @@ impl PacketRay {
         let negative = u.cmplt(zero) | v.cmplt(zero) | w.cmplt(zero);
         let positive = u.cmpgt(zero) | v.cmpgt(zero) | w.cmpgt(zero);
         let inside = !(negative & positive);
-        // Most triangles of a leaf lie beside the ray: decided by the edges alone,
-        // before the division for `t` (whose lanes are then never read).
-        if !inside.any() {
-            return (inside, zero, [u, v, w], zero);
-        }
+        inside.any().then_some(PacketEdges {
+            inside,
+            edges: [u, v, w],
+            z: [az, bz, cz],
+            sz: self.shear[2],
+        })
+    }
+}
+
+/// A ray's edge functions for four triangles of which it passes beside at most three
+/// (see [`PacketRay::edges`]).
+#[derive(Clone, Copy, Debug)]
+struct PacketEdges {
+    /// The lanes whose edge functions do not differ in sign.
+    inside: BVec4A,
+    edges: [Vec4; 3],
+    /// The corners' sheared `z`, and the ray's `z` shear.
+    z: [Vec4; 3],
+    sz: Vec4,
+}
+
+impl PacketEdges {
+    /// The lanes that the ray hits with `t_min <= t < t_max`, with their `t`, edge
+    /// functions and determinants.
+    #[inline(always)]
+    fn hits(&self, t_min: Vec4, t_max: Vec4) -> (BVec4A, Vec4, [Vec4; 3], Vec4) {
+        let [u, v, w] = self.edges;
+        let [az, bz, cz] = self.z;
+        let sz = self.sz;
         let det = u + v + w;
-        let sz = self.shear[2];
         let t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det;
-        let valid = inside & det.cmpne(zero) & t.cmpge(t_min) & t.cmplt(t_max);
-        (valid, t, [u, v, w], det)
+        let valid = self.inside & det.cmpne(Vec4::ZERO) & t.cmpge(t_min) & t.cmplt(t_max);
+        (valid, t, self.edges, det)
     }
 }
 
@@ -483,7 +503,11 @@ impl Mesh {
             |start, count| {
                 self.packets[start as usize..(start + count) as usize]
                     .iter()
-                    .any(|packet| packet_ray.test(packet, t_min, t_max).0.any())
+                    .any(|packet| {
+                        packet_ray
+                            .edges(packet)
+                            .is_some_and(|edges| edges.hits(t_min, t_max).0.any())
+                    })
             },
         )
     }
@@ -540,7 +564,10 @@ impl Mesh {
     ) -> Option<RawHit> {
         let mut best = None;
         for packet in &self.packets[start as usize..(start + count) as usize] {
-            let (valid, t, [_, v, w], det) = packet_ray.test(packet, t_min4, Vec4::splat(t_max));
+            let Some(edges) = packet_ray.edges(packet) else {
+                continue;
+            };
+            let (valid, t, [_, v, w], det) = edges.hits(t_min4, Vec4::splat(t_max));
             if valid.any() {
                 let t_valid = Vec4::select(valid, t, Vec4::INFINITY);
                 t_max = t_valid.min_element();
