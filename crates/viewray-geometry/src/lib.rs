@@ -62,7 +62,9 @@
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
 //!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
 //!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
-//!   in structure-of-arrays layout, stored in leaf order, tested at once.
+//!   in structure-of-arrays layout, stored in leaf order, tested at once. Most of a
+//!   leaf's triangles lie beside a ray that reaches it: a packet whose four edge tests
+//!   all fail is rejected before the division for `t`.
 //! - **Ordered, allocation-free traversal.** Children hit are visited nearest first, and
 //!   subtrees entered beyond the closest hit so far are skipped. The traversal is
 //!   compiled once per sign pattern of the direction, so the near and far plane of each
@@ -112,27 +114,47 @@
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
 //! after the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median
 //! of 3), and the three runs of the round before; Embree's own figures move by a tenth
-//! to a third between runs and rounds (its 1-thread build took 0.230 to 0.316 s below,
-//! 0.212 to 0.250 s the round before), so read the ratios within a run:
+//! to a third between runs and rounds (its 1-thread build took 0.210 to 0.222 s below,
+//! 0.230 to 0.316 s the round before), so read the ratios within a run:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.394 s (Embree 0.230: 0.58x) | 0.352 s (0.316: 0.90x) | 0.349 s (0.302: 0.86x) | 0.355 to 0.380 s: 0.59x, 0.58x, 0.70x |
-//! | build, 2 threads | 0.201 s (0.235: 1.17x) | 0.193 s (0.235: 1.21x) | 0.194 s (0.209: 1.08x) | 1.11x, 1.11x, 1.07x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 16.18 Mrays/s (0.87x) | 14.29 (0.83x) | 16.60 (0.89x) | 0.82x, 0.77x, 0.83x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.06x | 0.92x | 1.07x | 1.00x, 0.92x, 1.01x |
-//! | primary, ray by ray vs `rtcIntersect1` | 6.23 Mrays/s (0.67x) | 7.00 (0.75x) | 7.04 (0.75x) | 0.78x, 0.75x, 0.80x |
-//! | incoherent vs `rtcIntersect1` | 1.69 Mrays/s (0.77x) | 1.86 (0.81x) | 1.98 (0.82x) | 0.99x, 0.87x, 0.79x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 31.12 Mrays/s (0.83x) | 30.11 (0.81x) | 32.93 (0.88x) | 0.83x, 0.80x, 0.74x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 4.22 Mrays/s (0.92x) | 4.20 (0.90x) | 4.46 (0.85x) | 0.87x, 0.99x, 0.77x |
+//! | build | 0.385 s (Embree 0.222: 0.58x) | 0.355 s (0.211: 0.59x) | 0.357 s (0.210: 0.59x) | 0.349 to 0.394 s: 0.58x, 0.90x, 0.86x |
+//! | build, 2 threads | 0.203 s (0.233: 1.15x) | 0.193 s (0.213: 1.10x) | 0.204 s (0.238: 1.16x) | 1.17x, 1.21x, 1.08x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 15.69 Mrays/s (0.84x) | 18.19 (0.99x) | 17.55 (0.98x) | 0.87x, 0.83x, 0.89x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.02x | 1.19x | 1.18x | 1.06x, 0.92x, 1.07x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.23 Mrays/s (0.78x) | 7.17 (0.80x) | 7.03 (0.77x) | 0.67x, 0.75x, 0.75x |
+//! | incoherent vs `rtcIntersect1` | 1.81 Mrays/s (0.84x) | 1.59 (0.82x) | 1.81 (0.77x) | 0.77x, 0.81x, 0.82x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 35.46 Mrays/s (0.97x) | 34.41 (0.95x) | 36.39 (0.98x) | 0.83x, 0.81x, 0.88x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.50 Mrays/s (0.80x) | 3.80 (0.87x) | 4.25 (0.97x) | 0.92x, 0.90x, 0.85x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.4x to 3.7x faster than obvhs everywhere. The latest round changed the packets
-//! (single lanes read through arrays, origins and directions kept beside the slab
-//! numbers for the plane tests) and left the single-ray paths and the build alone; the
-//! spread of the ray-by-ray and build figures is the machine's. The 2-thread build is
-//! at or above Embree's in all three runs (1.08x to 1.21x), and 0.83x to 1.32x over
-//! eighteen runs in five rounds.
+//! 1.47x to 3.63x faster than obvhs everywhere. The latest round changed the leaves and
+//! the packets: a triangle packet that a ray passes beside is rejected before the
+//! division for `t` (the instruction after the division had held 8% of the leaf
+//! tests' time), which took the packets from 16.4 to 17.3 Mrays/s in a run of their
+//! own (0.87x to 0.95x of `rtcIntersect16`); and a subtree that 16 or more of a
+//! packet's rays enter stays with the packet instead of going to each ray alone
+//! (17.8 Mrays/s, 0.98x, in the next run). Run 1's 15.69 is the machine's: the same
+//! build gave 18.19 and 17.55 in the two runs after it. The final code, whose early
+//! rejection is a skip in the caller's loop (so that no build folds the check away),
+//! gave 13.40 (0.74x; 0.99x on 2 threads in the same run), 17.24 (0.97x) and 18.27
+//! (0.98x) in three more. The build did not change; the 2-thread build is at or above
+//! Embree's in all three runs of the table (1.10x to 1.16x), and 0.83x to 1.32x over
+//! twenty-one runs in six rounds.
+//!
+//! Where the packets stand: at 0.97x to 0.99x of `rtcIntersect16` in five of the
+//! seven runs with both changes (0.84x and 0.74x in the other two, on a busy machine),
+//! they trace a leaf's triangles one ray at a time against four
+//! triangles per SSE instruction, where Embree's 16-wide kernel tests sixteen rays
+//! at once; the incoherent rays (0.77x to 0.84x on 1 thread) wait on the first load
+//! of each leaf's triangles, a cache miss the prefetch of hit children does not hide.
+//! The rule for handing subtrees to single rays trades the benchmark against finer
+//! meshes: handing them over only where the packet enters all eight children would
+//! trace the 1.3M-triangle icosphere 6% to 7% faster but 5.2M and 21M triangles 6%
+//! to 40% slower (bare packet tracing at 1024 x 1024, medians of 11); the 16-ray
+//! rule gains 4% to 6% at 82k and 1.3M triangles and is within noise (up to 3%
+//! slower) at 5.2M and 21M.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
@@ -162,6 +184,12 @@
 //!   (880 M to 841 M) and its time not at all (`render_s` 0.080 to 0.098 s against
 //!   0.080 to 0.090 s, six alternated runs): the leaf tests wait on something other
 //!   than their arithmetic, most likely the loads of their triangles.
+//!   Tried again after the early rejection above (with AVX detected at run time, rays
+//!   paired where they share their shear axes, six rays a leaf on average): bare packet
+//!   tracing 0.0573 to 0.0595 s against 0.0568 to 0.0618 s (medians of 11, three
+//!   alternated runs), no gain.
+//! - Taking the one lane hit without the horizontal minimum (one lane is the common
+//!   case): no measurable change.
 //!
 //! Also measured and left out: the SAH sweep with the three axes side by side (each
 //! bin's three boxes unioned, the three half areas in one `Vec3A` with the same
@@ -187,8 +215,15 @@
 //!   runs: 1.13x and 1.15x by the medians on 1 thread, 1.11x and 1.15x on 2, 1.14x by
 //!   the fastest runs; the latest round (which did not touch this path), three runs:
 //!   1.15x to 1.23x by the medians on 1 thread, 1.14x to 1.16x on 2, 1.14x to 1.16x
-//!   by the fastest runs. Splitting the block loop in two (camera samples, then rays)
-//!   so that its iterations overlap gained nothing measurable. What is left
+//!   by the fastest runs. The latest round: a one-sample render asks the camera for
+//!   a block's rays at once (each column's `u U` and each row's `v V` worked out once,
+//!   the same bits), and the leaf and packet changes above made the bare tracing about
+//!   a tenth faster. `viewray render --stats` on the icosphere went from 0.0733 s to
+//!   0.0635 s on 1 thread (medians of 11 alternated runs: 1.15x faster); against its
+//!   own faster tracing the render stays at 1.11x to 1.15x by the fastest runs (1.10x
+//!   to 1.22x by the medians, three runs on a quiet machine). Splitting the block loop
+//!   in two (camera samples, then rays) so that its iterations overlap gained nothing
+//!   measurable. What is left
 //!   is the camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping
 //!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
 //!   shading, about 140 instructions a ray together.
