@@ -979,6 +979,27 @@ mod tests {
         }
     }
 
+    /// Boxes traced by test visitors: each lane's ray, and the boxes in the BVH's item
+    /// order.
+    struct BoxScene<'a> {
+        boxes: &'a [Aabb],
+        order: &'a [u32],
+        rays: &'a [Ray],
+    }
+
+    impl BoxScene<'_> {
+        /// A leaf for lane `lane`: the nearest entry into the boxes at positions
+        /// `start..start + count`, if nearer than `t_max`.
+        fn nearest(&self, lane: usize, start: u32, count: u32, t_max: f32) -> f32 {
+            (start..start + count)
+                .filter_map(|p| {
+                    self.boxes[self.order[p as usize] as usize].slab_interval(&self.rays[lane])
+                })
+                .map(|(t_enter, _)| t_enter)
+                .fold(t_max, f32::min)
+        }
+    }
+
     /// The packet walk, like the single-ray one, goes front to back: 200 boxes in a row
     /// along x seen end on by four parallel rays, the nearest box hides the others, so
     /// each ray's leaf test runs once (`Bvh::closest`'s test, for packets). From inside
@@ -986,20 +1007,13 @@ mod tests {
     #[test]
     fn the_packet_walk_visits_only_the_nearest_leaf_of_a_row_of_boxes() {
         struct Nearest<'a> {
-            boxes: &'a [Aabb],
-            order: &'a [u32],
-            rays: &'a [Ray],
+            scene: BoxScene<'a>,
             visits: [u32; PACKET_SIZE],
         }
         impl PacketVisitor for Nearest<'_> {
             fn leaf(&mut self, lane: usize, start: u32, count: u32, t_max: f32) -> f32 {
                 self.visits[lane] += 1;
-                (start..start + count)
-                    .filter_map(|p| {
-                        self.boxes[self.order[p as usize] as usize].slab_interval(&self.rays[lane])
-                    })
-                    .map(|(t_enter, _)| t_enter)
-                    .fold(t_max, f32::min)
+                self.scene.nearest(lane, start, count, t_max)
             }
         }
         let boxes: Vec<Aabb> = (0..200)
@@ -1027,9 +1041,11 @@ mod tests {
             assert!(packet.coherent);
             let mut t_max = [Vec4::INFINITY; PACKET_GROUPS];
             let mut nearest = Nearest {
-                boxes: &boxes,
-                order: bvh.item_order(),
-                rays: &rays,
+                scene: BoxScene {
+                    boxes: &boxes,
+                    order: bvh.item_order(),
+                    rays: &rays,
+                },
                 visits: [0; PACKET_SIZE],
             };
             bvh.closest_packet(&packet, chunk.all, 0.0, &mut t_max, &mut nearest, |_, _| {});
@@ -1051,9 +1067,7 @@ mod tests {
     #[test]
     fn a_subtree_most_rays_enter_is_walked_as_a_packet() {
         struct Counting<'a> {
-            boxes: &'a [Aabb],
-            order: &'a [u32],
-            rays: &'a [Ray],
+            scene: BoxScene<'a>,
             in_lanes: bool,
             alone: u32,
             together: u32,
@@ -1063,12 +1077,7 @@ mod tests {
                 if !self.in_lanes {
                     self.alone += 1;
                 }
-                (start..start + count)
-                    .filter_map(|p| {
-                        self.boxes[self.order[p as usize] as usize].slab_interval(&self.rays[lane])
-                    })
-                    .map(|(t_enter, _)| t_enter)
-                    .fold(t_max, f32::min)
+                self.scene.nearest(lane, start, count, t_max)
             }
             fn leaf_lanes(&mut self, lanes: u64, start: u32, count: u32, t_max: &mut Lanes) {
                 self.in_lanes = true;
@@ -1117,9 +1126,11 @@ mod tests {
         assert!(packet.coherent);
         let mut t_max = [Vec4::INFINITY; PACKET_GROUPS];
         let mut counting = Counting {
-            boxes: &boxes,
-            order: bvh.item_order(),
-            rays: &rays,
+            scene: BoxScene {
+                boxes: &boxes,
+                order: bvh.item_order(),
+                rays: &rays,
+            },
             in_lanes: false,
             alone: 0,
             together: 0,
