@@ -682,7 +682,7 @@ impl Mesh {
                     best: &mut best,
                 };
                 self.intersect_packet(query, 0);
-                for (&ray, raw) in packet.rays().iter().zip(best) {
+                for (&ray, raw) in packet.rays().iter().zip(&best) {
                     hits[usize::from(ray)] = raw.map(|raw| TriangleHit {
                         t: raw.t,
                         primitive: raw.primitive,

@@ -259,8 +259,10 @@ impl World {
                         );
                     }
                 }
-                for (&i, raw) in packet.rays().iter().zip(best) {
-                    hits[usize::from(i)] = raw.map(|raw| self.object_hit(raw));
+                // By reference: moving `best` into the loop copied it whole, reading
+                // back the hits just written field by field (a store-forwarding stall).
+                for (&i, raw) in packet.rays().iter().zip(&best) {
+                    hits[usize::from(i)] = raw.as_ref().map(|raw| self.object_hit(*raw));
                 }
             });
         }
