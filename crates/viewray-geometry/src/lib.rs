@@ -135,7 +135,10 @@
 //! tests' time), which took the packets from 16.4 to 17.3 Mrays/s in a run of their
 //! own (0.87x to 0.95x of `rtcIntersect16`); and a subtree that 16 or more of a
 //! packet's rays enter stays with the packet instead of going to each ray alone
-//! (17.8 Mrays/s, 0.98x, in the next run). Run 1's 15.69 is the machine's: the same
+//! (17.8 Mrays/s, 0.98x, in the next run); last, a packet's 64 hits are read where
+//! they lie rather than moved as a whole array straight after the leaf tests wrote them
+//! (a store-forwarding wait: 1% to 2% of the bare tracing, fastest runs of the
+//! icosphere example; not in the table). Run 1's 15.69 is the machine's: the same
 //! build gave 18.19 and 17.55 in the two runs after it. The final code, whose early
 //! rejection is a skip in the caller's loop (so that no build folds the check away),
 //! gave 13.40 (0.74x; 0.99x on 2 threads in the same run), 17.24 (0.97x) and 18.27
