@@ -233,8 +233,8 @@ impl<'a> BoxPacket<'a> {
         let (group, i) = (lane / 4, lane % 4);
         let numbers = self.numbers;
         let (o, f, v) = (&numbers.origin_near, &numbers.origin_far, &numbers.inverse);
-        let at = |lanes: &[Lanes; 3]| [0, 1, 2].map(|axis| at(&lanes[axis][group], i));
-        BoxRay::from_lanes(at(o), at(f), at(v), self.octant)
+        let lane_of = |lanes: &[Lanes; 3]| [0, 1, 2].map(|axis| at(&lanes[axis][group], i));
+        BoxRay::from_lanes(lane_of(o), lane_of(f), lane_of(v), self.octant)
     }
 
     /// Tests the whole packet against a node's eight boxes: returns the mask of boxes
@@ -571,8 +571,9 @@ impl Bvh {
     /// The closest-hit traversal of a packet: visits, nearest first, the nodes that
     /// some ray of `lanes` may reach, and hands leaves, and the children of nodes where
     /// the packet enters [`MANY_CHILDREN`] or more (unless [`KEEP_PACKET`] rays enter
-    /// the child), to the rays that hit their box, which finish them one by one; leaves go to `visitor`. `t_max[lane]` holds each
-    /// ray's closest hit so far and is updated. `prefetch_leaf(start, count)` may start
+    /// the child), to the rays that hit their box, which finish them one by one; leaves
+    /// go to `visitor`. `t_max[lane]` holds each ray's closest hit so far and is
+    /// updated. `prefetch_leaf(start, count)` may start
     /// loading the items of a leaf a ray will visit.
     pub(crate) fn closest_packet(
         &self,

@@ -295,14 +295,23 @@ impl World {
         best
     }
 
+    /// The world's planes, with their object indices.
+    #[inline]
+    fn plane_objects(&self) -> impl Iterator<Item = (u32, &Plane)> {
+        self.planes
+            .iter()
+            .filter_map(|&object| match &self.objects[object as usize] {
+                Object::Plane(plane) => Some((object, plane)),
+                _ => None,
+            })
+    }
+
     /// The closest plane hit with `t_min <= t < t_max`, lowering `t_max` to it.
     #[inline]
     fn intersect_planes(&self, ray: &Ray, t_min: f32, t_max: &mut f32) -> Option<RawHit> {
         let mut best = None;
-        for &object in &self.planes {
-            if let Object::Plane(plane) = &self.objects[object as usize]
-                && let Some(t) = plane.intersect_t(ray, t_min, *t_max)
-            {
+        for (object, plane) in self.plane_objects() {
+            if let Some(t) = plane.intersect_t(ray, t_min, *t_max) {
                 *t_max = t;
                 best = Some(RawHit {
                     t,
@@ -413,19 +422,17 @@ impl World {
             .take(packet.rays().len().div_ceil(4))
         {
             let (origin, direction) = packet.group_rays(group);
-            for &object in &self.planes {
-                if let Object::Plane(plane) = &self.objects[object as usize] {
-                    let (hit, t) = plane.intersect_t_lanes(origin, direction, t_min, *t_max);
-                    if hit != 0 {
-                        *t_max = Vec4::select(lane_mask(hit), t, *t_max);
-                        for lane in lanes_of(u64::from(hit)) {
-                            best[4 * group + lane] = Some(RawHit {
-                                t: at(&t, lane),
-                                object,
-                                primitive: 0,
-                                barycentric: Vec2::ZERO,
-                            });
-                        }
+            for (object, plane) in self.plane_objects() {
+                let (hit, t) = plane.intersect_t_lanes(origin, direction, t_min, *t_max);
+                if hit != 0 {
+                    *t_max = Vec4::select(lane_mask(hit), t, *t_max);
+                    for lane in lanes_of(u64::from(hit)) {
+                        best[4 * group + lane] = Some(RawHit {
+                            t: at(&t, lane),
+                            object,
+                            primitive: 0,
+                            barycentric: Vec2::ZERO,
+                        });
                     }
                 }
             }
@@ -440,11 +447,9 @@ impl World {
         let mut found = 0;
         for group in 0..packet.rays().len().div_ceil(4) {
             let (origin, direction) = packet.group_rays(group);
-            for &object in &self.planes {
-                if let Object::Plane(plane) = &self.objects[object as usize] {
-                    let (hit, _) = plane.intersect_t_lanes(origin, direction, t_min, t_max);
-                    found |= u64::from(hit) << (4 * group);
-                }
+            for (_, plane) in self.plane_objects() {
+                let (hit, _) = plane.intersect_t_lanes(origin, direction, t_min, t_max);
+                found |= u64::from(hit) << (4 * group);
             }
         }
         found & packet.all_lanes()
@@ -453,12 +458,8 @@ impl World {
     /// Whether a plane is hit with `t_min <= t < t_max`.
     #[inline]
     fn any_plane(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.planes
-            .iter()
-            .any(|&object| match &self.objects[object as usize] {
-                Object::Plane(plane) => plane.intersect_t(ray, t_min, t_max).is_some(),
-                _ => false,
-            })
+        self.plane_objects()
+            .any(|(_, plane)| plane.intersect_t(ray, t_min, t_max).is_some())
     }
 
     /// Whether the bounded object `object` is hit with `t_min <= t < t_max`.

@@ -216,8 +216,8 @@ impl TileBuffers {
         for index in 0..samples {
             for block_row in (tile.row..tile.row + tile.height).step_by(BLOCK_SIZE as usize) {
                 for block_col in (tile.col..tile.col + tile.width).step_by(BLOCK_SIZE as usize) {
-                    // Generate the block's rays: with one sample, every pixel's through
-                    // its centre, which the camera does a block at a time.
+                    // Generate the block's rays: through one sample point shared by every
+                    // pixel (one sample: the centre), the camera does a block at a time.
                     self.rays.clear();
                     self.ray_pixels.clear();
                     let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
@@ -232,8 +232,8 @@ impl TileBuffers {
                             None => self.pixels[pixel] += shader.background(),
                         }
                     };
-                    if samples == 1 {
-                        camera.generate_block_rays(rows, cols, CameraSample::CENTER, take);
+                    if let Some(sample) = strata.shared_sample() {
+                        camera.generate_block_rays(rows, cols, sample, take);
                     } else {
                         for row in rows {
                             for col in cols.clone() {

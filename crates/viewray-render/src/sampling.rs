@@ -136,6 +136,13 @@ impl Strata {
         self.cells[cell as usize]
     }
 
+    /// The camera sample every pixel shares, if there is one: with one sample per
+    /// pixel, the pixel centre through the lens centre (see [`Strata::camera_sample`]).
+    #[inline]
+    pub(crate) fn shared_sample(&self) -> Option<CameraSample> {
+        (self.cells.len() == 1).then_some(CameraSample::CENTER)
+    }
+
     /// The camera sample of sample `index` in pixel `(row, col)`.
     ///
     /// One sample is the pixel centre through the lens centre: the lecture's viewing
@@ -146,6 +153,8 @@ impl Strata {
     #[inline]
     pub(crate) fn camera_sample(&self, row: u32, col: u32, index: u32) -> CameraSample {
         let count = self.cells.len() as u32;
+        // `shared_sample`'s rule, checked here directly: asked through it, the 16-sample
+        // Lit render ran 4% slower (medians of 7, alternated).
         if count == 1 {
             return CameraSample::CENTER;
         }

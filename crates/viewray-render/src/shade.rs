@@ -4,7 +4,7 @@ use std::cell::OnceCell;
 
 use glam::{DVec2, Vec3, Vec4};
 use viewray_camera::{Camera, Projection};
-use viewray_geometry::{Hit, Object, ObjectHit, Ray};
+use viewray_geometry::{Hit, Object, ObjectHit, Ray, World};
 use viewray_output::linear_to_srgb;
 use viewray_scene::{Grid, Light, Material, Scene, Shading};
 
@@ -249,10 +249,7 @@ impl<'a> Shader<'a> {
             for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 match hit {
                     Some(hit) => {
-                        // Into its place (see `World::shading_surface_into`).
-                        surfaces.push(Hit::default());
-                        world.shading_surface_into(ray, hit, &mut surfaces[hit_rays.len()]);
-                        hit_rays.push(*ray);
+                        push_hit(world, ray, hit, hit_rays, surfaces);
                         samples.push(i);
                     }
                     None => colors[i] = self.background,
@@ -505,11 +502,7 @@ impl<'a> Shader<'a> {
                 .zip(reflected.iter_mut())
             {
                 match hit {
-                    Some(hit) => {
-                        next_hits.push(Hit::default());
-                        world.shading_surface_into(ray, hit, &mut next_hits[next_rays.len()]);
-                        next_rays.push(*ray);
-                    }
+                    Some(hit) => push_hit(world, ray, hit, next_rays, next_hits),
                     None => *color = self.background,
                 }
             }
@@ -599,6 +592,22 @@ impl<'a> Shader<'a> {
             }
         }
     }
+}
+
+/// Appends `ray` to `rays` and the shading surface of its hit `hit` to `surfaces`,
+/// written in its place (see [`World::shading_surface_into`]).
+#[inline]
+fn push_hit(
+    world: &World,
+    ray: &Ray,
+    hit: &ObjectHit,
+    rays: &mut Vec<Ray>,
+    surfaces: &mut Vec<Hit>,
+) {
+    let slot = surfaces.len();
+    surfaces.push(Hit::default());
+    world.shading_surface_into(ray, hit, &mut surfaces[slot]);
+    rays.push(*ray);
 }
 
 /// What Lit shading reuses from batch to batch on one thread, so that a batch of 64
