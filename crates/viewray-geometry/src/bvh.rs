@@ -1297,9 +1297,11 @@ impl Builder {
         out.push(Node::EMPTY);
 
         // Open the range into up to eight children, always splitting the largest one.
-        let mut children = vec![range];
-        while children.len() < WIDTH {
-            let candidate = children
+        // (In an array on the stack: a vector was two allocations per node.)
+        let mut slots = [range; WIDTH];
+        let mut len = 1;
+        while len < WIDTH {
+            let candidate = slots[..len]
                 .iter()
                 .enumerate()
                 .filter(|(_, c)| !c.leaf)
@@ -1310,19 +1312,21 @@ impl Builder {
                 })
                 .map(|(i, _)| i);
             let Some(i) = candidate else { break };
-            let child = children[i];
+            let child = slots[i];
             let local = child.start - range.start..child.end - range.start;
             match self.split(&mut items[local], child, depth) {
                 Ok((left, right)) => {
-                    children[i] = left;
-                    children.push(right);
+                    slots[i] = left;
+                    slots[len] = right;
+                    len += 1;
                 }
-                Err(leaf) => children[i] = leaf,
+                Err(leaf) => slots[i] = leaf,
             }
         }
+        let children = &mut slots[..len];
         // The children left unsplit become nodes unless, small enough, the full SAH
         // (now counting the cost of a new node) prefers a leaf.
-        for child in &mut children {
+        for child in children.iter_mut() {
             if !child.leaf && child.len() <= self.params.max_leaf_items as usize {
                 let local = &items[child.start - range.start..child.end - range.start];
                 let split = self.choose_split(local, child, depth + 1, self.params.traversal_cost);
@@ -1330,18 +1334,18 @@ impl Builder {
             }
         }
         children.sort_by_key(|c| c.start);
+        let children = &*children;
 
-        // Cut the item slice into the children's disjoint slices.
-        let mut slices = Vec::with_capacity(children.len());
-        let mut rest = items;
-        for child in &children {
-            let (head, tail) = rest.split_at_mut(child.len());
-            slices.push(head);
-            rest = tail;
-        }
-
+        // The children's items: disjoint slices, in order.
         let mut node = Node::EMPTY;
         if range.len() >= PARALLEL_ITEMS {
+            let mut slices = Vec::with_capacity(children.len());
+            let mut rest = items;
+            for child in children {
+                let (head, tail) = rest.split_at_mut(child.len());
+                slices.push(head);
+                rest = tail;
+            }
             // Build the inner children's subtrees in parallel, each into its own array,
             // then append them with their node indices shifted.
             let subtrees: Vec<Option<Vec<Node>>> = children
@@ -1374,7 +1378,10 @@ impl Builder {
                 node.set_child(slot, &child.bounds, child_ref);
             }
         } else {
-            for (slot, (child, slice)) in children.iter().zip(slices).enumerate() {
+            let mut rest = items;
+            for (slot, child) in children.iter().enumerate() {
+                let (slice, tail) = rest.split_at_mut(child.len());
+                rest = tail;
                 let child_ref = if child.leaf {
                     leaf_ref(child.start, child.len())
                 } else {
