@@ -104,6 +104,13 @@ pub(crate) const STACK_ROOM: usize = STACK_SIZE + WIDTH;
 /// Ranges at least this large are split with parallel binning and built in parallel.
 const PARALLEL_ITEMS: usize = 16 * 1024;
 
+/// Whether a range of `n` items is worked on in parallel: when it is large enough and
+/// the current pool has more than one thread. (On one thread the parallel build only
+/// adds work: each subtree built into its own array and copied into place.)
+fn in_parallel(n: usize) -> bool {
+    n >= PARALLEL_ITEMS && rayon::current_num_threads() > 1
+}
+
 impl Node {
     pub(crate) const EMPTY: Self = Self {
         planes: [
@@ -880,7 +887,7 @@ impl RangeInfo {
             });
             rest.iter().fold(merge(even, odd), add)
         };
-        let (lo, hi, clo, chi) = if items.len() >= PARALLEL_ITEMS {
+        let (lo, hi, clo, chi) = if in_parallel(items.len()) {
             items
                 .par_chunks(PARALLEL_ITEMS / 4)
                 .map(fold)
@@ -1159,7 +1166,7 @@ impl Builder {
         // Filled in place: the bins are 0.9 KB (8) to 3.4 KB (32), and moving them out
         // of a block costs a copy on each of the many small ranges.
         let mut bins = Bins::<B>::new();
-        if n >= PARALLEL_ITEMS {
+        if in_parallel(n) {
             bins = items
                 .par_chunks(PARALLEL_ITEMS / 4)
                 .map(|chunk| {
@@ -1338,7 +1345,7 @@ impl Builder {
 
         // The children's items: disjoint slices, in order.
         let mut node = Node::EMPTY;
-        if range.len() >= PARALLEL_ITEMS {
+        if in_parallel(range.len()) {
             let mut slices = Vec::with_capacity(children.len());
             let mut rest = items;
             for child in children {
@@ -1662,6 +1669,43 @@ mod tests {
             assert_eq!(both.count[0].iter().sum::<u32>() as usize, n);
             assert_eq!(both.min, one.min, "{n} items");
             assert_eq!(both.max, one.max, "{n} items");
+        }
+    }
+
+    /// A range large enough to be built in parallel gives the same hierarchy, node for
+    /// node, on one thread (where it is built serially) and on three.
+    #[test]
+    fn the_hierarchy_is_the_same_on_one_thread_and_on_three() {
+        let mut state = 0x2545_f491_u32;
+        let mut random = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            (state % 10_000) as f32 / 100.0
+        };
+        let boxes: Vec<Aabb> = (0..3 * PARALLEL_ITEMS)
+            .map(|_| {
+                let lo = Vec3::new(random(), random(), random());
+                Aabb::new(lo, lo + Vec3::new(random(), random(), random()) / 50.0)
+            })
+            .collect();
+        let build = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool");
+            pool.install(|| Bvh::build(&boxes, BuildParams::default()))
+        };
+        let (one, three) = (build(1), build(3));
+        assert!(one.node_count() > 1000);
+        assert_eq!(one.item_order, three.item_order);
+        assert_eq!(one.nodes.len(), three.nodes.len());
+        for (a, b) in one.nodes.iter().zip(&three.nodes) {
+            assert_eq!(a.children, b.children);
+            assert_eq!(
+                a.planes.map(|row| row.map(f32::to_bits)),
+                b.planes.map(|row| row.map(f32::to_bits))
+            );
         }
     }
 
