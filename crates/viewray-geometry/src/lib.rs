@@ -40,11 +40,15 @@
 //! - **Binned SAH, eight children per node.** 32 bins per axis; a node is opened by
 //!   repeatedly splitting its largest child until it has eight, splits that fill a free
 //!   slot cost no extra node, leaves hold at most 8 triangles. Large ranges are binned
-//!   and built in parallel with rayon. After a depth of 40 the build halves ranges by
+//!   and built in parallel with rayon (on a one-thread pool the build stays serial:
+//!   building each subtree into its own array and copying it into place only adds
+//!   work). After a depth of 40 the build halves ranges by
 //!   count, which bounds the depth and so the traversal stack. The build is shaped by
 //!   its small ranges, of which there are as many as leaves: a range no bigger than one
-//!   block becomes a leaf without binning (no split can be cheaper), sweeps skip empty
-//!   bins (a split behind one costs what the split before it did), build items are two
+//!   block becomes a leaf without binning (no split can be cheaper), the SAH sweep runs
+//!   the three axes side by side, one per SIMD lane (each bin's three boxes transposed,
+//!   their half areas computed with the scalar formula's operations in its order, so
+//!   every cost is the axis-by-axis cost to the bit), build items are two
 //!   aligned SIMD registers with the index in a spare lane, and the three bins of an item
 //!   are one SSE2 conversion. Large ranges bin their even and odd items into two sets of
 //!   bins merged after (neighbouring items fall in the same bins, and one set would make
@@ -57,8 +61,9 @@
 //!   leaves the nodes the same; the last one changes the order of a leaf's triangles,
 //!   which matters only where a ray meets two of them at exactly the same distance (no
 //!   image or hit checksum changed). Around the tree, a mesh writes its build items in
-//!   place in parallel and fills its triangle packets in parallel too: on 2 threads
-//!   these serial steps had been a fifth of the build.
+//!   place in parallel and fills its triangle packets in parallel too (on 2 threads
+//!   these serial steps had been a fifth of the build), each packet's corners as four
+//!   points transposed into rows of x, y and z rather than 36 scalar stores.
 //! - **Structure-of-arrays nodes and triangle packets.** A node stores its children's
 //!   boxes as rows of eight floats, tested four at a time with SSE (glam's `Vec4`, the
 //!   x86_64 baseline: no `target-cpu=native`). Leaves point at packets of four triangles
@@ -114,44 +119,63 @@
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
 //! after the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median
 //! of 3), and the three runs of the round before; Embree's own figures move by a tenth
-//! to a third between runs and rounds (its 1-thread build took 0.210 to 0.222 s below,
-//! 0.230 to 0.316 s the round before), so read the ratios within a run:
+//! to a third between runs and rounds (its 1-thread build took 0.223 to 0.242 s below,
+//! 0.210 to 0.222 s the round before), so read the ratios within a run:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.385 s (Embree 0.222: 0.58x) | 0.355 s (0.211: 0.59x) | 0.357 s (0.210: 0.59x) | 0.349 to 0.394 s: 0.58x, 0.90x, 0.86x |
-//! | build, 2 threads | 0.203 s (0.233: 1.15x) | 0.193 s (0.213: 1.10x) | 0.204 s (0.238: 1.16x) | 1.17x, 1.21x, 1.08x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 15.69 Mrays/s (0.84x) | 18.19 (0.99x) | 17.55 (0.98x) | 0.87x, 0.83x, 0.89x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.02x | 1.19x | 1.18x | 1.06x, 0.92x, 1.07x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.23 Mrays/s (0.78x) | 7.17 (0.80x) | 7.03 (0.77x) | 0.67x, 0.75x, 0.75x |
-//! | incoherent vs `rtcIntersect1` | 1.81 Mrays/s (0.84x) | 1.59 (0.82x) | 1.81 (0.77x) | 0.77x, 0.81x, 0.82x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 35.46 Mrays/s (0.97x) | 34.41 (0.95x) | 36.39 (0.98x) | 0.83x, 0.81x, 0.88x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.50 Mrays/s (0.80x) | 3.80 (0.87x) | 4.25 (0.97x) | 0.92x, 0.90x, 0.85x |
+//! | build | 0.328 s (Embree 0.234: 0.71x) | 0.319 s (0.223: 0.70x) | 0.317 s (0.242: 0.76x) | 0.355 to 0.385 s: 0.58x, 0.59x, 0.59x |
+//! | build, 2 threads | 0.174 s (0.214: 1.23x) | 0.192 s (0.214: 1.11x) | 0.224 s (0.251: 1.12x) | 1.15x, 1.10x, 1.16x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 18.80 Mrays/s (1.01x) | 18.81 (1.01x) | 18.38 (0.99x) | 0.84x, 0.99x, 0.98x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.26x | 1.24x | 1.21x | 1.02x, 1.19x, 1.18x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.54 Mrays/s (0.80x) | 7.27 (0.78x) | 7.33 (0.80x) | 0.78x, 0.80x, 0.77x |
+//! | incoherent vs `rtcIntersect1` | 1.84 Mrays/s (0.89x) | 1.81 (0.83x) | 1.92 (0.90x) | 0.84x, 0.82x, 0.77x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 24.74 Mrays/s (0.67x) | 36.35 (0.99x) | 34.00 (0.92x) | 0.97x, 0.95x, 0.98x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.69 Mrays/s (0.79x) | 3.41 (0.89x) | 3.81 (0.89x) | 0.80x, 0.87x, 0.97x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.47x to 3.63x faster than obvhs everywhere. The latest round changed the leaves and
-//! the packets: a triangle packet that a ray passes beside is rejected before the
-//! division for `t` (the instruction after the division had held 8% of the leaf
-//! tests' time), which took the packets from 16.4 to 17.3 Mrays/s in a run of their
-//! own (0.87x to 0.95x of `rtcIntersect16`); and a subtree that 16 or more of a
-//! packet's rays enter stays with the packet instead of going to each ray alone
-//! (17.8 Mrays/s, 0.98x, in the next run); last, a packet's 64 hits are read where
-//! they lie rather than moved as a whole array straight after the leaf tests wrote them
-//! (a store-forwarding wait: 1% to 2% of the bare tracing, fastest runs of the
-//! icosphere example; not in the table). Run 1's 15.69 is the machine's: the same
-//! build gave 18.19 and 17.55 in the two runs after it. The final code, whose early
-//! rejection is a skip in the caller's loop (so that no build folds the check away),
-//! gave 13.40 (0.74x; 0.99x on 2 threads in the same run), 17.24 (0.97x) and 18.27
-//! (0.98x) in three more. The build did not change; the 2-thread build is at or above
-//! Embree's in all three runs of the table (1.10x to 1.16x), and 0.83x to 1.32x over
-//! twenty-one runs in six rounds.
+//! 1.47x to 4.15x faster than obvhs everywhere. The latest round changed only the
+//! build, and kept its hierarchy node for node (the same images and hit checksums):
+//! the SAH sweep runs the three axes side by side (a quarter of a 1-thread build had
+//! gone to the sweep axis by axis, with a branch on each empty bin), each triangle
+//! packet is assembled from four transposed points, a node's children are opened in
+//! an array on the stack instead of two vectors, and a one-thread pool builds serially
+//! (the parallel path had built each upper subtree into its own vector and copied it
+//! into place). The 1-thread build went from 0.337 s (0.62x of Embree, one run at the
+//! start of the round) to 0.317 to 0.328 s (0.70x to 0.76x). Run 1's coherent 24.74
+//! Mrays/s on 2 threads is the machine's (its spread 20.89 to 25.49; 36.35 and 34.00 in
+//! the two runs after); the tracing code did not change, and the packets' 0.99x to 1.01x
+//! on 1 thread (0.84x to 0.99x the round before) and the incoherent rays' 0.83x to
+//! 0.90x (0.77x to 0.84x) are the spread between rounds more than any change.
 //!
-//! Where the packets stand: at 0.97x to 0.99x of `rtcIntersect16` in five of the
-//! seven runs with both changes (0.84x and 0.74x in the other two, on a busy machine),
-//! they trace a leaf's triangles one ray at a time against four
-//! triangles per SSE instruction, where Embree's 16-wide kernel tests sixteen rays
-//! at once; the incoherent rays (0.77x to 0.84x on 1 thread) wait on the first load
-//! of each leaf's triangles, a cache miss the prefetch of hit children does not hide.
+//! Where the build stands, at 0.70x to 0.76x of Embree on 1 thread (and ahead on 2):
+//! perf of the 1-thread build puts about a quarter of its time on binning (three
+//! bins' boxes and counts updated per item and axis), a quarter on choosing splits
+//! (the small ranges' binning and the sweeps: a build sees half a million ranges of
+//! at most 32 items), a sixth on the partition and each side's bounds, and a seventh
+//! in the kernel (the first touch of 120 MB of fresh pages). The tree is the same as
+//! Embree's kind (binned SAH, 32 bins, eight children), and every item is visited about
+//! twenty times over the levels; what is left is per-visit work, where Embree runs
+//! code compiled for the machine's widest instruction set (its kernels are built once
+//! per instruction set and chosen at run time; viewray's are SSE2). Measured and left out this round: a branch-free block
+//! partition (swapping only misplaced items, BlockQuicksort-style: no faster), and the
+//! sweep's counts as one integer vector per bin (no measurable change).
+//!
+//! Where the packets stand: at 0.99x to 1.01x of `rtcIntersect16` in the latest
+//! round's three runs (0.97x to 0.99x in five of seven the round before, 0.84x and
+//! 0.74x in the other two, on a busy machine), they trace a leaf's triangles one ray at
+//! a time against four triangles per SSE instruction, where Embree's 16-wide kernel
+//! tests sixteen rays at once. The incoherent rays (0.83x to 0.90x on 1 thread) wait
+//! on memory: perf of 1M of them puts 62% of the leaf tests' time on the first load of
+//! a leaf's triangles and a quarter of the traversal's on the first load of the next
+//! node, both prefetched only as the ray reaches the parent (the prefetch still pays:
+//! without it for child nodes the same rays took 0.60 to 0.66 s against 0.51 to 0.55
+//! s, medians of 5 in three alternated runs, and skipping it for a lone hit child,
+//! loaded at once anyway, cost 3% to 13%). Tracing two rays of
+//! one octant side by side, a step of each in turn so that one's wait overlaps the
+//! other's work (the same hits), was 20% slower (0.65 to 0.67 s against 0.52 to 0.54 s
+//! for the 1M rays, three runs): each step's mispredicted branches flush the other
+//! ray's work with its own.
 //! The rule for handing subtrees to single rays trades the benchmark against finer
 //! meshes: handing them over only where the packet enters all eight children would
 //! trace the 1.3M-triangle icosphere 6% to 7% faster but 5.2M and 21M triangles 6%
@@ -164,9 +188,10 @@
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
 //! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
 //! 48.8 M instructions (49.6 M at the start of this round). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 1,187 M instructions for the
-//! whole program (1,151 M before the partition lost its branches: more instructions, less
-//! time; 1,179 M before a split's bounds were folded after the partition, 1,849 M before
+//! icosphere generated once, then built five times) executes 991 M instructions for the
+//! whole program on one thread (1,187 M before the latest round's build changes;
+//! 1,151 M before the partition lost its branches: more instructions, less time;
+//! 1,179 M before a split's bounds were folded after the partition, 1,849 M before
 //! the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in 2.29 s on 1
 //! thread against 2.46 s with the branching partition (medians of seven alternated runs),
 //! and in 1.50 s against 1.57 s on 2 (nine, on a busy machine). Instruction counts are no
@@ -194,12 +219,6 @@
 //! - Taking the one lane hit without the horizontal minimum (one lane is the common
 //!   case): no measurable change.
 //!
-//! Also measured and left out: the SAH sweep with the three axes side by side (each
-//! bin's three boxes unioned, the three half areas in one `Vec3A` with the same
-//! operations in the same order, the choice then made axis by axis as before) builds the
-//! same tree, node for node, but executes 5.6% more instructions (1,245 M against
-//! 1,179 M for the `build` workload, before the partition change): the sweep axis by axis skips empty bins, and most
-//! of the ranges a build sees are small ones with many.
 //!
 //! Where the time goes (callgrind, one thread):
 //!
