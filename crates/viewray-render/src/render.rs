@@ -167,8 +167,6 @@ struct TileBuffers {
     rays: Vec<Ray>,
     ray_pixels: Vec<(usize, u32, u32)>,
     hits: Vec<Option<ObjectHit>>,
-    /// The colours the block's samples see.
-    colors: Vec<Vec3>,
     /// What Lit shading reuses from block to block.
     lit: LitScratch,
 }
@@ -183,7 +181,6 @@ impl TileBuffers {
             rays: Vec::with_capacity(block),
             ray_pixels: Vec::with_capacity(block),
             hits: Vec::with_capacity(block),
-            colors: Vec::with_capacity(block),
             lit: LitScratch::default(),
         }
     }
@@ -248,8 +245,8 @@ impl TileBuffers {
                     let n = self.rays.len();
                     self.hits.resize(n, None);
                     shader.trace_primary(&self.rays, &mut self.hits);
-                    self.colors.resize(n, Vec3::ZERO);
                     let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
+                    let pixels = &mut self.pixels;
                     shader.shade_primaries(
                         &self.rays,
                         &self.hits,
@@ -262,12 +259,9 @@ impl TileBuffers {
                             }
                         },
                         &mut self.lit,
-                        &mut self.colors,
+                        |i, color| pixels[ray_pixels[i].0] += color,
                         &mut rays,
                     );
-                    for (&(pixel, _, _), &color) in self.ray_pixels.iter().zip(&self.colors) {
-                        self.pixels[pixel] += color;
-                    }
                 }
             }
         }

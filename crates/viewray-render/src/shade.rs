@@ -219,7 +219,9 @@ impl<'a> Shader<'a> {
     }
 
     /// The values of what the viewing rays `rays` see, given their closest hits (from
-    /// [`Shader::trace_primary`]), into `colors`; `film(i)` is the film point of
+    /// [`Shader::trace_primary`]): `emit(i, value)` once for each ray, in no particular
+    /// order (straight into the caller's sums: a buffer of colours in between was
+    /// written and read back once per ray); `film(i)` is the film point of
     /// `rays[i]`, asked for only where a grid is filtered over the sample's footprint.
     /// Lit shading traces the batch's shadow rays toward each light together, and its
     /// reflected rays together, as packets (see [`Shader::lit_batch`]).
@@ -229,7 +231,7 @@ impl<'a> Shader<'a> {
         hits: &[Option<ObjectHit>],
         film: impl Fn(usize) -> FilmPoint<'f>,
         scratch: &mut LitScratch,
-        colors: &mut [Vec3],
+        mut emit: impl FnMut(usize, Vec3),
         count: &mut u64,
     ) {
         *count += rays.len() as u64;
@@ -252,7 +254,7 @@ impl<'a> Shader<'a> {
                         push_hit(world, ray, hit, hit_rays, surfaces);
                         samples.push(i);
                     }
-                    None => colors[i] = self.background,
+                    None => emit(i, self.background),
                 }
             }
             lit.clear();
@@ -260,16 +262,16 @@ impl<'a> Shader<'a> {
             let film_of = |k: usize| film(samples[k]);
             self.lit_batch(hit_rays, surfaces, Some(&film_of), 0, buffers, lit, count);
             for (&i, &color) in samples.iter().zip(lit.iter()) {
-                colors[i] = color;
+                emit(i, color);
             }
             return;
         }
         for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
             let Some(object_hit) = hit else {
-                colors[i] = self.background;
+                emit(i, self.background);
                 continue;
             };
-            colors[i] = match self.shading {
+            let color = match self.shading {
                 Shading::Flat => {
                     // A plain colour needs no surface details.
                     let material = self.material(object_hit.object, object_hit.primitive);
@@ -285,6 +287,7 @@ impl<'a> Shader<'a> {
                 Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
                 Shading::Lit => unreachable!("lit samples are shaded in a batch above"),
             };
+            emit(i, color);
         }
     }
 
