@@ -1672,6 +1672,24 @@ mod tests {
         }
     }
 
+    /// Only a pool of two or more threads builds in parallel, and only ranges of
+    /// `PARALLEL_ITEMS` or more (the two paths give the same hierarchy, see below; on
+    /// one thread the parallel one is only slower).
+    #[test]
+    fn only_large_ranges_on_several_threads_are_built_in_parallel() {
+        let in_pool = |threads: usize, n: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool")
+                .install(|| in_parallel(n))
+        };
+        assert!(!in_pool(1, 100 * PARALLEL_ITEMS));
+        assert!(in_pool(2, PARALLEL_ITEMS));
+        assert!(!in_pool(2, PARALLEL_ITEMS - 1));
+        assert!(in_pool(3, 100 * PARALLEL_ITEMS));
+    }
+
     /// A range large enough to be built in parallel gives the same hierarchy, node for
     /// node, on one thread (where it is built serially) and on three.
     #[test]
