@@ -218,6 +218,37 @@ pub(crate) fn prefetch<T, const N: usize>(items: &[T], index: usize, offsets: [u
     let _ = (items, index, offsets);
 }
 
+/// Asks the kernel to back `buffer`'s unused capacity with 2 MiB pages (Linux's
+/// transparent huge pages, where the system leaves them to `madvise`), before the
+/// buffer is filled: a mesh's build items, nodes and triangle packets are tens of
+/// megabytes each. One fault then maps 2 MiB instead of 4 KiB (a sixth of a build had
+/// gone to the kernel's page faults), and a ray's random walk through the hierarchy
+/// misses the TLB far less often. Only a hint: nothing changes where the system
+/// declines, or on other systems.
+pub(crate) fn advise_huge_pages<T>(buffer: &mut Vec<T>) {
+    #[cfg(target_os = "linux")]
+    {
+        const HUGE_PAGE: usize = 2 << 20;
+        let spare = buffer.spare_capacity_mut();
+        let start = spare.as_mut_ptr() as usize;
+        let end = start + std::mem::size_of_val(spare);
+        // The whole huge pages inside the unused capacity.
+        let (first, last) = (start.next_multiple_of(HUGE_PAGE), end / HUGE_PAGE * HUGE_PAGE);
+        if last > first {
+            #[allow(unsafe_code)]
+            // SAFETY: the range lies inside `buffer`'s allocation, which this function
+            // borrows mutably; `MADV_HUGEPAGE` only changes how the kernel backs those
+            // pages, never their contents or whether they may be read and written. An
+            // error (for example no huge page support) leaves everything as it was.
+            unsafe {
+                libc::madvise(first as *mut libc::c_void, last - first, libc::MADV_HUGEPAGE);
+            }
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = buffer;
+}
+
 fn leaf_ref(start: usize, count: usize) -> u32 {
     debug_assert!(start < MAX_ITEMS && (1..=MAX_LEAF as usize).contains(&count));
     LEAF | ((start as u32) << COUNT_BITS) | (count as u32 - 1)
@@ -451,6 +482,7 @@ impl Bvh {
         let bounds = range.bounds;
         let builder = Builder::new(params);
         let mut nodes = Vec::with_capacity(items.len() / 2 + 1);
+        advise_huge_pages(&mut nodes);
         builder.build_node(items, range, 0, &mut nodes);
         let item_order = items.iter().map(BuildItem::index).collect();
         Self {

@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::{BVec4A, Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, prefetch};
+use crate::bvh::{BoxRay, BuildItem, BuildParams, Bvh, MAX_ITEMS, advise_huge_pages, prefetch};
 use crate::hit::{Hit, RawHit, face_toward};
 use crate::packet::{PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, for_each_packet};
 use crate::shapes::{WatertightRay, edge_functions_f64};
@@ -382,7 +382,8 @@ impl Mesh {
         // are dropped after.
         let faces = &data.triangles[..data.triangles.len().min(MAX_ITEMS)];
         let zero_area = AtomicBool::new(false);
-        let mut items: Vec<BuildItem> = Vec::new();
+        let mut items: Vec<BuildItem> = Vec::with_capacity(faces.len());
+        advise_huge_pages(&mut items);
         faces
             .par_iter()
             .enumerate()
@@ -423,7 +424,8 @@ impl Mesh {
             (first_packet, runs.len() as u32 - first_packet)
         });
         let order = bvh.item_order();
-        let mut packets = Vec::new();
+        let mut packets = Vec::with_capacity(runs.len());
+        advise_huge_pages(&mut packets);
         runs.par_iter()
             .map(|&(start, count)| {
                 TrianglePacket::new(&order[start as usize..(start + count) as usize], &data)
