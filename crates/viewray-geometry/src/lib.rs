@@ -78,8 +78,9 @@
 //!   that a node's sorted children are pushed by one fixed-size copy (a copy of the
 //!   exact length was a call to `memcpy` per node). On large meshes rays are
 //!   bound by memory latency, so the children a ray will visit are prefetched as soon
-//!   as their boxes are hit (one of the crate's two `unsafe` blocks: the x86_64
-//!   prefetch hint; the other is the builder's SSE2 float-to-integer conversion).
+//!   as their boxes are hit (one of the crate's three `unsafe` blocks: the x86_64
+//!   prefetch hint; the others are the builder's SSE2 float-to-integer conversion and
+//!   the `madvise` that asks for huge pages, see the speed notes).
 //! - **Packets for coherent rays.** [`Mesh::closest_triangles`] and
 //!   [`World::closest_objects`] trace up to 64 rays of one octant (a renderer's 8 x 8
 //!   pixel block) together. One interval-arithmetic test per node bounds every ray of
@@ -119,69 +120,85 @@
 //! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
 //! after the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median
 //! of 3), and the three runs of the round before; Embree's own figures move by a tenth
-//! to a third between runs and rounds (its 1-thread build took 0.223 to 0.242 s below,
+//! to a third between runs and rounds (its 1-thread build took 0.212 to 0.242 s below,
 //! 0.210 to 0.222 s the round before), so read the ratios within a run:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.328 s (Embree 0.234: 0.71x) | 0.319 s (0.223: 0.70x) | 0.317 s (0.242: 0.76x) | 0.355 to 0.385 s: 0.58x, 0.59x, 0.59x |
-//! | build, 2 threads | 0.174 s (0.214: 1.23x) | 0.192 s (0.214: 1.11x) | 0.224 s (0.251: 1.12x) | 1.15x, 1.10x, 1.16x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 18.80 Mrays/s (1.01x) | 18.81 (1.01x) | 18.38 (0.99x) | 0.84x, 0.99x, 0.98x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.26x | 1.24x | 1.21x | 1.02x, 1.19x, 1.18x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.54 Mrays/s (0.80x) | 7.27 (0.78x) | 7.33 (0.80x) | 0.78x, 0.80x, 0.77x |
-//! | incoherent vs `rtcIntersect1` | 1.84 Mrays/s (0.89x) | 1.81 (0.83x) | 1.92 (0.90x) | 0.84x, 0.82x, 0.77x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 24.74 Mrays/s (0.67x) | 36.35 (0.99x) | 34.00 (0.92x) | 0.97x, 0.95x, 0.98x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.69 Mrays/s (0.79x) | 3.41 (0.89x) | 3.81 (0.89x) | 0.80x, 0.87x, 0.97x |
+//! | build | 0.282 s (Embree 0.214: 0.76x) | 0.280 s (0.242: 0.86x) | 0.282 s (0.212: 0.75x) | 0.355 to 0.385 s: 0.58x, 0.59x, 0.59x |
+//! | build, 2 threads | 0.169 s (0.216: 1.28x) | 0.158 s (0.230: 1.45x) | 0.165 s (0.217: 1.32x) | 1.15x, 1.10x, 1.16x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 17.44 Mrays/s (0.93x) | 18.73 (1.01x) | 17.01 (0.91x) | 0.84x, 0.99x, 0.98x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.13x | 1.24x | 1.10x | 1.02x, 1.19x, 1.18x |
+//! | primary, ray by ray vs `rtcIntersect1` | 7.44 Mrays/s (0.80x) | 7.38 (0.79x) | 7.55 (0.81x) | 0.78x, 0.80x, 0.77x |
+//! | incoherent vs `rtcIntersect1` | 2.00 Mrays/s (0.91x) | 1.95 (0.91x) | 2.24 (0.94x) | 0.84x, 0.82x, 0.77x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 30.88 Mrays/s (0.86x) | 33.86 (0.92x) | 35.77 (1.02x) | 0.97x, 0.95x, 0.98x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.57 Mrays/s (0.86x) | 4.02 (0.90x) | 4.63 (1.18x) | 0.80x, 0.87x, 0.97x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.47x to 4.15x faster than obvhs everywhere. The latest round changed only the
-//! build, and kept its hierarchy node for node (the same images and hit checksums):
-//! the SAH sweep runs the three axes side by side (a quarter of a 1-thread build had
-//! gone to the sweep axis by axis, with a branch on each empty bin), each triangle
-//! packet is assembled from four transposed points, a node's children are opened in
-//! an array on the stack instead of two vectors, and a one-thread pool builds serially
-//! (the parallel path had built each upper subtree into its own vector and copied it
-//! into place). The 1-thread build went from 0.337 s (0.62x of Embree, one run at the
-//! start of the round) to 0.317 to 0.328 s (0.70x to 0.76x). Run 1's coherent 24.74
-//! Mrays/s on 2 threads is the machine's (its spread 20.89 to 25.49; 36.35 and 34.00 in
-//! the two runs after); the tracing code did not change, and the packets' 0.99x to 1.01x
-//! on 1 thread (0.84x to 0.99x the round before) and the incoherent rays' 0.83x to
-//! 0.90x (0.77x to 0.84x) are the spread between rounds more than any change.
+//! 1.64x to 4.52x faster than obvhs everywhere. The latest round changed only the
+//! build and the memory behind the mesh, and kept the hierarchy node for node (the
+//! same images and hit checksums): the SAH sweep runs the three axes side by side (a
+//! quarter of a 1-thread build had gone to the sweep axis by axis, with a branch on
+//! each empty bin), each triangle packet is assembled from four transposed points, a
+//! node's children are opened in an array on the stack instead of two vectors, a
+//! one-thread pool builds serially (the parallel path had built each upper subtree
+//! into its own vector and copied it into place), and the build items, nodes and
+//! triangle packets ask Linux for huge pages (below). The 1-thread build went from
+//! 0.337 s (0.62x of Embree, one run at the start of the round) to 0.317 to 0.328 s
+//! (0.70x to 0.76x, three runs) before the huge pages and 0.280 to 0.298 s (0.71x to
+//! 0.86x, five runs) after. Two more runs after the huge pages gave coherent packets
+//! at 1.03x and 0.94x of `rtcIntersect16`, incoherent rays at 0.90x and 0.83x; the three
+//! runs before them, 0.99x to 1.01x and 0.83x to 0.90x. The coherent figures scatter
+//! by a tenth from run to run (run 1's 2-thread spread: 30.03 to 37.09), more than any
+//! change of the round moved them: the icosphere example's bare packet tracing, which
+//! runs the same rays eleven times, is as fast with huge pages and steadier (fastest
+//! 0.0541 s in all three runs, against 0.0548 to 0.0553 s).
 //!
-//! Where the build stands, at 0.70x to 0.76x of Embree on 1 thread (and ahead on 2):
-//! perf of the 1-thread build puts about a quarter of its time on binning (three
-//! bins' boxes and counts updated per item and axis), a quarter on choosing splits
-//! (the small ranges' binning and the sweeps: a build sees half a million ranges of
-//! at most 32 items), a sixth on the partition and each side's bounds, and a seventh
-//! in the kernel (the first touch of 120 MB of fresh pages). The tree is the same as
-//! Embree's kind (binned SAH, 32 bins, eight children), and every item is visited about
-//! twenty times over the levels; what is left is per-visit work, where Embree runs
-//! code compiled for the machine's widest instruction set (its kernels are built once
-//! per instruction set and chosen at run time; viewray's are SSE2). Measured and left out this round: a branch-free block
-//! partition (swapping only misplaced items, BlockQuicksort-style: no faster), and the
-//! sweep's counts as one integer vector per bin (no measurable change).
+//! **Huge pages.** A mesh's build items (32 bytes a triangle), nodes and triangle
+//! packets (40 bytes a triangle) are tens of megabytes each; filled page by page at 4
+//! KiB, a seventh of a 1-thread build went to the kernel's page faults, and an
+//! incoherent ray's walk through 70 MB touches a new page at nearly every node and
+//! leaf, each a miss in the TLB. `madvise(MADV_HUGEPAGE)` on each buffer before it is
+//! filled (Linux, through the libc crate; Embree's allocator does the same) gives 2 MiB
+//! pages where the system leaves them to `madvise`: the 1-thread build 13% faster
+//! (medians of five alternated runs of nine builds, 0.329 s to 0.286 s), 1M incoherent
+//! rays 5% to 9% faster, coherent rays unchanged. Where the system keeps huge pages
+//! off, nothing changes.
 //!
-//! Where the packets stand: at 0.99x to 1.01x of `rtcIntersect16` in the latest
-//! round's three runs (0.97x to 0.99x in five of seven the round before, 0.84x and
-//! 0.74x in the other two, on a busy machine), they trace a leaf's triangles one ray at
-//! a time against four triangles per SSE instruction, where Embree's 16-wide kernel
-//! tests sixteen rays at once. The incoherent rays (0.83x to 0.90x on 1 thread) wait
-//! on memory: perf of 1M of them puts 62% of the leaf tests' time on the first load of
-//! a leaf's triangles and a quarter of the traversal's on the first load of the next
-//! node, both prefetched only as the ray reaches the parent (the prefetch still pays:
-//! without it for child nodes the same rays took 0.60 to 0.66 s against 0.51 to 0.55
-//! s, medians of 5 in three alternated runs, and skipping it for a lone hit child,
-//! loaded at once anyway, cost 3% to 13%). Tracing two rays of
-//! one octant side by side, a step of each in turn so that one's wait overlaps the
-//! other's work (the same hits), was 20% slower (0.65 to 0.67 s against 0.52 to 0.54 s
-//! for the 1M rays, three runs): each step's mispredicted branches flush the other
-//! ray's work with its own.
-//! The rule for handing subtrees to single rays trades the benchmark against finer
-//! meshes: handing them over only where the packet enters all eight children would
-//! trace the 1.3M-triangle icosphere 6% to 7% faster but 5.2M and 21M triangles 6%
-//! to 40% slower (bare packet tracing at 1024 x 1024, medians of 11); the 16-ray
-//! rule gains 4% to 6% at 82k and 1.3M triangles and is within noise (up to 3%
-//! slower) at 5.2M and 21M.
+//! Where the build stands, at 0.71x to 0.86x of Embree on 1 thread (and ahead on 2):
+//! perf of the 1-thread build puts about a quarter of its time on binning (three bins'
+//! boxes and counts updated per item and axis), a quarter on choosing splits (the small
+//! ranges' binning and the sweeps: a build sees half a million ranges of at most 32
+//! items) and a sixth on the partition and each side's bounds (before the huge pages, a
+//! seventh went to the kernel's page faults). The tree is the same as Embree's kind
+//! (binned SAH, 32 bins, eight children), and every item is visited about twenty times
+//! over the levels; what is left is per-visit work, where Embree runs code compiled for
+//! the machine's widest instruction set (its kernels are built once per instruction set
+//! and chosen at run time; viewray's are SSE2). Measured and left out this round: a
+//! branch-free block partition (swapping only misplaced items, BlockQuicksort-style: no
+//! faster), and the sweep's counts as one integer vector per bin (no measurable
+//! change).
+//!
+//! Where the packets stand: at 0.99x to 1.01x of `rtcIntersect16` in the latest round's
+//! three runs before the huge pages and 0.91x to 1.03x in the five after (0.97x to
+//! 0.99x in five of seven the round before, 0.84x and 0.74x in the other two), they
+//! trace a leaf's triangles one ray at a time against four triangles per SSE
+//! instruction, where Embree's 16-wide kernel tests sixteen rays at once. The
+//! incoherent rays (0.83x to 0.94x on 1 thread) wait on memory: perf of 1M of them puts
+//! 62% of the leaf tests' time on the first load of a leaf's triangles and a quarter of
+//! the traversal's on the first load of the next node, both prefetched only as the ray
+//! reaches the parent (the prefetch still pays: without it for child nodes the same
+//! rays took 0.60 to 0.66 s against 0.51 to 0.55 s, medians of 5 in three alternated
+//! runs, and skipping it for a lone hit child, loaded at once anyway, cost 3% to 13%).
+//! Tracing two rays of one octant side by side, a step of each in turn so that one's
+//! wait overlaps the other's work (the same hits), was 20% slower (0.65 to 0.67 s
+//! against 0.52 to 0.54 s for the 1M rays, three runs): each step's mispredicted
+//! branches flush the other ray's work with its own. The rule for handing subtrees to
+//! single rays trades the benchmark against finer meshes: handing them over only where
+//! the packet enters all eight children would trace the 1.3M-triangle icosphere 6% to
+//! 7% faster but 5.2M and 21M triangles 6% to 40% slower (bare packet tracing at 1024 x
+//! 1024, medians of 11); the 16-ray rule gains 4% to 6% at 82k and 1.3M triangles and
+//! is within noise (up to 3% slower) at 5.2M and 21M.
 //!
 //! Because wall-clock time on a shared machine is this noisy, changes are decided on
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
