@@ -262,7 +262,11 @@
 //!   own faster tracing the render stays at 1.11x to 1.15x by the fastest runs (1.10x
 //!   to 1.22x by the medians, three runs on a quiet machine). Splitting the block loop
 //!   in two (camera samples, then rays) so that its iterations overlap gained nothing
-//!   measurable. What is left
+//!   measurable. The latest round shaded each sample straight into its pixel's sum
+//!   (no buffer of colours in between: no measurable change) and gave the mesh huge
+//!   pages; in six runs after, the render took 1.09x to 1.12x the bare tracing's time
+//!   by the fastest runs, on 1 and 2 threads (1.03x to 1.16x by the medians), and
+//!   `render --stats` 0.060 to 0.067 s on 1 thread. What is left
 //!   is the camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping
 //!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
 //!   shading, about 140 instructions a ray together.
