@@ -233,7 +233,10 @@ pub(crate) fn advise_huge_pages<T>(buffer: &mut Vec<T>) {
         let start = spare.as_mut_ptr() as usize;
         let end = start + std::mem::size_of_val(spare);
         // The whole huge pages inside the unused capacity.
-        let (first, last) = (start.next_multiple_of(HUGE_PAGE), end / HUGE_PAGE * HUGE_PAGE);
+        let (first, last) = (
+            start.next_multiple_of(HUGE_PAGE),
+            end / HUGE_PAGE * HUGE_PAGE,
+        );
         if last > first {
             #[allow(unsafe_code)]
             // SAFETY: the range lies inside `buffer`'s allocation, which this function
@@ -241,7 +244,11 @@ pub(crate) fn advise_huge_pages<T>(buffer: &mut Vec<T>) {
             // pages, never their contents or whether they may be read and written. An
             // error (for example no huge page support) leaves everything as it was.
             unsafe {
-                libc::madvise(first as *mut libc::c_void, last - first, libc::MADV_HUGEPAGE);
+                libc::madvise(
+                    first as *mut libc::c_void,
+                    last - first,
+                    libc::MADV_HUGEPAGE,
+                );
             }
         }
     }
@@ -1702,6 +1709,23 @@ mod tests {
             assert_eq!(both.min, one.min, "{n} items");
             assert_eq!(both.max, one.max, "{n} items");
         }
+    }
+
+    /// Asking for huge pages is only a hint: a buffer of several huge pages, half
+    /// filled before and half after, keeps its length, capacity and every value (the
+    /// `madvise` call runs here, on whole 2 MiB pages of the unused half).
+    #[test]
+    fn advising_huge_pages_leaves_a_buffer_as_it_was() {
+        let n = 3 << 20;
+        let mut buffer: Vec<u64> = Vec::with_capacity(n);
+        buffer.extend(0..n as u64 / 2);
+        advise_huge_pages(&mut buffer);
+        assert_eq!((buffer.len(), buffer.capacity()), (n / 2, n));
+        buffer.extend(n as u64 / 2..n as u64);
+        assert!(buffer.iter().enumerate().all(|(i, &v)| v == i as u64));
+        let mut empty: Vec<u64> = Vec::new();
+        advise_huge_pages(&mut empty);
+        assert!(empty.is_empty());
     }
 
     /// Only a pool of two or more threads builds in parallel, and only ranges of
