@@ -1516,13 +1516,7 @@ mod tests {
     /// items); the bounds and centroid bounds of each side are those of its items.
     #[test]
     fn partition_moves_the_left_items_to_the_front() {
-        let mut state = 0x1234_5678_u32;
-        let mut random = move || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            state
-        };
+        let mut random = xorshift(0x1234_5678);
         for n in [0usize, 1, 2, 3, 7, 64, 300] {
             for pattern in 0..4 {
                 let mut items: Vec<BuildItem> = (0..n)
@@ -1750,13 +1744,8 @@ mod tests {
     /// node, on one thread (where it is built serially) and on three.
     #[test]
     fn the_hierarchy_is_the_same_on_one_thread_and_on_three() {
-        let mut state = 0x2545_f491_u32;
-        let mut random = move || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            (state % 10_000) as f32 / 100.0
-        };
+        let mut bits = xorshift(0x2545_f491);
+        let mut random = move || (bits() % 10_000) as f32 / 100.0;
         let boxes: Vec<Aabb> = (0..3 * PARALLEL_ITEMS)
             .map(|_| {
                 let lo = Vec3::new(random(), random(), random());
@@ -1780,6 +1769,17 @@ mod tests {
                 a.planes.map(|row| row.map(f32::to_bits)),
                 b.planes.map(|row| row.map(f32::to_bits))
             );
+        }
+    }
+
+    /// A xorshift generator of 32-bit numbers from `seed` (not zero), for test data.
+    fn xorshift(seed: u32) -> impl FnMut() -> u32 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state
         }
     }
 
