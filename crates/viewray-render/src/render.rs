@@ -240,10 +240,10 @@ impl TileBuffers {
                         }
                     }
 
-                    // Trace them together and shade the hits together (both write
-                    // every entry, so the buffers need only the right length).
-                    let n = self.rays.len();
-                    self.hits.resize(n, None);
+                    // Trace them together (which writes every hit, so the buffer needs
+                    // only the right length) and shade them together, each sample's
+                    // value added straight to its pixel.
+                    self.hits.resize(self.rays.len(), None);
                     shader.trace_primary(&self.rays, &mut self.hits);
                     let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
                     let pixels = &mut self.pixels;
