@@ -382,9 +382,8 @@ impl Mesh {
         // are dropped after.
         let faces = &data.triangles[..data.triangles.len().min(MAX_ITEMS)];
         let zero_area = AtomicBool::new(false);
-        // (On 4 KiB pages: see `advise_huge_pages` for why the packets ask for huge
-        // pages and these items do not.)
         let mut items: Vec<BuildItem> = Vec::with_capacity(faces.len());
+        advise_huge_pages(&mut items);
         faces
             .par_iter()
             .enumerate()
