@@ -221,7 +221,7 @@ pub(crate) fn prefetch<T, const N: usize>(items: &[T], index: usize, offsets: [u
 /// Asks the kernel to back `buffer`'s unused capacity with 2 MiB pages (Linux's
 /// transparent huge pages, where the system leaves them to `madvise`), before the
 /// buffer is filled: a mesh's build items, nodes and triangle packets are tens of
-/// megabytes each. One fault then maps 2 MiB instead of 4 KiB (a sixth of a build had
+/// megabytes each. One fault then maps 2 MiB instead of 4 KiB (a seventh of a build had
 /// gone to the kernel's page faults), and a ray's random walk through the hierarchy
 /// misses the TLB far less often. Only a hint: nothing changes where the system
 /// declines, or on other systems.
