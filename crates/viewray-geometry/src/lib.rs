@@ -163,7 +163,8 @@
 //! pages where the system leaves them to `madvise`: the 1-thread build 13% faster
 //! (medians of five alternated runs of nine builds, 0.329 s to 0.286 s), 1M incoherent
 //! rays 3% to 9% faster, coherent rays unchanged; `viewray render` of the icosphere
-//! (one build per process, mimalloc) builds about 5% faster. Where the system keeps
+//! (one build per process, mimalloc) builds 5% faster in one batch of six alternated
+//! runs and no faster in another of five. Where the system keeps
 //! huge pages off, nothing changes. On the development machine, a virtual machine that
 //! backs its memory lazily, huge pages not touched for a while are slow to touch
 //! again: the first build of the bench's cases, and the first build of a process after
