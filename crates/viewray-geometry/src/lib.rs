@@ -164,15 +164,15 @@
 //! (medians of five alternated runs of nine builds, 0.329 s to 0.286 s), 1M incoherent
 //! rays 3% to 9% faster, coherent rays unchanged; `viewray render` of the icosphere
 //! (one build per process, mimalloc) builds 5% faster in one batch of six alternated
-//! runs and no faster in another of five. Where the system keeps
-//! huge pages off, nothing changes. On the development machine, a virtual machine that
-//! backs its memory lazily, huge pages not touched for a while are slow to touch
-//! again: the first build of the bench's cases, and the first build of a process after
-//! a pause, took 0.37 to 0.54 s (0.27 to 0.30 s for the builds after it, and for a
-//! process started right after another). The kernel never had to compact memory for
-//! them (`compact_stall` stayed 0 in `/proc/vmstat`). Keeping the build items on 4 KiB
-//! pages, to touch fewer huge pages, made the steady builds slower (0.29 to 0.31 s)
-//! and the bench's no steadier, so every large buffer asks.
+//! runs and no faster in another of five. Where the system keeps huge pages off,
+//! nothing changes. On the development machine, a virtual machine that backs its memory
+//! lazily, huge pages not touched for a while are slow to touch again: the first build
+//! of the bench's cases, and the first build of a process after a pause, took 0.37 to
+//! 0.54 s (0.27 to 0.30 s for the builds after it, and for a process started right
+//! after another). The kernel never had to compact memory for them (`compact_stall`
+//! stayed 0 in `/proc/vmstat`). Keeping the build items on 4 KiB pages, to touch fewer
+//! huge pages, made the steady builds slower (0.29 to 0.31 s) and the bench's no
+//! steadier, so every large buffer asks.
 //!
 //! Where the build stands, at 0.71x to 0.86x of Embree on 1 thread (and ahead on 2):
 //! perf of the 1-thread build puts about a quarter of its time on binning (three bins'
