@@ -1383,15 +1383,15 @@ impl Builder {
         let children = &*children;
 
         // The children's items: disjoint slices, in order.
+        let mut rest = items;
+        let slices = children.iter().map(move |child| {
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(child.len());
+            rest = tail;
+            head
+        });
         let mut node = Node::EMPTY;
         if in_parallel(range.len()) {
-            let mut slices = Vec::with_capacity(children.len());
-            let mut rest = items;
-            for child in children {
-                let (head, tail) = rest.split_at_mut(child.len());
-                slices.push(head);
-                rest = tail;
-            }
+            let slices: Vec<&mut [BuildItem]> = slices.collect();
             // Build the inner children's subtrees in parallel, each into its own array,
             // then append them with their node indices shifted.
             let subtrees: Vec<Option<Vec<Node>>> = children
@@ -1424,10 +1424,7 @@ impl Builder {
                 node.set_child(slot, &child.bounds, child_ref);
             }
         } else {
-            let mut rest = items;
-            for (slot, child) in children.iter().enumerate() {
-                let (slice, tail) = rest.split_at_mut(child.len());
-                rest = tail;
+            for (slot, (child, slice)) in children.iter().zip(slices).enumerate() {
                 let child_ref = if child.leaf {
                     leaf_ref(child.start, child.len())
                 } else {
@@ -1727,13 +1724,7 @@ mod tests {
     /// one thread the parallel one is only slower).
     #[test]
     fn only_large_ranges_on_several_threads_are_built_in_parallel() {
-        let in_pool = |threads: usize, n: usize| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .expect("a pool")
-                .install(|| in_parallel(n))
-        };
+        let in_pool = |threads: usize, n: usize| pool(threads).install(|| in_parallel(n));
         assert!(!in_pool(1, 100 * PARALLEL_ITEMS));
         assert!(in_pool(2, PARALLEL_ITEMS));
         assert!(!in_pool(2, PARALLEL_ITEMS - 1));
@@ -1752,13 +1743,8 @@ mod tests {
                 Aabb::new(lo, lo + Vec3::new(random(), random(), random()) / 50.0)
             })
             .collect();
-        let build = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .expect("a pool");
-            pool.install(|| Bvh::build(&boxes, BuildParams::default()))
-        };
+        let build =
+            |threads: usize| pool(threads).install(|| Bvh::build(&boxes, BuildParams::default()));
         let (one, three) = (build(1), build(3));
         assert!(one.node_count() > 1000);
         assert_eq!(one.item_order, three.item_order);
@@ -1770,6 +1756,14 @@ mod tests {
                 b.planes.map(|row| row.map(f32::to_bits))
             );
         }
+    }
+
+    /// A rayon pool of `threads` threads.
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool")
     }
 
     /// A xorshift generator of 32-bit numbers from `seed` (not zero), for test data.
