@@ -341,10 +341,36 @@ pub(crate) fn per_axis<T>(f: impl Fn(usize) -> T) -> [T; 3] {
     [f(0), f(1), f(2)]
 }
 
+/// A single ray's test against a node's eight boxes: [`BoxRay`] with SSE, the x86-64
+/// baseline, and the same test in one AVX register where the processor has it
+/// (`avx::AvxRay`), with the same bits.
+pub(crate) trait ChildBoxes {
+    /// The bit mask of the boxes whose slab interval meets `[t_min, t_max]`, and the
+    /// entry distances (see [`slab_test`]).
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]);
+}
+
+impl ChildBoxes for BoxRay {
+    #[inline(always)]
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]) {
+        self.hit_children_sse::<OCTANT>(node, Vec4::splat(t_min), Vec4::splat(t_max))
+    }
+}
+
 /// What a single ray's closest-hit traversal carries down the tree besides its closest
 /// distance: the ray, where hits may start, and what happens at leaves.
-pub(crate) struct RayTraversal<'a, L, P> {
-    pub(crate) ray: &'a BoxRay,
+pub(crate) struct RayTraversal<'a, R, L, P> {
+    pub(crate) ray: &'a R,
     pub(crate) t_min: f32,
     /// `leaf(start, count, t_max)` intersects the items of a leaf and returns the new
     /// closest distance.
@@ -400,11 +426,11 @@ impl BoxRay {
         }
     }
 
-    /// Tests the ray against a node's eight boxes; returns the bit mask of boxes whose
-    /// slab interval meets `[t_min, t_max]`, and the entry distances (see
-    /// [`slab_test`]).
+    /// Tests the ray against a node's eight boxes, two groups of four with SSE; returns
+    /// the bit mask of boxes whose slab interval meets `[t_min, t_max]`, and the entry
+    /// distances (see [`slab_test`]).
     #[inline(always)]
-    pub(crate) fn hit_children<const OCTANT: u8>(
+    pub(crate) fn hit_children_sse<const OCTANT: u8>(
         &self,
         node: &Node,
         t_min: Vec4,
@@ -606,6 +632,14 @@ impl Bvh {
         if self.nodes.is_empty() {
             return t_max;
         }
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::detected() {
+            #[allow(unsafe_code)]
+            // SAFETY: the processor runs AVX.
+            return unsafe {
+                self.closest_in_octant_avx::<OCTANT>(ray, t_min, t_max, leaf, prefetch_leaf)
+            };
+        }
         with_stack(|stack| {
             let mut traversal = RayTraversal {
                 ray,
@@ -613,7 +647,30 @@ impl Bvh {
                 leaf,
                 prefetch_leaf,
             };
-            self.closest_with_stack::<OCTANT, _, _>(&mut traversal, 0, t_max, stack)
+            self.closest_with_stack::<OCTANT, _, _, _>(&mut traversal, 0, t_max, stack)
+        })
+    }
+
+    /// [`Bvh::closest_in_octant`] compiled for AVX, with the AVX box test.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn closest_in_octant_avx<const OCTANT: u8>(
+        &self,
+        ray: &BoxRay,
+        t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u32, u32, f32) -> f32,
+        prefetch_leaf: impl Fn(u32, u32),
+    ) -> f32 {
+        let ray = crate::avx::AvxRay::new(ray);
+        with_stack(|stack| {
+            let mut traversal = RayTraversal {
+                ray: &ray,
+                t_min,
+                leaf,
+                prefetch_leaf,
+            };
+            self.closest_with_stack::<OCTANT, _, _, _>(&mut traversal, 0, t_max, stack)
         })
     }
 
@@ -621,14 +678,15 @@ impl Bvh {
     /// for rays whose direction signs are `OCTANT`, from the closest distance so far,
     /// `t_max`, with a stack to use.
     #[inline(always)]
-    pub(crate) fn closest_with_stack<const OCTANT: u8, L, P>(
+    pub(crate) fn closest_with_stack<const OCTANT: u8, R, L, P>(
         &self,
-        traversal: &mut RayTraversal<'_, L, P>,
+        traversal: &mut RayTraversal<'_, R, L, P>,
         start: u32,
         mut t_max: f32,
         stack: &mut Stack,
     ) -> f32
     where
+        R: ChildBoxes,
         L: FnMut(u32, u32, f32) -> f32,
         P: Fn(u32, u32),
     {
@@ -644,14 +702,13 @@ impl Bvh {
         } = stack;
         let mut sp = 0usize;
         let mut current = start;
-        let t_min4 = Vec4::splat(*t_min);
         loop {
             if current & LEAF != 0 {
                 let (start, count) = decode_leaf(current);
                 t_max = leaf(start, count, t_max);
             } else {
                 let node = &self.nodes[current as usize];
-                let (mask, t_near) = ray.hit_children::<OCTANT>(node, t_min4, Vec4::splat(t_max));
+                let (mask, t_near) = ray.hit_children::<OCTANT>(node, *t_min, t_max);
                 if mask != 0 {
                     let mut bits = mask;
                     while bits != 0 {
@@ -666,6 +723,24 @@ impl Bvh {
                     }
                     if mask.count_ones() == 1 {
                         current = node.children[mask.trailing_zeros() as usize];
+                        continue;
+                    }
+                    if mask.count_ones() == 2 {
+                        // What the sort below does with two children (on a tie the
+                        // later slot comes first), without its loops.
+                        let (a, b) = (
+                            mask.trailing_zeros() as usize,
+                            (mask & (mask - 1)).trailing_zeros() as usize,
+                        );
+                        let (near, far) = if t_near[a] < t_near[b] {
+                            (a, b)
+                        } else {
+                            (b, a)
+                        };
+                        stack_refs[sp] = node.children[far];
+                        stack_t[sp] = t_near[far];
+                        sp += 1;
+                        current = node.children[near];
                         continue;
                     }
                     // Sort the hit children far to near, push all but the nearest and
@@ -754,12 +829,39 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        with_stack(|stack| self.any_with_stack::<OCTANT>(ray, t_min, t_max, leaf, &mut stack.refs))
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::detected() {
+            #[allow(unsafe_code)]
+            // SAFETY: the processor runs AVX.
+            return unsafe { self.any_in_octant_avx::<OCTANT>(ray, t_min, t_max, leaf) };
+        }
+        with_stack(|stack| {
+            self.any_with_stack::<OCTANT, _>(ray, t_min, t_max, leaf, &mut stack.refs)
+        })
     }
 
-    pub(crate) fn any_with_stack<const OCTANT: u8>(
+    /// [`Bvh::any_in_octant`] compiled for AVX, with the AVX box test.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn any_in_octant_avx<const OCTANT: u8>(
         &self,
         ray: &BoxRay,
+        t_min: f32,
+        t_max: f32,
+        leaf: impl FnMut(u32, u32) -> bool,
+    ) -> bool {
+        let ray = crate::avx::AvxRay::new(ray);
+        with_stack(|stack| {
+            self.any_with_stack::<OCTANT, _>(&ray, t_min, t_max, leaf, &mut stack.refs)
+        })
+    }
+
+    /// The any-hit traversal from the root for rays whose direction signs are
+    /// `OCTANT`, with a stack to use.
+    #[inline(always)]
+    pub(crate) fn any_with_stack<const OCTANT: u8, R: ChildBoxes>(
+        &self,
+        ray: &R,
         t_min: f32,
         t_max: f32,
         mut leaf: impl FnMut(u32, u32) -> bool,
@@ -767,7 +869,6 @@ impl Bvh {
     ) -> bool {
         let mut sp = 0usize;
         let mut current = 0u32;
-        let (t_min4, t_max4) = (Vec4::splat(t_min), Vec4::splat(t_max));
         loop {
             if current & LEAF != 0 {
                 let (start, count) = decode_leaf(current);
@@ -776,7 +877,7 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (mut mask, _) = ray.hit_children::<OCTANT>(node, t_min4, t_max4);
+                let (mut mask, _) = ray.hit_children::<OCTANT>(node, t_min, t_max);
                 while mask != 0 {
                     stack[sp] = node.children[mask.trailing_zeros() as usize];
                     sp += 1;

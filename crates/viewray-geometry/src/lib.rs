@@ -334,6 +334,8 @@
 //!   bits): 4% faster (medians of 5), not worth a second build of the renderer.
 
 mod aabb;
+#[cfg(target_arch = "x86_64")]
+mod avx;
 mod bvh;
 mod error;
 mod hit;

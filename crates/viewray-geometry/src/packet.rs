@@ -273,7 +273,7 @@ impl<'a> BoxPacket<'a> {
     }
 
     /// The rays of `lanes` that hit child `slot` of `node` with `t` in `[t_min,
-    /// t_max[lane]]`: for each ray exactly the test of [`BoxRay::hit_children`], four
+    /// t_max[lane]]`: for each ray exactly the test of [`BoxRay::hit_children_sse`], four
     /// rays at a time.
     #[inline(always)]
     fn rays_hitting<const OCTANT: u8>(
@@ -747,7 +747,7 @@ impl Bvh {
                 leaf: |start, count, t_max| visitor.leaf(i, start, count, t_max),
                 prefetch_leaf: traversal.prefetch_leaf,
             };
-            let t = self.closest_with_stack::<OCTANT, _, _>(
+            let t = self.closest_with_stack::<OCTANT, _, _, _>(
                 &mut ray_traversal,
                 child,
                 lane(t_max, i),
@@ -817,7 +817,7 @@ impl Bvh {
             // Ray by ray: the interval test would visit many nodes no ray needs.
             for i in lanes_of(lanes) {
                 let ray = packet.lane_ray(i);
-                if self.any_with_stack::<OCTANT>(
+                if self.any_with_stack::<OCTANT, _>(
                     &ray,
                     t_min,
                     t_max,
@@ -941,7 +941,7 @@ mod tests {
             let (t_min4, t_max4) = (Vec4::ZERO, Vec4::splat(t_max));
             let (packet_mask, packet_near) = packet.hit_children::<0>(&node, t_min4, t_max4);
             for ray in &rays {
-                let (mask, near) = BoxRay::new(ray).hit_children::<0>(&node, t_min4, t_max4);
+                let (mask, near) = BoxRay::new(ray).hit_children_sse::<0>(&node, t_min4, t_max4);
                 proptest::prop_assert_eq!(mask & !packet_mask, 0, "{:?}", ray);
                 for slot in lanes_of(u64::from(mask)) {
                     proptest::prop_assert!(packet_near[slot] <= near[slot], "{:?} slot {}", ray, slot);

@@ -1,0 +1,307 @@
+//! A single ray's test against a node's eight boxes in one AVX instruction per slab
+//! plane, for processors that have AVX (chosen at run time).
+//!
+//! [`BoxRay::hit_children_sse`] tests the eight boxes as two groups of four with SSE, the
+//! x86-64 baseline. An incoherent ray spends most of its instructions there: the same
+//! test in 256-bit registers does the work of both groups at once. It runs exactly the
+//! same operations, lane for lane and operand for operand (subtract, multiply, minimum
+//! and maximum in the same order, no fused multiply-add), so it gives the same bits:
+//! the same hits, the same traversal order and the same images on every processor.
+//!
+//! The intrinsics of the AVX path live in this module only; each `unsafe` block says
+//! why it is sound.
+
+#![allow(unsafe_code)]
+
+use std::arch::x86_64::{
+    __m256, _CMP_LE_OS, _mm256_cmp_ps, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps,
+    _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_setr_m128, _mm256_storeu_ps,
+    _mm256_sub_ps,
+};
+
+use glam::Vec4;
+
+use crate::bvh::{BoxRay, ChildBoxes, Node, ROBUST, WIDTH, plane_index};
+
+/// Whether this processor runs AVX (detected once, then a cached load).
+#[inline(always)]
+pub(crate) fn detected() -> bool {
+    #[cfg(test)]
+    if BASELINE_ONLY.get() {
+        return false;
+    }
+    std::arch::is_x86_feature_detected!("avx")
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests set this to run the SSE traversal on this thread where AVX is present.
+    pub(crate) static BASELINE_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// A [`BoxRay`]'s numbers in both halves of 256-bit registers.
+///
+/// Only made by [`AvxRay::new`], which needs AVX: holding one proves that the
+/// processor runs AVX, which is what makes [`ChildBoxes::hit_children`] sound.
+#[derive(Clone, Copy)]
+pub(crate) struct AvxRay {
+    origin_near: [__m256; 3],
+    origin_far: [__m256; 3],
+    inverse: [__m256; 3],
+}
+
+impl AvxRay {
+    #[target_feature(enable = "avx")]
+    #[inline]
+    pub(crate) fn new(ray: &BoxRay) -> Self {
+        let [n, f, i] = [ray.origin_near, ray.origin_far, ray.inverse];
+        Self {
+            origin_near: [wide(n[0]), wide(n[1]), wide(n[2])],
+            origin_far: [wide(f[0]), wide(f[1]), wide(f[2])],
+            inverse: [wide(i[0]), wide(i[1]), wide(i[2])],
+        }
+    }
+}
+
+/// `v` in both halves.
+#[target_feature(enable = "avx")]
+#[inline]
+fn wide(v: Vec4) -> __m256 {
+    _mm256_setr_m128(v.into(), v.into())
+}
+
+impl ChildBoxes for AvxRay {
+    #[inline(always)]
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]) {
+        // SAFETY: an `AvxRay` is only made where AVX was detected (see its doc).
+        unsafe { hit_children::<OCTANT>(self, node, t_min, t_max) }
+    }
+}
+
+/// [`BoxRay::hit_children_sse`] with the eight boxes in one register per plane: for each
+/// box, `near = (plane - origin_near) * inverse` per axis, entry `max(max(max(near_x,
+/// near_y), near_z), t_min)`, exit `min(min(min(far_x, far_y), far_z) * ROBUST, t_max)`,
+/// hit when entry <= exit.
+#[target_feature(enable = "avx")]
+#[inline]
+fn hit_children<const OCTANT: u8>(
+    ray: &AvxRay,
+    node: &Node,
+    t_min: f32,
+    t_max: f32,
+) -> (u32, [f32; WIDTH]) {
+    let planes = &node.planes;
+    let near = [
+        distances(
+            planes,
+            plane_index::<OCTANT>(0, false),
+            ray.origin_near[0],
+            ray.inverse[0],
+        ),
+        distances(
+            planes,
+            plane_index::<OCTANT>(1, false),
+            ray.origin_near[1],
+            ray.inverse[1],
+        ),
+        distances(
+            planes,
+            plane_index::<OCTANT>(2, false),
+            ray.origin_near[2],
+            ray.inverse[2],
+        ),
+    ];
+    let far = [
+        distances(
+            planes,
+            plane_index::<OCTANT>(0, true),
+            ray.origin_far[0],
+            ray.inverse[0],
+        ),
+        distances(
+            planes,
+            plane_index::<OCTANT>(1, true),
+            ray.origin_far[1],
+            ray.inverse[1],
+        ),
+        distances(
+            planes,
+            plane_index::<OCTANT>(2, true),
+            ray.origin_far[2],
+            ray.inverse[2],
+        ),
+    ];
+    let t_near = _mm256_max_ps(
+        _mm256_max_ps(_mm256_max_ps(near[0], near[1]), near[2]),
+        _mm256_set1_ps(t_min),
+    );
+    let t_far = _mm256_min_ps(
+        _mm256_mul_ps(
+            _mm256_min_ps(_mm256_min_ps(far[0], far[1]), far[2]),
+            _mm256_set1_ps(ROBUST),
+        ),
+        _mm256_set1_ps(t_max),
+    );
+    let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(t_near, t_far)) as u32;
+    let mut t_near_all = [0.0; WIDTH];
+    // SAFETY: `t_near_all` holds eight f32, exactly what an unaligned 256-bit store
+    // writes.
+    unsafe { _mm256_storeu_ps(t_near_all.as_mut_ptr(), t_near) };
+    (mask, t_near_all)
+}
+
+/// The distances along the ray to the eight boxes' planes `planes[index]`:
+/// `(plane - origin) * inverse`.
+#[target_feature(enable = "avx")]
+#[inline]
+fn distances(planes: &[[f32; WIDTH]; 6], index: usize, origin: __m256, inverse: __m256) -> __m256 {
+    // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
+    // reads.
+    let plane = unsafe { _mm256_loadu_ps(planes[index].as_ptr()) };
+    _mm256_mul_ps(_mm256_sub_ps(plane, origin), inverse)
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::{Aabb, Ray};
+
+    /// A coordinate that is often special: on a grid of halves, so that rays run
+    /// through boxes' edges and corners and graze their faces (where the exit's
+    /// enlargement decides), zero of either sign, tiny or huge.
+    fn coordinate() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            4 => (-6i32..=6).prop_map(|i| i as f32 * 0.5),
+            2 => -4.0f32..4.0,
+            1 => prop_oneof![Just(-0.0), Just(1e-31), Just(-1e-31), Just(3e38)],
+        ]
+    }
+
+    fn vector() -> impl Strategy<Value = Vec3> {
+        (coordinate(), coordinate(), coordinate()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    /// A node with eight children, some of them empty slots, some with a corner on the
+    /// ray (at `origin + t direction`, rounded), where the ray's entry and exit are a
+    /// few units in the last place apart and the exit's enlargement decides.
+    fn node(origin: Vec3, direction: Vec3, boxes: Vec<Option<(Vec3, Vec3, Option<f32>)>>) -> Node {
+        let mut node = Node::EMPTY;
+        for (slot, corners) in boxes.into_iter().enumerate() {
+            if let Some((a, b, on_ray)) = corners {
+                let a = on_ray.map_or(a, |t| origin + direction * t);
+                node.set_child(slot, &Aabb::new(a.min(b), a.max(b)), slot as u32);
+            }
+        }
+        node
+    }
+
+    fn boxes() -> impl Strategy<Value = Vec<Option<(Vec3, Vec3, Option<f32>)>>> {
+        let corner_on_ray = proptest::option::of(0.0f32..4.0);
+        proptest::collection::vec(
+            proptest::option::of((vector(), vector(), corner_on_ray)),
+            WIDTH,
+        )
+    }
+
+    fn hit_children_both<const OCTANT: u8>(
+        ray: &BoxRay,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> ((u32, [u32; WIDTH]), (u32, [u32; WIDTH])) {
+        let bits = |(mask, t): (u32, [f32; WIDTH])| (mask, t.map(f32::to_bits));
+        let sse = bits(ray.hit_children::<OCTANT>(node, t_min, t_max));
+        // SAFETY: only called after `detected()`.
+        let avx = unsafe { AvxRay::new(ray) };
+        (sse, bits(avx.hit_children::<OCTANT>(node, t_min, t_max)))
+    }
+
+    proptest! {
+        /// The AVX test gives the SSE test's hit mask and entry distances bit for bit,
+        /// for rays and boxes with zero, tiny, huge and shared coordinates.
+        #[test]
+        fn the_avx_box_test_is_the_sse_box_test_to_the_bit(
+            origin in vector(),
+            direction in vector(),
+            boxes in boxes(),
+            t_min in prop_oneof![Just(0.0f32), 0.0f32..2.0],
+            t_max in prop_oneof![Just(f32::INFINITY), 0.0f32..8.0],
+        ) {
+            prop_assume!(detected());
+            let ray = BoxRay::new(&Ray::new(origin, direction));
+            prop_assume!(ray.valid);
+            let node = node(origin, direction, boxes);
+            let (sse, avx) = match ray.octant {
+                0 => hit_children_both::<0>(&ray, &node, t_min, t_max),
+                1 => hit_children_both::<1>(&ray, &node, t_min, t_max),
+                2 => hit_children_both::<2>(&ray, &node, t_min, t_max),
+                3 => hit_children_both::<3>(&ray, &node, t_min, t_max),
+                4 => hit_children_both::<4>(&ray, &node, t_min, t_max),
+                5 => hit_children_both::<5>(&ray, &node, t_min, t_max),
+                6 => hit_children_both::<6>(&ray, &node, t_min, t_max),
+                _ => hit_children_both::<7>(&ray, &node, t_min, t_max),
+            };
+            prop_assert_eq!(sse, avx);
+        }
+    }
+
+    /// Whole traversals, closest and any hit, give the same answers to the bit with the
+    /// AVX box test and without it, on a mesh deep enough for every path of the
+    /// traversal (one, two and more children hit).
+    #[test]
+    fn the_avx_traversal_finds_the_hits_of_the_baseline_traversal() {
+        let mesh = crate::Mesh::icosphere(4, 1.0);
+        let mut state = 0x2545_f491_u32;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            (state >> 8) as f32 / (1 << 24) as f32 * 2.0 - 1.0
+        };
+        let rays: Vec<Ray> = (0..2000)
+            .map(|_| {
+                let origin = Vec3::new(uniform(), uniform(), uniform()) * 1.5;
+                let direction = Vec3::new(uniform(), uniform(), uniform());
+                Ray::new(origin, direction)
+            })
+            .collect();
+        let trace = |baseline: bool| {
+            BASELINE_ONLY.set(baseline);
+            let answers: Vec<_> = rays
+                .iter()
+                .map(|ray| {
+                    let hit = mesh.closest_triangle(ray, 0.0..f32::INFINITY);
+                    let any = mesh.any_hit(ray, 0.0..0.5);
+                    (
+                        hit.map(|h| {
+                            (
+                                h.t.to_bits(),
+                                h.primitive,
+                                h.barycentric.to_array().map(f32::to_bits),
+                            )
+                        }),
+                        any,
+                    )
+                })
+                .collect();
+            BASELINE_ONLY.set(false);
+            answers
+        };
+        let (avx, baseline) = (trace(false), trace(true));
+        let hits = baseline.iter().filter(|(hit, _)| hit.is_some()).count();
+        let anys = baseline.iter().filter(|(_, any)| *any).count();
+        assert!(
+            hits > 500 && anys > 100,
+            "{hits} hits and {anys} any hits of 2000 rays"
+        );
+        assert_eq!(avx, baseline);
+    }
+}
