@@ -344,9 +344,21 @@ pub(crate) fn set_lane(lanes: &mut Lanes, lane: usize, value: f32) {
 }
 
 /// The mask of the lanes whose bits are set in the low four bits of `bits`.
+///
+/// One load from a table: built lane by lane, each mask took four loads and the
+/// shuffles to join them (7% of a coherent packet's instructions, in `max_lane`).
 #[inline(always)]
 pub(crate) fn lane_mask(bits: u32) -> BVec4A {
-    BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0)
+    const MASKS: [BVec4A; 16] = {
+        let mut masks = [BVec4A::splat(false); 16];
+        let mut bits = 0;
+        while bits < 16 {
+            masks[bits] = BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0);
+            bits += 1;
+        }
+        masks
+    };
+    MASKS[bits as usize & 0xf]
 }
 
 /// Lane `i` of `v`, read through its array: indexing a `Vec4` by a lane not known at
@@ -881,6 +893,18 @@ mod tests {
     use crate::Aabb;
 
     use super::*;
+
+    #[test]
+    fn a_lane_mask_holds_the_lanes_of_its_bits() {
+        for bits in 0..16 {
+            assert_eq!(lane_mask(bits).bitmask(), bits);
+            assert_eq!(
+                lane_mask(bits | 0xf0).bitmask(),
+                bits,
+                "only the low four bits"
+            );
+        }
+    }
 
     /// The largest number among the lanes a mask selects, and only those.
     #[test]
