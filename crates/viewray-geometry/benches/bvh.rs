@@ -8,7 +8,8 @@
 //! and on all) with viewray's line first, then its peers' with the ratio of viewray's
 //! speed to theirs (above 1: viewray is faster). Each figure is the median of
 //! `VIEWRAY_BENCH_RUNS` runs (default 5) after a warm-up run, with the spread (slowest
-//! to fastest) beside it.
+//! to fastest) beside it. A case's contenders take turns, one run each per round, so
+//! that a slow spell of a shared machine weighs on all of them alike.
 //!
 //! viewray traces coherent rays with `Mesh::closest_triangles`, 64 at a time (the
 //! primary rays in tiles of 8 x 8 pixels, as the renderer does), and single rays with
@@ -283,22 +284,78 @@ struct Timing {
     max: f64,
 }
 
-/// Times `run` on a fresh `setup()` each time: one warm-up run, then `runs` timed ones.
-fn time<T>(runs: usize, mut setup: impl FnMut() -> T, mut run: impl FnMut(T)) -> Timing {
-    run(setup());
-    let mut seconds: Vec<f64> = (0..runs)
-        .map(|_| {
-            let input = setup();
-            let start = Instant::now();
-            run(input);
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    seconds.sort_by(f64::total_cmp);
-    Timing {
-        median: seconds[seconds.len() / 2],
-        min: seconds[0],
-        max: seconds[seconds.len() - 1],
+/// One way of running a case: who runs it, how, and one run that reports its own
+/// time in seconds (so that a setup, such as copying the mesh for a build, is not
+/// timed).
+struct Contender<'a> {
+    who: &'static str,
+    how: &'static str,
+    run: Box<dyn FnMut() -> f64 + 'a>,
+}
+
+impl<'a> Contender<'a> {
+    /// Times `run` on a fresh `setup()` each time.
+    fn new<T>(
+        who: &'static str,
+        how: &'static str,
+        mut setup: impl FnMut() -> T + 'a,
+        mut run: impl FnMut(T) + 'a,
+    ) -> Self {
+        Self {
+            who,
+            how,
+            run: Box::new(move || {
+                let input = setup();
+                let start = Instant::now();
+                run(input);
+                start.elapsed().as_secs_f64()
+            }),
+        }
+    }
+}
+
+impl<'a> Contender<'a> {
+    /// Times `trace` on `pool`.
+    fn traced(
+        pool: &'a rayon::ThreadPool,
+        who: &'static str,
+        how: &'static str,
+        trace: Box<dyn Fn() -> f32 + Sync + 'a>,
+    ) -> Self {
+        Self::new(
+            who,
+            how,
+            || (),
+            move |()| {
+                black_box(pool.install(&trace));
+            },
+        )
+    }
+}
+
+/// Runs a case's contenders in turns: a warm-up run of each, then `runs` rounds in
+/// which each runs once. On a shared machine slow spells last seconds; taking turns
+/// lets a spell fall on every contender of the case rather than on whichever ran then,
+/// so the ratios hold even when the figures move.
+fn race(table: &mut Table, case: &str, mut contenders: Vec<Contender<'_>>) {
+    let runs = table.runs;
+    for contender in &mut contenders {
+        (contender.run)();
+    }
+    let mut seconds = vec![Vec::with_capacity(runs); contenders.len()];
+    for _ in 0..runs {
+        for (contender, seconds) in contenders.iter_mut().zip(&mut seconds) {
+            seconds.push((contender.run)());
+        }
+    }
+    for (contender, mut seconds) in contenders.into_iter().zip(seconds) {
+        seconds.sort_by(f64::total_cmp);
+        let timing = Timing {
+            median: seconds[seconds.len() / 2],
+            min: seconds[0],
+            max: seconds[seconds.len() - 1],
+        };
+        table.add(case, contender.who, contender.how, timing);
     }
 }
 
@@ -461,34 +518,26 @@ fn main() {
                 .build()
                 .expect("a pool")
         };
-        let case = format!("build, {label}");
-        table.add(
-            &case,
+        let mut contenders = vec![Contender::new(
             "viewray",
             "binned SAH, 8 wide",
-            time(
-                runs,
-                || data.clone(),
-                |data| drop(pool.install(|| Mesh::new(data))),
-            ),
-        );
+            || data.clone(),
+            |data| drop(pool.install(|| Mesh::new(data))),
+        )];
         #[cfg(feature = "embree")]
-        table.add(
-            &case,
+        contenders.push(Contender::new(
             "embree",
             "default quality",
-            time(runs, || (), |()| drop(Embree::build(&data, *count as u32))),
-        );
-        table.add(
-            &case,
+            || (),
+            |()| drop(Embree::build(&data, *count as u32)),
+        ));
+        contenders.push(Contender::new(
             "obvhs",
             "CWBVH, medium",
-            time(
-                runs,
-                || (),
-                |()| drop(pool.install(|| Obvhs::build(&obvhs_input))),
-            ),
-        );
+            || (),
+            |()| drop(pool.install(|| Obvhs::build(&obvhs_input))),
+        ));
+        race(&mut table, &format!("build, {label}"), contenders);
     }
 
     #[cfg(feature = "embree")]
@@ -501,57 +550,51 @@ fn main() {
             .num_threads(*count)
             .build()
             .expect("a pool");
-        let run = |trace: &(dyn Fn() -> f32 + Sync)| {
-            time(
-                runs,
-                || (),
-                |()| {
-                    black_box(pool.install(trace));
-                },
-            )
-        };
-        let case = format!("primary, coherent, {label}");
-        table.add(
-            &case,
+        let traced = |who, how, trace| Contender::traced(&pool, who, how, trace);
+        let mut contenders = vec![traced(
             "viewray",
             "packets of 64 (8 x 8)",
-            run(&|| parallel(&primary_8x8, 1024, |r| trace_viewray_packets(&mesh, r))),
-        );
+            Box::new(|| parallel(&primary_8x8, 1024, |r| trace_viewray_packets(&mesh, r))),
+        )];
         #[cfg(feature = "embree")]
         {
-            table.add(
-                &case,
+            contenders.push(traced(
                 "embree",
                 "rtcIntersect16 (4 x 4)",
-                run(&|| parallel(&primary_4x4, 1024, |r| embree.trace_16(r))),
-            );
-            table.add(
-                &case,
+                Box::new(|| parallel(&primary_4x4, 1024, |r| embree.trace_16(r))),
+            ));
+            contenders.push(traced(
                 "embree",
                 "rtcIntersect8 (4 x 2)",
-                run(&|| parallel(&primary_4x2, 1024, |r| embree.trace_8(r))),
-            );
+                Box::new(|| parallel(&primary_4x2, 1024, |r| embree.trace_8(r))),
+            ));
         }
+        race(
+            &mut table,
+            &format!("primary, coherent, {label}"),
+            contenders,
+        );
         for (name, rays) in [("primary", &primary), ("incoherent", &incoherent)] {
-            let case = format!("{name}, ray by ray, {label}");
-            table.add(
-                &case,
+            let mut contenders = vec![traced(
                 "viewray",
                 "closest_triangle",
-                run(&|| parallel(rays, 1024, |r| trace_viewray(&mesh, r))),
-            );
+                Box::new(|| parallel(rays, 1024, |r| trace_viewray(&mesh, r))),
+            )];
             #[cfg(feature = "embree")]
-            table.add(
-                &case,
+            contenders.push(traced(
                 "embree",
                 "rtcIntersect1",
-                run(&|| parallel(rays, 1024, |r| embree.trace_single(r))),
-            );
-            table.add(
-                &case,
+                Box::new(|| parallel(rays, 1024, |r| embree.trace_single(r))),
+            ));
+            contenders.push(traced(
                 "obvhs",
                 "ray_traverse",
-                run(&|| parallel(rays, 1024, |r| trace_obvhs(&peer, r))),
+                Box::new(|| parallel(rays, 1024, |r| trace_obvhs(&peer, r))),
+            ));
+            race(
+                &mut table,
+                &format!("{name}, ray by ray, {label}"),
+                contenders,
             );
         }
     }
