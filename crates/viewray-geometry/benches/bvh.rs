@@ -551,6 +551,7 @@ fn main() {
             .build()
             .expect("a pool");
         let traced = |who, how, trace| Contender::traced(&pool, who, how, trace);
+        #[cfg_attr(not(feature = "embree"), allow(unused_mut))]
         let mut contenders = vec![traced(
             "viewray",
             "packets of 64 (8 x 8)",
