@@ -943,7 +943,8 @@ impl Bvh {
 /// The index rides in `lo.w` with bit 30 set ([`INDEX_TAG`]), which makes it a normal
 /// float (exponent 128 to 143 for indices below 2^27): the builder's arithmetic runs on
 /// whole registers, and a denormal in the unused lane would slow every operation.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub(crate) struct BuildItem {
     lo: Vec4,
     hi: Vec4,

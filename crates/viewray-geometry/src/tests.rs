@@ -350,6 +350,50 @@ proptest! {
 /// The icosphere seen by an 8 x 8-pixel block of viewing rays, traced as a packet
 /// through a deep BVH: from outside (perspective and orthographic, with the middle
 /// rays exactly along the axis), from inside the sphere, and from inside its box.
+/// Triangles far apart get leaves of few triangles each, and so more packets than the
+/// build items' buffer has room for: the packets get a buffer of their own, and every
+/// triangle is still found where it is.
+#[test]
+fn a_surface_mesh_takes_at_most_the_expected_packets() {
+    for subdivisions in [0, 3, 6] {
+        let mesh = Mesh::icosphere(subdivisions, 1.0);
+        let bound = crate::mesh::packets_bound(mesh.triangle_count());
+        assert!(
+            mesh.packet_count() <= bound,
+            "{} > {bound}",
+            mesh.packet_count()
+        );
+    }
+}
+
+#[test]
+fn a_mesh_with_more_packets_than_expected_finds_every_triangle() {
+    let count = 40;
+    let positions = (0..count)
+        .flat_map(|i| {
+            let x = 100.0 * i as f32;
+            [
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x + 1.0, 0.0, 0.0),
+                Vec3::new(x, 1.0, 0.0),
+            ]
+        })
+        .collect();
+    let triangles = (0..count).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    let mesh = Mesh::new(MeshData::new(positions, triangles)).unwrap();
+    assert!(
+        mesh.packet_count() > crate::mesh::packets_bound(count as usize),
+        "{} packets",
+        mesh.packet_count()
+    );
+    for i in 0..count {
+        let target = Vec3::new(100.0 * i as f32 + 0.25, 0.25, 0.0);
+        let ray = Ray::new(target + Vec3::Z, Vec3::NEG_Z);
+        let hit = mesh.closest_triangle(&ray, 0.0..f32::INFINITY);
+        assert_eq!(hit.map(|hit| hit.primitive), Some(i), "triangle {i}");
+    }
+}
+
 #[test]
 fn icosphere_packets_match_single_rays() {
     let mesh = Arc::new(Mesh::icosphere(5, 1.0));
