@@ -22,6 +22,7 @@ use std::arch::x86_64::{
 use glam::Vec4;
 
 use crate::bvh::{BoxRay, ChildBoxes, Node, ROBUST, WIDTH, plane_index};
+use crate::packet::{BoxPacket, PacketBoxes};
 
 /// Whether this processor runs AVX (detected once, then a cached load).
 #[inline(always)]
@@ -60,6 +61,57 @@ impl AvxRay {
             origin_far: [wide(f[0]), wide(f[1]), wide(f[2])],
             inverse: [wide(i[0]), wide(i[1]), wide(i[2])],
         }
+    }
+}
+
+/// A packet's bounding numbers (see [`BoxPacket::hit_children_sse`]) in both halves of
+/// 256-bit registers, for its test of a node's eight boxes in one register per plane,
+/// and its lanes' rays as [`AvxRay`]s.
+///
+/// Only made by [`AvxPacket::new`], which needs AVX: holding one proves that the
+/// processor runs AVX.
+pub(crate) struct AvxPacket<'a> {
+    packet: &'a BoxPacket<'a>,
+    bound_origin_near: [__m256; 3],
+    bound_origin_far: [__m256; 3],
+    inverse_min: [__m256; 3],
+    inverse_max: [__m256; 3],
+}
+
+impl<'a> AvxPacket<'a> {
+    #[target_feature(enable = "avx")]
+    #[inline]
+    pub(crate) fn new(packet: &'a BoxPacket<'a>) -> Self {
+        let [n, f] = [packet.bound_origin_near, packet.bound_origin_far];
+        let [low, high] = [packet.inverse_min, packet.inverse_max];
+        Self {
+            packet,
+            bound_origin_near: [wide(n[0]), wide(n[1]), wide(n[2])],
+            bound_origin_far: [wide(f[0]), wide(f[1]), wide(f[2])],
+            inverse_min: [wide(low[0]), wide(low[1]), wide(low[2])],
+            inverse_max: [wide(high[0]), wide(high[1]), wide(high[2])],
+        }
+    }
+}
+
+impl PacketBoxes for AvxPacket<'_> {
+    type Ray = AvxRay;
+
+    #[inline(always)]
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]) {
+        // SAFETY: an `AvxPacket` is only made where AVX was detected (see its doc).
+        unsafe { packet_hit_children::<OCTANT>(self, node, t_min, t_max) }
+    }
+
+    #[inline(always)]
+    fn lane_ray(&self, lane: usize) -> AvxRay {
+        // SAFETY: as above.
+        unsafe { AvxRay::new(&self.packet.lane_ray(lane)) }
     }
 }
 
@@ -136,6 +188,16 @@ fn hit_children<const OCTANT: u8>(
             ray.inverse[2],
         ),
     ];
+    slab_test(near, far, t_min, t_max)
+}
+
+/// The slab test of eight boxes from the distances to their near and far planes on
+/// each axis (see [`crate::bvh::slab_test`]): entry `max(max(max(near_x, near_y),
+/// near_z), t_min)`, exit `min(min(min(far_x, far_y), far_z) * ROBUST, t_max)`, the
+/// mask of the boxes where entry <= exit, and the entries.
+#[target_feature(enable = "avx")]
+#[inline]
+fn slab_test(near: [__m256; 3], far: [__m256; 3], t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
     let t_near = _mm256_max_ps(
         _mm256_max_ps(_mm256_max_ps(near[0], near[1]), near[2]),
         _mm256_set1_ps(t_min),
@@ -153,6 +215,101 @@ fn hit_children<const OCTANT: u8>(
     // writes.
     unsafe { _mm256_storeu_ps(t_near_all.as_mut_ptr(), t_near) };
     (mask, t_near_all)
+}
+
+/// [`BoxPacket::hit_children_sse`] with the eight boxes in one register per plane: per
+/// axis, `d = plane - bound_origin`, the near distance `min(d * inverse_min, d *
+/// inverse_max)` and the far one `max(...)`, then the entry, exit and mask as for a
+/// single ray.
+#[target_feature(enable = "avx")]
+#[inline]
+fn packet_hit_children<const OCTANT: u8>(
+    packet: &AvxPacket<'_>,
+    node: &Node,
+    t_min: f32,
+    t_max: f32,
+) -> (u32, [f32; WIDTH]) {
+    let planes = &node.planes;
+    let (o, f) = (&packet.bound_origin_near, &packet.bound_origin_far);
+    let (low, high) = (&packet.inverse_min, &packet.inverse_max);
+    let near = [
+        interval(
+            planes,
+            plane_index::<OCTANT>(0, false),
+            o[0],
+            low[0],
+            high[0],
+            false,
+        ),
+        interval(
+            planes,
+            plane_index::<OCTANT>(1, false),
+            o[1],
+            low[1],
+            high[1],
+            false,
+        ),
+        interval(
+            planes,
+            plane_index::<OCTANT>(2, false),
+            o[2],
+            low[2],
+            high[2],
+            false,
+        ),
+    ];
+    let far = [
+        interval(
+            planes,
+            plane_index::<OCTANT>(0, true),
+            f[0],
+            low[0],
+            high[0],
+            true,
+        ),
+        interval(
+            planes,
+            plane_index::<OCTANT>(1, true),
+            f[1],
+            low[1],
+            high[1],
+            true,
+        ),
+        interval(
+            planes,
+            plane_index::<OCTANT>(2, true),
+            f[2],
+            low[2],
+            high[2],
+            true,
+        ),
+    ];
+    slab_test(near, far, t_min, t_max)
+}
+
+/// The bounds of the distances along a packet's rays to the eight boxes' planes
+/// `planes[index]`: `d = plane - origin`, then `min(d * low, d * high)`, or with `far`
+/// the `max`.
+#[target_feature(enable = "avx")]
+#[inline]
+fn interval(
+    planes: &[[f32; WIDTH]; 6],
+    index: usize,
+    origin: __m256,
+    low: __m256,
+    high: __m256,
+    far: bool,
+) -> __m256 {
+    // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
+    // reads.
+    let plane = unsafe { _mm256_loadu_ps(planes[index].as_ptr()) };
+    let d = _mm256_sub_ps(plane, origin);
+    let (a, b) = (_mm256_mul_ps(d, low), _mm256_mul_ps(d, high));
+    if far {
+        _mm256_max_ps(a, b)
+    } else {
+        _mm256_min_ps(a, b)
+    }
 }
 
 /// The distances along the ray to the eight boxes' planes `planes[index]`:
@@ -253,9 +410,9 @@ mod tests {
         }
     }
 
-    /// Whole traversals, closest and any hit, give the same answers to the bit with the
-    /// AVX box test and without it, on a mesh deep enough for every path of the
-    /// traversal (one, two and more children hit).
+    /// Whole traversals, closest and any hit, single rays and packets, give the same
+    /// answers to the bit with the AVX box tests and without them, on a mesh deep
+    /// enough for every path of the traversal (one, two and more children hit).
     #[test]
     fn the_avx_traversal_finds_the_hits_of_the_baseline_traversal() {
         let mesh = crate::Mesh::icosphere(4, 1.0);
@@ -303,5 +460,28 @@ mod tests {
             "{hits} hits and {anys} any hits of 2000 rays"
         );
         assert_eq!(avx, baseline);
+        // Packets: coherent rays from one eye (the packet test) and the random rays
+        // above (handed to single rays).
+        let eye = Vec3::new(0.1, 0.2, 3.0);
+        let primary: Vec<Ray> = (0..64 * 64)
+            .map(|i| {
+                let (x, y) = ((i % 64) as f32 / 64.0 - 0.5, (i / 64) as f32 / 64.0 - 0.5);
+                Ray::new(eye, Vec3::new(x, y, -1.0))
+            })
+            .collect();
+        for rays in [&primary, &rays] {
+            let trace = |baseline: bool| {
+                BASELINE_ONLY.set(baseline);
+                let mut hits = vec![None; rays.len()];
+                mesh.closest_triangles(rays, 0.0..f32::INFINITY, &mut hits);
+                BASELINE_ONLY.set(false);
+                hits.iter()
+                    .map(|hit| hit.map(|h| (h.t.to_bits(), h.primitive)))
+                    .collect::<Vec<_>>()
+            };
+            let (avx, baseline) = (trace(false), trace(true));
+            assert!(baseline.iter().flatten().count() > 500);
+            assert_eq!(avx, baseline);
+        }
     }
 }

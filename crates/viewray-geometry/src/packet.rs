@@ -17,9 +17,9 @@ use glam::{BVec4A, Vec4};
 
 use crate::Ray;
 use crate::bvh::{
-    BoxRay, Bvh, GROUPS, LEAF, Node, RayTraversal, STACK_ROOM, STACK_SIZE, Stack, WIDTH,
-    decode_leaf, node_planes, per_axis, plane_distances, plane_index, prefetch, slab_numbers,
-    slab_test, with_stack,
+    BoxRay, Bvh, ChildBoxes, GROUPS, LEAF, Node, RayTraversal, STACK_ROOM, STACK_SIZE, Stack,
+    WIDTH, decode_leaf, node_planes, per_axis, plane_distances, plane_index, prefetch,
+    slab_numbers, slab_test, with_stack,
 };
 use crate::hit::RawHit;
 
@@ -84,11 +84,11 @@ pub(crate) struct BoxPacket<'a> {
     numbers: &'a LaneNumbers,
     /// Per axis, the origin that makes the near plane's distance smallest for every
     /// ray (the largest `origin_near` on a positive axis, the smallest on a negative one).
-    bound_origin_near: [Vec4; 3],
+    pub(crate) bound_origin_near: [Vec4; 3],
     /// Likewise the origin that makes the far plane's distance largest.
-    bound_origin_far: [Vec4; 3],
-    inverse_min: [Vec4; 3],
-    inverse_max: [Vec4; 3],
+    pub(crate) bound_origin_far: [Vec4; 3],
+    pub(crate) inverse_min: [Vec4; 3],
+    pub(crate) inverse_max: [Vec4; 3],
 }
 
 impl<'a> BoxPacket<'a> {
@@ -229,7 +229,7 @@ impl<'a> BoxPacket<'a> {
 
     /// The single ray of lane `lane`.
     #[inline(always)]
-    fn lane_ray(&self, lane: usize) -> BoxRay {
+    pub(crate) fn lane_ray(&self, lane: usize) -> BoxRay {
         let (group, i) = (lane / 4, lane % 4);
         let numbers = self.numbers;
         let (o, f, v) = (&numbers.origin_near, &numbers.origin_far, &numbers.inverse);
@@ -246,7 +246,7 @@ impl<'a> BoxPacket<'a> {
     /// reciprocals, because rounded subtraction and multiplication are monotonic; so
     /// a box culled here is culled by the single-ray test of every ray in the packet.
     #[inline(always)]
-    fn hit_children<const OCTANT: u8>(
+    fn hit_children_sse<const OCTANT: u8>(
         &self,
         node: &Node,
         t_min: Vec4,
@@ -567,16 +567,98 @@ pub(crate) trait PacketVisitor {
     }
 }
 
+/// A packet's box tests: the whole packet's test of a node's eight boxes (see
+/// [`BoxPacket::hit_children_sse`]) and its lanes' single rays, with SSE
+/// ([`BoxPacket`]) or in AVX registers where the processor has them
+/// (`avx::AvxPacket`), with the same bits.
+pub(crate) trait PacketBoxes {
+    /// A lane's ray.
+    type Ray: ChildBoxes;
+
+    /// The mask of the boxes some ray of the packet may hit with `t` in `[t_min,
+    /// t_max]`, and a lower bound of their entry distances.
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]);
+
+    /// The ray of lane `lane`.
+    fn lane_ray(&self, lane: usize) -> Self::Ray;
+}
+
+impl PacketBoxes for BoxPacket<'_> {
+    type Ray = BoxRay;
+
+    #[inline(always)]
+    fn hit_children<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, [f32; WIDTH]) {
+        self.hit_children_sse::<OCTANT>(node, Vec4::splat(t_min), Vec4::splat(t_max))
+    }
+
+    #[inline(always)]
+    fn lane_ray(&self, lane: usize) -> BoxRay {
+        BoxPacket::lane_ray(self, lane)
+    }
+}
+
 /// What a packet traversal carries down the tree besides each ray's closest distance:
-/// the packet, where hits may start, what happens at leaves, and a stack for the rays
-/// that finish subtrees on their own.
-struct PacketTraversal<'a, V, P> {
+/// the packet and its box tests, where hits may start, what happens at leaves, and a
+/// stack for the rays that finish subtrees on their own.
+struct PacketTraversal<'a, B, V, P> {
     packet: &'a BoxPacket<'a>,
+    boxes: &'a B,
     t_min: f32,
     visitor: &'a mut V,
     /// Starts loading the items of a leaf a ray will visit.
     prefetch_leaf: P,
     ray_stack: &'a mut Stack,
+}
+
+/// The body of [`Bvh::closest_packet`] and its AVX twin: the packet's octant picks the
+/// monomorphized traversal. A macro rather than a function, so that the closures are
+/// written (and compiled) inside each: a closure is compiled with its enclosing
+/// function's instruction set.
+macro_rules! closest_packet_octants {
+    ($bvh:expr, $packet:expr, $boxes:expr, $lanes:expr, $t_min:expr, $t_max:expr, $visitor:expr, $prefetch_leaf:expr) => {{
+        macro_rules! octant {
+            ($octant:literal) => {
+                with_stack(|stack| {
+                    with_stack(|ray_stack| {
+                        let mut traversal = PacketTraversal {
+                            packet: $packet,
+                            boxes: $boxes,
+                            t_min: $t_min,
+                            visitor: $visitor,
+                            prefetch_leaf: $prefetch_leaf,
+                            ray_stack,
+                        };
+                        $bvh.closest_packet_with_stack::<$octant, _, _, _>(
+                            &mut traversal,
+                            $lanes,
+                            $t_max,
+                            stack,
+                        )
+                    })
+                })
+            };
+        }
+        match $packet.octant {
+            0 => octant!(0),
+            1 => octant!(1),
+            2 => octant!(2),
+            3 => octant!(3),
+            4 => octant!(4),
+            5 => octant!(5),
+            6 => octant!(6),
+            _ => octant!(7),
+        }
+    }};
 }
 
 impl Bvh {
@@ -599,42 +681,61 @@ impl Bvh {
         if self.nodes().is_empty() || lanes == 0 {
             return;
         }
-        macro_rules! octant {
-            ($octant:literal) => {
-                with_stack(|stack| {
-                    with_stack(|ray_stack| {
-                        let mut traversal = PacketTraversal {
-                            packet,
-                            t_min,
-                            visitor,
-                            prefetch_leaf,
-                            ray_stack,
-                        };
-                        self.closest_packet_with_stack::<$octant, _, _>(
-                            &mut traversal,
-                            lanes,
-                            t_max,
-                            stack,
-                        )
-                    })
-                })
-            };
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::detected() {
+            #[allow(unsafe_code)]
+            // SAFETY: the processor runs AVX.
+            unsafe {
+                self.closest_packet_avx(packet, lanes, t_min, t_max, visitor, prefetch_leaf);
+            }
+            return;
         }
-        match packet.octant {
-            0 => octant!(0),
-            1 => octant!(1),
-            2 => octant!(2),
-            3 => octant!(3),
-            4 => octant!(4),
-            5 => octant!(5),
-            6 => octant!(6),
-            _ => octant!(7),
-        }
+        closest_packet_octants!(
+            self,
+            packet,
+            packet,
+            lanes,
+            t_min,
+            t_max,
+            visitor,
+            prefetch_leaf
+        );
     }
 
-    fn closest_packet_with_stack<const OCTANT: u8, V: PacketVisitor, P: Fn(u32, u32) + Copy>(
+    /// [`Bvh::closest_packet`] compiled for AVX, with the AVX box tests.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn closest_packet_avx(
         &self,
-        traversal: &mut PacketTraversal<'_, V, P>,
+        packet: &BoxPacket<'_>,
+        lanes: u64,
+        t_min: f32,
+        t_max: &mut Lanes,
+        visitor: &mut impl PacketVisitor,
+        prefetch_leaf: impl Fn(u32, u32) + Copy,
+    ) {
+        let boxes = crate::avx::AvxPacket::new(packet);
+        closest_packet_octants!(
+            self,
+            packet,
+            &boxes,
+            lanes,
+            t_min,
+            t_max,
+            visitor,
+            prefetch_leaf
+        );
+    }
+
+    #[inline(always)]
+    fn closest_packet_with_stack<
+        const OCTANT: u8,
+        B: PacketBoxes,
+        V: PacketVisitor,
+        P: Fn(u32, u32) + Copy,
+    >(
+        &self,
+        traversal: &mut PacketTraversal<'_, B, V, P>,
         lanes: u64,
         t_max: &mut Lanes,
         stack: &mut Stack,
@@ -643,7 +744,7 @@ impl Bvh {
         let packet = traversal.packet;
         let t_min4 = Vec4::splat(traversal.t_min);
         if !packet.coherent {
-            self.single_rays::<OCTANT, V, P>(traversal, 0, lanes, t_max);
+            self.single_rays::<OCTANT, B, V, P>(traversal, 0, lanes, t_max);
             return;
         }
 
@@ -660,7 +761,9 @@ impl Bvh {
             // and take that one next.
             let node = &nodes[current];
             let (mask, t_near) =
-                packet.hit_children::<OCTANT>(node, t_min4, Vec4::splat(t_max_all));
+                traversal
+                    .boxes
+                    .hit_children::<OCTANT>(node, traversal.t_min, t_max_all);
             let mut next = None;
             if mask != 0 {
                 let single = if mask.count_ones() >= MANY_CHILDREN {
@@ -729,7 +832,7 @@ impl Bvh {
                     continue 'nodes;
                 }
                 if rays != 0 {
-                    self.single_rays::<OCTANT, V, P>(traversal, child, rays, t_max);
+                    self.single_rays::<OCTANT, B, V, P>(traversal, child, rays, t_max);
                     t_max_all = max_lane(t_max, lanes);
                 }
             }
@@ -738,9 +841,9 @@ impl Bvh {
 
     /// Each ray of `rays` finishes the subtree `child` (a node or a leaf) on its own.
     #[inline(always)]
-    fn single_rays<const OCTANT: u8, V: PacketVisitor, P: Fn(u32, u32) + Copy>(
+    fn single_rays<const OCTANT: u8, B: PacketBoxes, V: PacketVisitor, P: Fn(u32, u32) + Copy>(
         &self,
-        traversal: &mut PacketTraversal<'_, V, P>,
+        traversal: &mut PacketTraversal<'_, B, V, P>,
         child: u32,
         rays: u64,
         t_max: &mut Lanes,
@@ -752,7 +855,7 @@ impl Bvh {
             return;
         }
         for i in lanes_of(rays) {
-            let ray = traversal.packet.lane_ray(i);
+            let ray = traversal.boxes.lane_ray(i);
             let mut ray_traversal = RayTraversal {
                 ray: &ray,
                 t_min: traversal.t_min,
@@ -850,7 +953,7 @@ impl Bvh {
         loop {
             // Push every child some ray may hit.
             let node = &nodes[current];
-            let (mut mask, _) = packet.hit_children::<OCTANT>(node, t_min4, t_max4);
+            let (mut mask, _) = packet.hit_children_sse::<OCTANT>(node, t_min4, t_max4);
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -933,7 +1036,8 @@ mod tests {
 
     proptest::proptest! {
         /// The packet's interval test bounds its rays' own tests: every child a ray
-        /// enters, the packet enters, and no earlier than the ray (for rays of one
+        /// enters, the packet enters, and no earlier than the ray; where the processor
+        /// runs AVX, its AVX test gives the same bits (for rays of one
         /// octant whose directions differ in length and in angle, so that the extreme
         /// reciprocals differ, against boxes ahead, around and behind the origins).
         #[test]
@@ -963,7 +1067,19 @@ mod tests {
             let mut gathered = LaneNumbers::EMPTY;
             let packet = BoxPacket::new(&chunk, &mut gathered, 0, chunk.octants[0]);
             let (t_min4, t_max4) = (Vec4::ZERO, Vec4::splat(t_max));
-            let (packet_mask, packet_near) = packet.hit_children::<0>(&node, t_min4, t_max4);
+            let (packet_mask, packet_near) = packet.hit_children_sse::<0>(&node, t_min4, t_max4);
+            #[cfg(target_arch = "x86_64")]
+            if crate::avx::detected() {
+                // The AVX test is the SSE test to the bit.
+                #[allow(unsafe_code)]
+                // SAFETY: the processor runs AVX.
+                let avx = unsafe { crate::avx::AvxPacket::new(&packet) };
+                let (mask, near) = avx.hit_children::<0>(&node, 0.0, t_max);
+                proptest::prop_assert_eq!(
+                    (mask, near.map(f32::to_bits)),
+                    (packet_mask, packet_near.map(f32::to_bits))
+                );
+            }
             for ray in &rays {
                 let (mask, near) = BoxRay::new(ray).hit_children_sse::<0>(&node, t_min4, t_max4);
                 proptest::prop_assert_eq!(mask & !packet_mask, 0, "{:?}", ray);
