@@ -24,14 +24,16 @@ use glam::Vec4;
 use crate::bvh::{BoxRay, ChildBoxes, Node, ROBUST, WIDTH, plane_index};
 use crate::packet::{BoxPacket, PacketBoxes};
 
-/// Whether this processor runs AVX (detected once, then a cached load).
+/// Whether this processor runs AVX, and POPCNT, which every processor with AVX has
+/// and the traversals use to count a node's hit children (detected once, then cached
+/// loads).
 #[inline(always)]
 pub(crate) fn detected() -> bool {
     #[cfg(test)]
     if BASELINE_ONLY.get() {
         return false;
     }
-    std::arch::is_x86_feature_detected!("avx")
+    std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("popcnt")
 }
 
 #[cfg(test)]

@@ -635,7 +635,7 @@ impl Bvh {
         #[cfg(target_arch = "x86_64")]
         if crate::avx::detected() {
             #[allow(unsafe_code)]
-            // SAFETY: the processor runs AVX.
+            // SAFETY: the processor runs AVX and POPCNT.
             return unsafe {
                 self.closest_in_octant_avx::<OCTANT>(ray, t_min, t_max, leaf, prefetch_leaf)
             };
@@ -653,7 +653,7 @@ impl Bvh {
 
     /// [`Bvh::closest_in_octant`] compiled for AVX, with the AVX box test.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
+    #[target_feature(enable = "avx,popcnt")]
     fn closest_in_octant_avx<const OCTANT: u8>(
         &self,
         ray: &BoxRay,
@@ -832,7 +832,7 @@ impl Bvh {
         #[cfg(target_arch = "x86_64")]
         if crate::avx::detected() {
             #[allow(unsafe_code)]
-            // SAFETY: the processor runs AVX.
+            // SAFETY: the processor runs AVX and POPCNT.
             return unsafe { self.any_in_octant_avx::<OCTANT>(ray, t_min, t_max, leaf) };
         }
         with_stack(|stack| {
@@ -842,7 +842,7 @@ impl Bvh {
 
     /// [`Bvh::any_in_octant`] compiled for AVX, with the AVX box test.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
+    #[target_feature(enable = "avx,popcnt")]
     fn any_in_octant_avx<const OCTANT: u8>(
         &self,
         ray: &BoxRay,

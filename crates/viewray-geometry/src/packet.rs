@@ -684,7 +684,7 @@ impl Bvh {
         #[cfg(target_arch = "x86_64")]
         if crate::avx::detected() {
             #[allow(unsafe_code)]
-            // SAFETY: the processor runs AVX.
+            // SAFETY: the processor runs AVX and POPCNT.
             unsafe {
                 self.closest_packet_avx(packet, lanes, t_min, t_max, visitor, prefetch_leaf);
             }
@@ -704,7 +704,7 @@ impl Bvh {
 
     /// [`Bvh::closest_packet`] compiled for AVX, with the AVX box tests.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
+    #[target_feature(enable = "avx,popcnt")]
     fn closest_packet_avx(
         &self,
         packet: &BoxPacket<'_>,
@@ -1072,7 +1072,7 @@ mod tests {
             if crate::avx::detected() {
                 // The AVX test is the SSE test to the bit.
                 #[allow(unsafe_code)]
-                // SAFETY: the processor runs AVX.
+                // SAFETY: the processor runs AVX and POPCNT.
                 let avx = unsafe { crate::avx::AvxPacket::new(&packet) };
                 let (mask, near) = avx.hit_children::<0>(&node, 0.0, t_max);
                 proptest::prop_assert_eq!(
