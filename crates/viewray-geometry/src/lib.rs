@@ -117,42 +117,70 @@
 //! same run: its packet kernels `rtcIntersect16` (tiles of 4 x 4 pixels) and
 //! `rtcIntersect8` (4 x 2) on the coherent primary rays, `rtcIntersect1` ray by ray, and
 //! its build. It prints one table with the ratio of viewray's speed to each peer's
-//! (above 1.00x: viewray is faster). Three full runs on the 2-core development machine
-//! after the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median
-//! of 3), and the three runs of the round before; Embree's own figures move by a tenth
-//! to a third between runs and rounds (its 1-thread build took 0.212 to 0.242 s below,
-//! 0.210 to 0.222 s the round before), so read the ratios within a run:
+//! (above 1.00x: viewray is faster). A case's contenders take turns, one run each per
+//! round after a warm-up run of each: on the development machine, a virtual machine
+//! shared with others, slow spells last seconds (the same process traced the coherent
+//! rays at 0.068 s a pass for a while and at 0.052 s after), and with each contender's
+//! runs back to back a spell fell on whichever ran then (viewray's packets came out at
+//! 0.82x of `rtcIntersect16` in one run and 1.02x in the next). Three full runs after
+//! the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3),
+//! and the three runs of the round before (contenders back to back); read the ratios
+//! within a run, as Embree's own figures move by a tenth to a third between runs:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.282 s (Embree 0.214: 0.76x) | 0.280 s (0.242: 0.86x) | 0.282 s (0.212: 0.75x) | 0.355 to 0.385 s: 0.58x, 0.59x, 0.59x |
-//! | build, 2 threads | 0.169 s (0.216: 1.28x) | 0.158 s (0.230: 1.45x) | 0.165 s (0.217: 1.32x) | 1.15x, 1.10x, 1.16x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 17.44 Mrays/s (0.93x) | 18.73 (1.01x) | 17.01 (0.91x) | 0.84x, 0.99x, 0.98x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.13x | 1.24x | 1.10x | 1.02x, 1.19x, 1.18x |
-//! | primary, ray by ray vs `rtcIntersect1` | 7.44 Mrays/s (0.80x) | 7.38 (0.79x) | 7.55 (0.81x) | 0.78x, 0.80x, 0.77x |
-//! | incoherent vs `rtcIntersect1` | 2.00 Mrays/s (0.91x) | 1.95 (0.91x) | 2.24 (0.94x) | 0.84x, 0.82x, 0.77x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 30.88 Mrays/s (0.86x) | 33.86 (0.92x) | 35.77 (1.02x) | 0.97x, 0.95x, 0.98x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.57 Mrays/s (0.86x) | 4.02 (0.90x) | 4.63 (1.18x) | 0.80x, 0.87x, 0.97x |
+//! | build | 0.322 s (Embree 0.238: 0.74x) | 0.315 s (0.300: 0.95x) | 0.380 s (0.260: 0.68x) | 0.76x, 0.86x, 0.75x |
+//! | build, 2 threads | 0.210 s (0.238: 1.13x) | 0.197 s (0.282: 1.43x) | 0.186 s (0.250: 1.34x) | 1.28x, 1.45x, 1.32x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 20.46 Mrays/s (1.11x) | 20.72 (1.12x) | 19.63 (1.10x) | 0.93x, 1.01x, 0.91x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.34x | 1.35x | 1.36x | 1.13x, 1.24x, 1.10x |
+//! | primary, ray by ray vs `rtcIntersect1` | 8.15 Mrays/s (0.87x) | 8.01 (0.87x) | 7.35 (0.83x) | 0.80x, 0.79x, 0.81x |
+//! | incoherent vs `rtcIntersect1` | 2.09 Mrays/s (1.01x) | 1.74 (0.92x) | 1.77 (0.94x) | 0.91x, 0.91x, 0.94x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 33.16 Mrays/s (0.96x) | 30.57 (0.90x) | 32.18 (0.90x) | 0.86x, 0.92x, 1.02x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.53 Mrays/s (0.97x) | 3.78 (0.95x) | 3.23 (0.91x) | 0.86x, 0.90x, 1.18x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.64x to 4.52x faster than obvhs everywhere. The latest round changed only the
-//! build and the memory behind the mesh, and kept the hierarchy node for node (the
-//! same images and hit checksums): the SAH sweep runs the three axes side by side (a
-//! quarter of a 1-thread build had gone to the sweep axis by axis, with a branch on
-//! each empty bin), each triangle packet is assembled from four transposed points, a
-//! node's children are opened in an array on the stack instead of two vectors, a
-//! one-thread pool builds serially (the parallel path had built each upper subtree
-//! into its own vector and copied it into place), and the build items, nodes and
-//! triangle packets ask Linux for huge pages (below). The 1-thread build went from
-//! 0.337 s (0.62x of Embree, one run at the start of the round) to 0.317 to 0.328 s
-//! (0.70x to 0.76x, three runs) before the huge pages and 0.280 to 0.298 s (0.71x to
-//! 0.86x, five runs) after. Two more runs after the huge pages gave coherent packets
-//! at 1.03x and 0.94x of `rtcIntersect16`, incoherent rays at 0.90x and 0.83x; the three
-//! runs before them, 0.99x to 1.01x and 0.83x to 0.90x. The coherent figures scatter
-//! by a tenth from run to run (run 1's 2-thread spread: 30.03 to 37.09), more than any
-//! change of the round moved them: the icosphere example's bare packet tracing, which
-//! runs the same rays eleven times, is as fast with huge pages and steadier (fastest
-//! 0.0541 s in all three runs, against 0.0548 to 0.0553 s).
+//! 1.87x to 5.33x faster than obvhs everywhere. Embree finds the same closest hit
+//! (within 1e-4 of `t`) for all but 2 of the 1,048,576 primary rays and of the million
+//! incoherent ones. The latest round changed the traversals and kept the hierarchy,
+//! the hits and the images bit for bit:
+//!
+//! - **AVX box tests.** Callgrind, which models the caches, put 100,000 of the
+//!   incoherent rays at the same first-level cache misses as `rtcIntersect1` (22.3
+//!   against 22.6 per ray) but twice its instructions (1,649 against 836 per ray; Embree
+//!   runs its AVX2 kernels under valgrind): the gap was instructions, and most of them
+//!   went to testing a node's eight boxes as two groups of four in SSE. Where the
+//!   processor has AVX (and POPCNT, which comes with it), detected at run time, the
+//!   single-ray and packet traversals now run compiled for it and test the eight boxes
+//!   in one 256-bit register per plane (module `avx`, the only home of those
+//!   intrinsics). The operations are the SSE test's, lane for lane and operand for
+//!   operand, with no fused multiply-add, so the bits are the same on every x86-64
+//!   processor: proptests compare the masks and entry distances bit for bit (with boxes
+//!   whose corner lies on the ray, where the exit's enlargement decides), and a test
+//!   traces single rays and packets both ways. A node where a single ray enters exactly
+//!   two children pushes the farther one without sorting. Instructions per incoherent
+//!   ray: 1,649 to 1,305; for the million coherent primary rays, 645.6 M to 568.3 M.
+//! - **Lane masks from a table.** 7% of the packet tracing's instructions went to
+//!   building four-lane masks from bits, four loads and shuffles each; a table of the
+//!   sixteen masks is one load (bare packet tracing 5% faster).
+//! - **Packets in the items' memory.** A build fills about 120 MB of fresh memory, and
+//!   the kernel zeroes every page it faults in: with the system allocator, the profile
+//!   example's four builds spent 0.28 to 0.58 s in the kernel against 1.5 s of user
+//!   time. The triangle packets are now written into the build items' buffer, made
+//!   large enough for both and cast from empty to empty (bytemuck; no unsafe code):
+//!   0.19 to 0.21 s in the kernel, one-thread builds 2% to 3% faster by the fastest
+//!   runs. (`viewray render` uses mimalloc, which already reused the items' pages.)
+//!
+//! Targets and where they stand, 1 thread: coherent packets at 1.10x to 1.12x of
+//! `rtcIntersect16` (met); incoherent rays at 0.92x to 1.01x of `rtcIntersect1` (met in
+//! one run of three; short by up to 8%); the build at 0.68x to 0.95x of Embree's time
+//! (short by 5% to 32%; ahead on 2 threads, 1.13x to 1.43x); memory 53.9 bytes per
+//! triangle (met). What is left of the incoherent gap is still instructions (1,305
+//! against Embree's 836 per ray, which on this machine runs AVX-512 kernels): about
+//! 100 per node visit (the box test is 30 of them; the rest the hit children's
+//! prefetches, sorting and stack) and 280 per leaf (the watertight triangle test, four
+//! triangles a time). Measured and left out: the leaves' triangle tests compiled for
+//! AVX too (1.1% fewer instructions); prefetching fewer lines of a child node (no
+//! change beyond the noise).
 //!
 //! **Huge pages.** A mesh's build items (32 bytes a triangle), nodes and triangle
 //! packets (40 bytes a triangle) are tens of megabytes each; filled page by page at 4
@@ -174,12 +202,14 @@
 //! huge pages, made the steady builds slower (0.29 to 0.31 s) and the bench's no
 //! steadier, so every large buffer asks.
 //!
-//! Where the build stands, at 0.71x to 0.86x of Embree on 1 thread (and ahead on 2):
-//! perf of the 1-thread build puts about a quarter of its time on binning (three bins'
-//! boxes and counts updated per item and axis), a quarter on choosing splits (the small
-//! ranges' binning and the sweeps: a build sees half a million ranges of at most 32
-//! items) and a sixth on the partition and each side's bounds (before the huge pages, a
-//! seventh went to the kernel's page faults). The tree is the same as Embree's kind
+//! Where the build stands, at 0.68x to 0.95x of Embree on 1 thread this round (0.71x to
+//! 0.86x the round before; ahead on 2 threads): perf of the 1-thread build puts about a
+//! quarter of its time on binning (three bins' boxes and counts updated per item and
+//! axis), a quarter on choosing splits (the small ranges' binning and the sweeps: a
+//! build sees half a million ranges of at most 32 items) and a sixth on the partition
+//! and each side's bounds, and, in a process that builds several meshes with the system
+//! allocator, up to a third of the whole on the kernel zeroing fresh pages (before the
+//! packets reused the items' memory). The tree is the same as Embree's kind
 //! (binned SAH, 32 bins, eight children), and every item is visited about twenty times
 //! over the levels; what is left is per-visit work, where Embree runs code compiled for
 //! the machine's widest instruction set (its kernels are built once per instruction set
@@ -188,15 +218,13 @@
 //! faster), and the sweep's counts as one integer vector per bin (no measurable
 //! change).
 //!
-//! Where the packets stand: at 0.99x to 1.01x of `rtcIntersect16` in the latest round's
-//! three runs before the huge pages and 0.91x to 1.03x in the five after (0.97x to
-//! 0.99x in five of seven the round before, 0.84x and 0.74x in the other two), they
-//! trace a leaf's triangles one ray at a time against four triangles per SSE
-//! instruction, where Embree's 16-wide kernel tests sixteen rays at once. The
-//! incoherent rays (0.83x to 0.94x on 1 thread) wait on memory: perf of 1M of them puts
-//! 62% of the leaf tests' time on the first load of a leaf's triangles and a quarter of
-//! the traversal's on the first load of the next node, both prefetched only as the ray
-//! reaches the parent (the prefetch still pays: without it for child nodes the same
+//! The packets trace a leaf's triangles one ray at a time against four triangles per
+//! SSE instruction, where Embree's 16-wide kernel tests sixteen rays at once; they came
+//! out ahead (1.10x to 1.12x) once the box tests went to AVX. The incoherent rays wait
+//! on memory as much as Embree's do (the same cache misses, above): perf of 1M of them
+//! puts 62% of the leaf tests' time on the first load of a leaf's triangles and a
+//! quarter of the traversal's on the first load of the next node, both prefetched only
+//! as the ray reaches the parent (the prefetch still pays: without it for child nodes the same
 //! rays took 0.60 to 0.66 s against 0.51 to 0.55 s, medians of 5 in three alternated
 //! runs, and skipping it for a lone hit child, loaded at once anyway, cost 3% to 13%).
 //! Tracing two rays of one octant side by side, a step of each in turn so that one's
@@ -213,15 +241,16 @@
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
 //! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
-//! 48.8 M instructions (49.6 M at the start of this round). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 991 M instructions for the
-//! whole program on one thread (1,187 M before the latest round's build changes;
+//! 39.4 M instructions where the processor has AVX (callgrind's does; 48.8 M with the
+//! SSE box tests the round before, 49.6 M at its start). Its `build` workload (the
+//! icosphere generated once, then built five times) executes 990 M instructions for the
+//! whole program on one thread (1,187 M before the build changes of the round before;
 //! 1,151 M before the partition lost its branches: more instructions, less time;
 //! 1,179 M before a split's bounds were folded after the partition, 1,849 M before
 //! the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in 2.29 s on 1
 //! thread against 2.46 s with the branching partition (medians of seven alternated runs),
 //! and in 1.50 s against 1.57 s on 2 (nine, on a busy machine). Instruction counts are no
-//! substitute for the table (Embree uses AVX-512 and its rays wait on memory), but two
+//! substitute for the table (Embree uses AVX-512, and rays wait on memory), but two
 //! builds of viewray compare reliably.
 //!
 //! Wider instruction sets, measured and left out:
@@ -232,7 +261,9 @@
 //!   Compiling only the traversal loops for `x86-64-v3` and `x86-64-v4` beside the
 //!   baseline, chosen at run time (the same bits), gained -1% to 5% (packets 15.62, 15.29
 //!   and 14.38 Mrays/s against 15.19, 14.53 and 14.54 with the baseline, alternated
-//!   runs): not worth three copies of every traversal.
+//!   runs): not worth three copies of every traversal. What paid was the explicit
+//!   test of eight boxes in one AVX register (above): compiled for AVX, the SSE
+//!   test stays two groups of four.
 //! - Two rays against a leaf's four triangles per 256-bit AVX instruction (each half
 //!   exactly one ray's 128-bit test) cut the icosphere render's instructions by 4.4%
 //!   (880 M to 841 M) and its time not at all (`render_s` 0.080 to 0.098 s against
