@@ -377,14 +377,14 @@ pub(crate) fn at_mut(v: &mut Vec4, i: usize) -> &mut f32 {
 /// The largest number among the lanes of `mask`.
 #[inline]
 fn max_lane(values: &Lanes, mask: u64) -> f32 {
-    let mut max = Vec4::NEG_INFINITY;
+    // Every group, without branches (a group outside the mask gives -inf), in two
+    // chains of maxima that run side by side.
+    let mut max = [Vec4::NEG_INFINITY; 2];
     for (group, v) in values.iter().enumerate() {
-        let bits = (mask >> (4 * group)) & 0xf;
-        if bits != 0 {
-            max = max.max(Vec4::select(lane_mask(bits as u32), *v, Vec4::NEG_INFINITY));
-        }
+        let bits = (mask >> (4 * group)) as u32;
+        max[group % 2] = max[group % 2].max(Vec4::select(lane_mask(bits), *v, Vec4::NEG_INFINITY));
     }
-    max.max_element()
+    max[0].max(max[1]).max_element()
 }
 
 /// The slab numbers (see [`slab_numbers`]) of up to [`PACKET_SIZE`] rays, four rays per
