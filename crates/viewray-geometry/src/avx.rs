@@ -412,6 +412,15 @@ mod tests {
         }
     }
 
+    /// The tests' switch to the SSE path works (the traversal test below relies on it).
+    #[test]
+    fn the_baseline_switch_turns_the_avx_path_off() {
+        BASELINE_ONLY.set(true);
+        let on = detected();
+        BASELINE_ONLY.set(false);
+        assert!(!on);
+    }
+
     /// Whole traversals, closest and any hit, single rays and packets, give the same
     /// answers to the bit with the AVX box tests and without them, on a mesh deep
     /// enough for every path of the traversal (one, two and more children hit).
@@ -464,10 +473,15 @@ mod tests {
         assert_eq!(avx, baseline);
         // Packets: coherent rays from one eye (the packet test) and the random rays
         // above (handed to single rays).
+        // Tiles of 8 x 8 pixels of a 64 x 64 image through a viewport of 0.32 x 0.32 at
+        // distance 1: each tile's directions spread by 0.04, a coherent packet.
         let eye = Vec3::new(0.1, 0.2, 3.0);
         let primary: Vec<Ray> = (0..64 * 64)
             .map(|i| {
-                let (x, y) = ((i % 64) as f32 / 64.0 - 0.5, (i / 64) as f32 / 64.0 - 0.5);
+                let (tile, k) = (i / 64, i % 64);
+                let col = (tile % 8) * 8 + k % 8;
+                let row = (tile / 8) * 8 + k / 8;
+                let (x, y) = (col as f32 / 200.0 - 0.16, row as f32 / 200.0 - 0.16);
                 Ray::new(eye, Vec3::new(x, y, -1.0))
             })
             .collect();

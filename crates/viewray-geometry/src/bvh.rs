@@ -1709,6 +1709,73 @@ mod tests {
         }
     }
 
+    /// A node where the ray enters exactly two children: the nearer is visited first
+    /// (from either side, whichever slot it has), and of two entered at the same
+    /// distance the later slot first, as the sort of three or more children orders them.
+    #[test]
+    fn of_two_children_the_nearer_and_on_a_tie_the_later_slot_comes_first() {
+        // Two unit boxes side by side along x, each its own leaf under the root.
+        let boxes = [
+            Aabb::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0)),
+            Aabb::new(Vec3::new(5.0, 0.0, 0.0), Vec3::new(6.0, 1.0, 1.0)),
+        ];
+        let bvh = Bvh::build(&boxes, BuildParams::default());
+        let root = &bvh.nodes()[0];
+        let leaves: Vec<u32> = root
+            .children
+            .iter()
+            .copied()
+            .filter(|&c| c != EMPTY_REF)
+            .collect();
+        assert!(
+            leaves.len() == 2 && leaves.iter().all(|&c| c & LEAF != 0),
+            "two leaves"
+        );
+        let item_of = |start: u32| bvh.item_order()[start as usize] as usize;
+        let visits = |ray: &Ray, hit_t: &dyn Fn(usize) -> Option<f32>| {
+            let mut visited = Vec::new();
+            bvh.closest(ray, 0.0, f32::INFINITY, |start, _, t_max| {
+                visited.push(item_of(start));
+                hit_t(item_of(start)).map_or(t_max, |t| t.min(t_max))
+            });
+            visited
+        };
+        let entry = |item: usize, ray: &Ray| boxes[item].slab_interval(ray).map(|(t, _)| t);
+        for (origin, direction, nearest) in [
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0),
+            (Vec3::new(7.0, 0.5, 0.5), Vec3::NEG_X, 1),
+        ] {
+            let ray = Ray::new(origin, direction);
+            let visited = visits(&ray, &|item| entry(item, &ray));
+            assert_eq!(visited, [nearest], "from {origin}: only the nearer leaf");
+        }
+        // Two boxes stacked in y, and a ray along their shared face: both entered at
+        // the same distance.
+        let stacked = [
+            Aabb::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0)),
+            Aabb::new(Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 6.0, 1.0)),
+        ];
+        let bvh = Bvh::build(&stacked, BuildParams::default());
+        let root = &bvh.nodes()[0];
+        let slots: Vec<(usize, u32)> = root
+            .children
+            .iter()
+            .enumerate()
+            .filter(|&(_, &c)| c != EMPTY_REF)
+            .map(|(slot, &c)| (slot, bvh.item_order()[decode_leaf(c).0 as usize]))
+            .collect();
+        assert_eq!(slots.len(), 2);
+        let later_item = slots[1].1 as usize;
+        let ray = Ray::new(Vec3::new(-1.0, 1.0, 0.5), Vec3::X);
+        let mut visited = Vec::new();
+        bvh.closest(&ray, 0.0, f32::INFINITY, |start, _, t_max| {
+            visited.push(bvh.item_order()[start as usize] as usize);
+            t_max
+        });
+        assert_eq!(visited.len(), 2, "both entered");
+        assert_eq!(visited[0], later_item, "the later slot first");
+    }
+
     /// Boxes along x at geometric distances (1.1^k) make the binned SAH peel a few off
     /// at each level, the deepest trees a build makes, and a ray down the row that hits
     /// nothing walks all of it, pushing up to seven children a level: the traversal

@@ -244,17 +244,16 @@ pub(crate) fn packets_bound(triangles: usize) -> usize {
     triangles.div_ceil(4) + triangles / 8
 }
 
+/// How many build items take the memory of one triangle packet.
+pub(crate) const ITEMS_PER_PACKET: usize =
+    std::mem::size_of::<TrianglePacket>() / std::mem::size_of::<BuildItem>();
+const _: () = assert!(
+    ITEMS_PER_PACKET * std::mem::size_of::<BuildItem>() == std::mem::size_of::<TrianglePacket>()
+);
+
 /// The capacity of a mesh's build items for `faces` faces: at least one item per face,
 /// and room for [`packets_bound`] packets, in whole packets.
-fn items_capacity(faces: usize) -> usize {
-    const ITEMS_PER_PACKET: usize =
-        std::mem::size_of::<TrianglePacket>() / std::mem::size_of::<BuildItem>();
-    const {
-        assert!(
-            ITEMS_PER_PACKET * std::mem::size_of::<BuildItem>()
-                == std::mem::size_of::<TrianglePacket>()
-        );
-    };
+pub(crate) fn items_capacity(faces: usize) -> usize {
     faces
         .max(packets_bound(faces) * ITEMS_PER_PACKET)
         .next_multiple_of(ITEMS_PER_PACKET)
@@ -452,17 +451,11 @@ impl Mesh {
         // items touched are not faulted in and zeroed by the kernel again (a tenth of a
         // build went to that). A cast of the whole buffer, from empty to empty.
         items.clear();
-        let mut packets: Vec<TrianglePacket> = match bytemuck::allocation::try_cast_vec(items) {
-            Ok(packets) => packets,
-            Err((_, items)) => {
-                drop(items);
-                Vec::new()
-            }
-        };
-        if packets.capacity() < runs.len() {
-            packets = Vec::with_capacity(runs.len());
-            advise_huge_pages(&mut packets);
-        }
+        let mut packets: Vec<TrianglePacket> =
+            bytemuck::allocation::try_cast_vec(items).unwrap_or_default();
+        // A buffer of their own only where the items' is too small (scattered triangles).
+        packets.reserve_exact(runs.len());
+        advise_huge_pages(&mut packets);
         runs.par_iter()
             .map(|&(start, count)| {
                 TrianglePacket::new(&order[start as usize..(start + count) as usize], &data)
@@ -496,6 +489,12 @@ impl Mesh {
     #[cfg(test)]
     pub(crate) fn packet_count(&self) -> usize {
         self.packets.len()
+    }
+
+    /// The capacity of the packets' buffer.
+    #[cfg(test)]
+    pub(crate) fn packet_capacity(&self) -> usize {
+        self.packets.capacity()
     }
 
     /// The memory of the acceleration data: BVH nodes and triangle packets, in bytes.

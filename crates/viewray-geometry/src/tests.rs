@@ -347,25 +347,34 @@ proptest! {
     }
 }
 
-/// The icosphere seen by an 8 x 8-pixel block of viewing rays, traced as a packet
-/// through a deep BVH: from outside (perspective and orthographic, with the middle
-/// rays exactly along the axis), from inside the sphere, and from inside its box.
-/// Triangles far apart get leaves of few triangles each, and so more packets than the
-/// build items' buffer has room for: the packets get a buffer of their own, and every
-/// triangle is still found where it is.
+/// A surface mesh's packets fit in the room its build items' buffer keeps for them, and
+/// are written there: the packets' buffer is the items' (its capacity the items', in
+/// packets), not one of its own.
 #[test]
-fn a_surface_mesh_takes_at_most_the_expected_packets() {
+fn a_surface_mesh_writes_its_packets_into_the_build_items_buffer() {
+    use crate::mesh::{ITEMS_PER_PACKET, items_capacity, packets_bound};
     for subdivisions in [0, 3, 6] {
         let mesh = Mesh::icosphere(subdivisions, 1.0);
-        let bound = crate::mesh::packets_bound(mesh.triangle_count());
+        let faces = mesh.triangle_count();
+        let bound = packets_bound(faces);
         assert!(
             mesh.packet_count() <= bound,
             "{} > {bound}",
             mesh.packet_count()
         );
+        assert!(items_capacity(faces) >= faces);
+        assert_eq!(items_capacity(faces) % ITEMS_PER_PACKET, 0);
+        assert!(items_capacity(faces) / ITEMS_PER_PACKET >= bound);
+        assert_eq!(
+            mesh.packet_capacity(),
+            items_capacity(faces) / ITEMS_PER_PACKET
+        );
     }
 }
 
+/// Triangles far apart get leaves of few triangles each, and so more packets than the
+/// build items' buffer has room for: the packets get a buffer of their own, and every
+/// triangle is still found where it is.
 #[test]
 fn a_mesh_with_more_packets_than_expected_finds_every_triangle() {
     let count = 40;
@@ -394,6 +403,9 @@ fn a_mesh_with_more_packets_than_expected_finds_every_triangle() {
     }
 }
 
+/// The icosphere seen by an 8 x 8-pixel block of viewing rays, traced as a packet
+/// through a deep BVH: from outside (perspective and orthographic, with the middle
+/// rays exactly along the axis), from inside the sphere, and from inside its box.
 #[test]
 fn icosphere_packets_match_single_rays() {
     let mesh = Arc::new(Mesh::icosphere(5, 1.0));
