@@ -100,6 +100,11 @@ impl PacketBoxes for AvxPacket<'_> {
     type Ray = AvxRay;
 
     #[inline(always)]
+    fn packet(&self) -> &BoxPacket<'_> {
+        self.packet
+    }
+
+    #[inline(always)]
     fn hit_children<const OCTANT: u8>(
         &self,
         node: &Node,
@@ -151,44 +156,14 @@ fn hit_children<const OCTANT: u8>(
 ) -> (u32, [f32; WIDTH]) {
     let planes = &node.planes;
     let near = [
-        distances(
-            planes,
-            plane_index::<OCTANT>(0, false),
-            ray.origin_near[0],
-            ray.inverse[0],
-        ),
-        distances(
-            planes,
-            plane_index::<OCTANT>(1, false),
-            ray.origin_near[1],
-            ray.inverse[1],
-        ),
-        distances(
-            planes,
-            plane_index::<OCTANT>(2, false),
-            ray.origin_near[2],
-            ray.inverse[2],
-        ),
+        distances::<OCTANT>(ray, planes, 0, false),
+        distances::<OCTANT>(ray, planes, 1, false),
+        distances::<OCTANT>(ray, planes, 2, false),
     ];
     let far = [
-        distances(
-            planes,
-            plane_index::<OCTANT>(0, true),
-            ray.origin_far[0],
-            ray.inverse[0],
-        ),
-        distances(
-            planes,
-            plane_index::<OCTANT>(1, true),
-            ray.origin_far[1],
-            ray.inverse[1],
-        ),
-        distances(
-            planes,
-            plane_index::<OCTANT>(2, true),
-            ray.origin_far[2],
-            ray.inverse[2],
-        ),
+        distances::<OCTANT>(ray, planes, 0, true),
+        distances::<OCTANT>(ray, planes, 1, true),
+        distances::<OCTANT>(ray, planes, 2, true),
     ];
     slab_test(near, far, t_min, t_max)
 }
@@ -232,97 +207,69 @@ fn packet_hit_children<const OCTANT: u8>(
     t_max: f32,
 ) -> (u32, [f32; WIDTH]) {
     let planes = &node.planes;
-    let (o, f) = (&packet.bound_origin_near, &packet.bound_origin_far);
-    let (low, high) = (&packet.inverse_min, &packet.inverse_max);
     let near = [
-        interval(
-            planes,
-            plane_index::<OCTANT>(0, false),
-            o[0],
-            low[0],
-            high[0],
-            false,
-        ),
-        interval(
-            planes,
-            plane_index::<OCTANT>(1, false),
-            o[1],
-            low[1],
-            high[1],
-            false,
-        ),
-        interval(
-            planes,
-            plane_index::<OCTANT>(2, false),
-            o[2],
-            low[2],
-            high[2],
-            false,
-        ),
+        interval::<OCTANT>(packet, planes, 0, false),
+        interval::<OCTANT>(packet, planes, 1, false),
+        interval::<OCTANT>(packet, planes, 2, false),
     ];
     let far = [
-        interval(
-            planes,
-            plane_index::<OCTANT>(0, true),
-            f[0],
-            low[0],
-            high[0],
-            true,
-        ),
-        interval(
-            planes,
-            plane_index::<OCTANT>(1, true),
-            f[1],
-            low[1],
-            high[1],
-            true,
-        ),
-        interval(
-            planes,
-            plane_index::<OCTANT>(2, true),
-            f[2],
-            low[2],
-            high[2],
-            true,
-        ),
+        interval::<OCTANT>(packet, planes, 0, true),
+        interval::<OCTANT>(packet, planes, 1, true),
+        interval::<OCTANT>(packet, planes, 2, true),
     ];
     slab_test(near, far, t_min, t_max)
 }
 
-/// The bounds of the distances along a packet's rays to the eight boxes' planes
-/// `planes[index]`: `d = plane - origin`, then `min(d * low, d * high)`, or with `far`
-/// the `max`.
+/// The bounds of the distances along a packet's rays to the eight boxes' near (or, with
+/// `far`, far) planes on `axis`: `d = plane - bound_origin`, then `min(d * inverse_min,
+/// d * inverse_max)`, or for the far planes the `max`.
 #[target_feature(enable = "avx")]
 #[inline]
-fn interval(
+fn interval<const OCTANT: u8>(
+    packet: &AvxPacket<'_>,
     planes: &[[f32; WIDTH]; 6],
-    index: usize,
-    origin: __m256,
-    low: __m256,
-    high: __m256,
+    axis: usize,
     far: bool,
 ) -> __m256 {
     // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
     // reads.
-    let plane = unsafe { _mm256_loadu_ps(planes[index].as_ptr()) };
-    let d = _mm256_sub_ps(plane, origin);
-    let (a, b) = (_mm256_mul_ps(d, low), _mm256_mul_ps(d, high));
-    if far {
-        _mm256_max_ps(a, b)
+    let plane = unsafe { _mm256_loadu_ps(planes[plane_index::<OCTANT>(axis, far)].as_ptr()) };
+    let origin = if far {
+        packet.bound_origin_far[axis]
     } else {
-        _mm256_min_ps(a, b)
+        packet.bound_origin_near[axis]
+    };
+    let d = _mm256_sub_ps(plane, origin);
+    let (low, high) = (
+        _mm256_mul_ps(d, packet.inverse_min[axis]),
+        _mm256_mul_ps(d, packet.inverse_max[axis]),
+    );
+    if far {
+        _mm256_max_ps(low, high)
+    } else {
+        _mm256_min_ps(low, high)
     }
 }
 
-/// The distances along the ray to the eight boxes' planes `planes[index]`:
-/// `(plane - origin) * inverse`.
+/// The distances along the ray to the eight boxes' near (or, with `far`, far) planes on
+/// `axis`: `(plane - origin) * inverse`, with the origin moved for that plane.
 #[target_feature(enable = "avx")]
 #[inline]
-fn distances(planes: &[[f32; WIDTH]; 6], index: usize, origin: __m256, inverse: __m256) -> __m256 {
+fn distances<const OCTANT: u8>(
+    ray: &AvxRay,
+    planes: &[[f32; WIDTH]; 6],
+    axis: usize,
+    far: bool,
+) -> __m256 {
     // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
     // reads.
-    let plane = unsafe { _mm256_loadu_ps(planes[index].as_ptr()) };
-    _mm256_mul_ps(_mm256_sub_ps(plane, origin), inverse)
+    let plane = unsafe { _mm256_loadu_ps(planes[plane_index::<OCTANT>(axis, far)].as_ptr()) };
+    let origin = if far {
+        ray.origin_far[axis]
+    } else {
+        ray.origin_near[axis]
+    };
+    _mm256_mul_ps(_mm256_sub_ps(plane, origin), ray.inverse[axis])
 }
 
 #[cfg(test)]

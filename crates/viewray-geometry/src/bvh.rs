@@ -651,7 +651,9 @@ impl Bvh {
         })
     }
 
-    /// [`Bvh::closest_in_octant`] compiled for AVX, with the AVX box test.
+    /// [`Bvh::closest_in_octant`] compiled for AVX, with the AVX box test. Its body
+    /// repeats the baseline's so that the closure is written (and compiled) here: a
+    /// closure gets its enclosing function's instruction set.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,popcnt")]
     fn closest_in_octant_avx<const OCTANT: u8>(
@@ -840,7 +842,8 @@ impl Bvh {
         })
     }
 
-    /// [`Bvh::any_in_octant`] compiled for AVX, with the AVX box test.
+    /// [`Bvh::any_in_octant`] compiled for AVX, with the AVX box test (its body
+    /// repeated for the closure, as in [`Bvh::closest_in_octant_avx`]).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,popcnt")]
     fn any_in_octant_avx<const OCTANT: u8>(

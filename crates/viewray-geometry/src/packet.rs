@@ -575,6 +575,9 @@ pub(crate) trait PacketBoxes {
     /// A lane's ray.
     type Ray: ChildBoxes;
 
+    /// The packet tested.
+    fn packet(&self) -> &BoxPacket<'_>;
+
     /// The mask of the boxes some ray of the packet may hit with `t` in `[t_min,
     /// t_max]`, and a lower bound of their entry distances.
     fn hit_children<const OCTANT: u8>(
@@ -590,6 +593,11 @@ pub(crate) trait PacketBoxes {
 
 impl PacketBoxes for BoxPacket<'_> {
     type Ray = BoxRay;
+
+    #[inline(always)]
+    fn packet(&self) -> &BoxPacket<'_> {
+        self
+    }
 
     #[inline(always)]
     fn hit_children<const OCTANT: u8>(
@@ -611,7 +619,6 @@ impl PacketBoxes for BoxPacket<'_> {
 /// the packet and its box tests, where hits may start, what happens at leaves, and a
 /// stack for the rays that finish subtrees on their own.
 struct PacketTraversal<'a, B, V, P> {
-    packet: &'a BoxPacket<'a>,
     boxes: &'a B,
     t_min: f32,
     visitor: &'a mut V,
@@ -625,13 +632,12 @@ struct PacketTraversal<'a, B, V, P> {
 /// written (and compiled) inside each: a closure is compiled with its enclosing
 /// function's instruction set.
 macro_rules! closest_packet_octants {
-    ($bvh:expr, $packet:expr, $boxes:expr, $lanes:expr, $t_min:expr, $t_max:expr, $visitor:expr, $prefetch_leaf:expr) => {{
+    ($bvh:expr, $boxes:expr, $lanes:expr, $t_min:expr, $t_max:expr, $visitor:expr, $prefetch_leaf:expr) => {{
         macro_rules! octant {
             ($octant:literal) => {
                 with_stack(|stack| {
                     with_stack(|ray_stack| {
                         let mut traversal = PacketTraversal {
-                            packet: $packet,
                             boxes: $boxes,
                             t_min: $t_min,
                             visitor: $visitor,
@@ -648,7 +654,7 @@ macro_rules! closest_packet_octants {
                 })
             };
         }
-        match $packet.octant {
+        match $boxes.packet().octant {
             0 => octant!(0),
             1 => octant!(1),
             2 => octant!(2),
@@ -690,16 +696,7 @@ impl Bvh {
             }
             return;
         }
-        closest_packet_octants!(
-            self,
-            packet,
-            packet,
-            lanes,
-            t_min,
-            t_max,
-            visitor,
-            prefetch_leaf
-        );
+        closest_packet_octants!(self, packet, lanes, t_min, t_max, visitor, prefetch_leaf);
     }
 
     /// [`Bvh::closest_packet`] compiled for AVX, with the AVX box tests.
@@ -715,16 +712,7 @@ impl Bvh {
         prefetch_leaf: impl Fn(u32, u32) + Copy,
     ) {
         let boxes = crate::avx::AvxPacket::new(packet);
-        closest_packet_octants!(
-            self,
-            packet,
-            &boxes,
-            lanes,
-            t_min,
-            t_max,
-            visitor,
-            prefetch_leaf
-        );
+        closest_packet_octants!(self, &boxes, lanes, t_min, t_max, visitor, prefetch_leaf);
     }
 
     #[inline(always)]
@@ -741,7 +729,7 @@ impl Bvh {
         stack: &mut Stack,
     ) {
         let nodes = self.nodes();
-        let packet = traversal.packet;
+        let packet = traversal.boxes.packet();
         let t_min4 = Vec4::splat(traversal.t_min);
         if !packet.coherent {
             self.single_rays::<OCTANT, B, V, P>(traversal, 0, lanes, t_max);
