@@ -8,7 +8,7 @@
 
 use std::cell::RefCell;
 
-use glam::{Mat3A, Vec3, Vec3A, Vec3Swizzles, Vec4};
+use glam::{IVec4, Mat3A, Vec3, Vec3A, Vec3Swizzles, Vec4};
 use rayon::prelude::*;
 
 use crate::{Aabb, Ray};
@@ -504,7 +504,6 @@ impl Bvh {
     /// compute the boxes of their triangles themselves.
     pub(crate) fn build_from(items: &mut [BuildItem], params: BuildParams) -> Self {
         let params = BuildParams {
-            block_size: params.block_size.max(1),
             max_leaf_items: params.max_leaf_items.clamp(1, MAX_LEAF),
             ..params
         };
@@ -1064,11 +1063,14 @@ const FEW_BINS: usize = 8;
 const FEW_ITEMS: usize = 32;
 
 /// Per-axis bins: boxes and counts of the items whose centroids fall in each.
+///
+/// `count[b][axis]` is the count of bin `b` on `axis`: the three axes' counts of a bin
+/// are one register for the sweep (below 2^27, [`MAX_ITEMS`], so they fit an `i32`).
 #[derive(Clone, Copy)]
 struct Bins<const B: usize> {
     min: [[Vec3A; B]; 3],
     max: [[Vec3A; B]; 3],
-    count: [[u32; B]; 3],
+    count: [[i32; 4]; B],
 }
 
 impl<const B: usize> Bins<B> {
@@ -1076,7 +1078,7 @@ impl<const B: usize> Bins<B> {
         Self {
             min: [[Vec3A::INFINITY; B]; 3],
             max: [[Vec3A::NEG_INFINITY; B]; 3],
-            count: [[0; B]; 3],
+            count: [[0; 4]; B],
         }
     }
 
@@ -1132,7 +1134,7 @@ impl<const B: usize> Bins<B> {
             let b = b & (B - 1);
             self.min[axis][b] = self.min[axis][b].min(lo);
             self.max[axis][b] = self.max[axis][b].max(hi);
-            self.count[axis][b] += 1;
+            self.count[b][axis] += 1;
         }
     }
 
@@ -1141,7 +1143,7 @@ impl<const B: usize> Bins<B> {
             for b in 0..B {
                 self.min[axis][b] = self.min[axis][b].min(other.min[axis][b]);
                 self.max[axis][b] = self.max[axis][b].max(other.max[axis][b]);
-                self.count[axis][b] += other.count[axis][b];
+                self.count[b][axis] += other.count[b][axis];
             }
         }
     }
@@ -1202,18 +1204,18 @@ enum Split {
 }
 
 /// One side of a candidate split on each of the three axes: the boxes and item counts
-/// of the bins swept so far.
+/// (one lane per axis) of the bins swept so far.
 struct Side {
     lo: [Vec3A; 3],
     hi: [Vec3A; 3],
-    count: [u32; 3],
+    count: IVec4,
 }
 
 impl Side {
     const EMPTY: Self = Self {
         lo: [Vec3A::INFINITY; 3],
         hi: [Vec3A::NEG_INFINITY; 3],
-        count: [0; 3],
+        count: IVec4::ZERO,
     };
 
     #[inline(always)]
@@ -1221,20 +1223,20 @@ impl Side {
         for axis in 0..3 {
             self.lo[axis] = self.lo[axis].min(bins.min[axis][b]);
             self.hi[axis] = self.hi[axis].max(bins.max[axis][b]);
-            self.count[axis] += bins.count[axis][b];
         }
+        self.count += IVec4::from_array(bins.count[b]);
     }
 
     /// Per axis, the side's half area times its blocks; infinite for an empty side.
     #[inline(always)]
-    fn cost(&self, builder: &Builder) -> Vec3A {
+    fn cost(&self, blocks: impl Fn(IVec4) -> Vec3A) -> Vec3A {
         let extent = |axis: usize| (self.hi[axis] - self.lo[axis]).max(Vec3A::ZERO);
         // Rows: the x, y and z extents of the three boxes.
         let d = Mat3A::from_cols(extent(0), extent(1), extent(2)).transpose();
         let (dx, dy, dz) = (d.x_axis, d.y_axis, d.z_axis);
         // `half_area`'s `(x y + y z) + z x`, lane by lane.
         let area = (dx * dy + dy * dz) + dz * dx;
-        let blocks = Vec3A::from(self.count.map(|n| builder.blocks(n)));
+        let blocks = blocks(self.count);
         Vec3A::select(blocks.cmpeq(Vec3A::ZERO), Vec3A::INFINITY, area * blocks)
     }
 }
@@ -1249,9 +1251,15 @@ struct Builder {
 
 impl Builder {
     fn new(params: BuildParams) -> Self {
-        let size = params.block_size;
+        // No range holds more than `MAX_ITEMS` (2^27) items, so a larger block counts
+        // as one block, as a block of that size does; `n + block_size - 1` then stays
+        // below 2^28 and fits an `i32`.
+        let size = params.block_size.clamp(1, MAX_ITEMS as u32);
         Self {
-            params,
+            params: BuildParams {
+                block_size: size,
+                ..params
+            },
             block_shift: size.is_power_of_two().then(|| size.trailing_zeros()),
         }
     }
@@ -1259,7 +1267,7 @@ impl Builder {
     /// `ceil(n / block_size)`, as the SAH counts it.
     fn blocks(&self, n: u32) -> f32 {
         match self.block_shift {
-            // n < 2^27 (`MAX_ITEMS`), so `n + block_size - 1` does not overflow.
+            // n <= 2^27 and block_size <= 2^27: `n + block_size - 1` does not overflow.
             Some(shift) => ((n + (1 << shift) - 1) >> shift) as f32,
             None => n.div_ceil(self.params.block_size) as f32,
         }
@@ -1354,18 +1362,41 @@ impl Builder {
     /// its neighbour's and, compared strictly, never win.
     #[inline(always)]
     fn sweep<const B: usize>(&self, bins: &Bins<B>, scale: Vec3A) -> Option<(f32, usize, usize)> {
+        // [`Builder::blocks`] of the first three lanes (counts below 2^27), chosen once
+        // per sweep: for a power-of-two block size one add, one shift and one conversion
+        // for the three, with the same results (the sums are below 2^28, where `i32`
+        // and `u32` agree).
+        match self.block_shift {
+            Some(shift) => self.sweep_with(bins, scale, |n: IVec4| {
+                let whole = (n + IVec4::splat((1 << shift) - 1)) >> shift;
+                Vec3A::from_vec4(whole.as_vec4())
+            }),
+            None => self.sweep_with(bins, scale, |n: IVec4| {
+                Vec3A::from_array(n.truncate().to_array().map(|n| self.blocks(n as u32)))
+            }),
+        }
+    }
+
+    /// [`Builder::sweep`] with `blocks` counting the blocks of three counts.
+    #[inline(always)]
+    fn sweep_with<const B: usize>(
+        &self,
+        bins: &Bins<B>,
+        scale: Vec3A,
+        blocks: impl Fn(IVec4) -> Vec3A + Copy,
+    ) -> Option<(f32, usize, usize)> {
         // `right_cost[b]`: the cost of the bins `b..B` on each axis.
         let mut right_cost = [Vec3A::ZERO; B];
         let mut side = Side::EMPTY;
         for b in (1..B).rev() {
             side.add(bins, b);
-            right_cost[b] = side.cost(self);
+            right_cost[b] = side.cost(blocks);
         }
         let (mut best_cost, mut best_bin) = (Vec3A::INFINITY, Vec3A::ZERO);
         let mut side = Side::EMPTY;
         for (b, right) in right_cost.iter().enumerate().skip(1) {
             side.add(bins, b - 1);
-            let cost = side.cost(self) + *right;
+            let cost = side.cost(blocks) + *right;
             let better = cost.cmplt(best_cost);
             best_cost = Vec3A::select(better, cost, best_cost);
             best_bin = Vec3A::select(better, Vec3A::splat(b as f32), best_bin);
@@ -1579,8 +1610,8 @@ mod tests {
         }
 
         /// The three axes swept side by side choose what a sweep axis by axis chooses,
-        /// with the same cost to the bit, for 8 and 32 bins and blocks of 1, 3 and 4
-        /// items; the boxes lie on a coarse grid so that bins are often empty, costs
+        /// with the same cost to the bit, for 8 and 32 bins and blocks of 1, 3, 4, 8 and
+        /// 2^31 items (more than a range holds); the boxes lie on a coarse grid so that bins are often empty, costs
         /// often tie and an axis often has no extent.
         #[test]
         fn the_sweep_of_three_axes_is_the_sweep_axis_by_axis(
@@ -1589,7 +1620,7 @@ mod tests {
                 1..120,
             ),
             flat in prop::sample::select(vec![None, Some(0usize), Some(1), Some(2)]),
-            block_size in prop::sample::select(vec![1u32, 3, 4]),
+            block_size in prop::sample::select(vec![1u32, 3, 4, 8, 1 << 31]),
         ) {
             let items: Vec<BuildItem> = boxes
                 .iter()
@@ -1610,6 +1641,21 @@ mod tests {
                 Ok(())
             );
             prop_assert_eq!(sweeps_agree::<BINS>(&builder, &items, &range), Ok(()));
+        }
+    }
+
+    /// A block size beyond 2^27 items ([`MAX_ITEMS`], the most a range holds) counts
+    /// blocks as the size it is clamped to does: one for every nonempty range.
+    #[test]
+    fn a_block_larger_than_any_range_counts_one_block() {
+        for size in [1 << 27, (1 << 27) + 1, 1 << 28, 1 << 31, u32::MAX] {
+            let builder = Builder::new(BuildParams {
+                block_size: size,
+                ..BuildParams::default()
+            });
+            for n in [0, 1, 5, 1 << 20, 1 << 27] {
+                assert_eq!(builder.blocks(n), n.div_ceil(size) as f32, "{size} {n}");
+            }
         }
     }
 
@@ -1868,7 +1914,7 @@ mod tests {
                 one.add_one(item, origin, scale);
             }
             assert_eq!(both.count, one.count, "{n} items");
-            assert_eq!(both.count[0].iter().sum::<u32>() as usize, n);
+            assert_eq!(both.count.iter().map(|c| c[0]).sum::<i32>() as usize, n);
             assert_eq!(both.min, one.min, "{n} items");
             assert_eq!(both.max, one.max, "{n} items");
         }
@@ -1985,7 +2031,7 @@ mod tests {
             for b in (1..B).rev() {
                 lo = lo.min(bins.min[axis][b]);
                 hi = hi.max(bins.max[axis][b]);
-                count += bins.count[axis][b];
+                count += bins.count[b][axis] as u32;
                 if count > 0 {
                     right_cost[b] = half_area(lo, hi) * builder.blocks(count);
                 }
@@ -1994,7 +2040,7 @@ mod tests {
             for (b, right) in right_cost.iter().enumerate().skip(1) {
                 lo = lo.min(bins.min[axis][b - 1]);
                 hi = hi.max(bins.max[axis][b - 1]);
-                count += bins.count[axis][b - 1];
+                count += bins.count[b - 1][axis] as u32;
                 if count == 0 {
                     continue;
                 }
