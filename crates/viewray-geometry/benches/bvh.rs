@@ -130,6 +130,11 @@ struct Embree {
 #[cfg(feature = "embree")]
 impl Embree {
     /// Builds the scene with `threads` build threads (0: all).
+    ///
+    /// Embree runs a build on as many threads as the most any live device asked for
+    /// (`getMaxNumThreads` in its `device.cpp`), not on the count of the device that
+    /// builds: while a device of all threads lives, a one-thread device builds on all
+    /// of them too.
     fn build(data: &MeshData, threads: u32) -> Self {
         use embree3::{BufferUsage, Config, Device, Format, GeometryKind};
         let device = Device::with_config(Config {
@@ -457,8 +462,11 @@ fn main() {
     let mesh = Mesh::new(data.clone()).expect("the icosphere is valid");
     let obvhs_input = obvhs_triangles(&data);
     let peer = Obvhs::build(&obvhs_input);
+    // On one thread: this device lives through the build cases, and Embree builds on
+    // the most threads any live device asked for (see `Embree::build`), so a device of
+    // all threads would put the one-thread build on all of them.
     #[cfg(feature = "embree")]
-    let embree = Embree::build(&data, 0);
+    let embree = Embree::build(&data, 1);
     let primary = primary_rays(1024, 1024);
     let primary_8x8 = in_tiles(&primary, 1024, 8, 8);
     let incoherent = incoherent_rays(1_000_000);
