@@ -162,10 +162,11 @@ struct TileBuffers {
     /// Each pixel's ray differentials, worked out by the first sample that needs them
     /// (empty when the shading asks for no film points).
     differentials: Vec<OnceCell<Option<RayDifferentials>>>,
-    /// A block's rays, and for each the pixel it belongs to: its index in `pixels`,
-    /// its row and its column.
+    /// Room for a block's rays, and for each the pixel it belongs to, as its index in
+    /// `pixels` (its row and column follow from the tile, where a film point asks for
+    /// them), and their hits: one slot per pixel of a block, filled from the front.
     rays: Vec<Ray>,
-    ray_pixels: Vec<(usize, u32, u32)>,
+    ray_pixels: Vec<u32>,
     hits: Vec<Option<ObjectHit>>,
     /// What Lit shading reuses from block to block.
     lit: LitScratch,
@@ -178,9 +179,9 @@ impl TileBuffers {
         Self {
             pixels: Vec::with_capacity(pixels),
             differentials: Vec::with_capacity(pixels),
-            rays: Vec::with_capacity(block),
-            ray_pixels: Vec::with_capacity(block),
-            hits: Vec::with_capacity(block),
+            rays: vec![Ray::new(Vec3::ZERO, Vec3::ZERO); block],
+            ray_pixels: vec![0; block],
+            hits: vec![None; block],
             lit: LitScratch::default(),
         }
     }
@@ -215,18 +216,22 @@ impl TileBuffers {
                 for block_col in (tile.col..tile.col + tile.width).step_by(BLOCK_SIZE as usize) {
                     // Generate the block's rays: through one sample point shared by every
                     // pixel (one sample: the centre), the camera does a block at a time.
-                    self.rays.clear();
-                    self.ray_pixels.clear();
+                    // Written by index with the count in a local (pushes kept each
+                    // vector's length in memory, stored and loaded again for every ray).
+                    let mut count = 0;
                     let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
                     let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
+                    let block_rays: &mut [Ray] = &mut self.rays;
+                    let ray_pixels: &mut [u32] = &mut self.ray_pixels;
                     let mut take = |row: u32, col: u32, ray: Option<DRay>| {
-                        let pixel = ((row - tile.row) * tile.width + (col - tile.col)) as usize;
+                        let pixel = (row - tile.row) * tile.width + (col - tile.col);
                         match ray {
                             Some(ray) => {
-                                self.rays.push(ray.as_ray());
-                                self.ray_pixels.push((pixel, row, col));
+                                block_rays[count] = ray.as_ray();
+                                ray_pixels[count] = pixel;
+                                count += 1;
                             }
-                            None => self.pixels[pixel] += shader.background(),
+                            None => self.pixels[pixel as usize] += shader.background(),
                         }
                     };
                     if let Some(sample) = strata.shared_sample() {
@@ -243,23 +248,25 @@ impl TileBuffers {
                     // Trace them together (which writes every hit, so the buffer needs
                     // only the right length) and shade them together, each sample's
                     // value added straight to its pixel.
-                    self.hits.resize(self.rays.len(), None);
-                    shader.trace_primary(&self.rays, &mut self.hits);
+                    let (block_rays, hits) = (&self.rays[..count], &mut self.hits[..count]);
+                    shader.trace_primary(block_rays, hits);
                     let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
                     let pixels = &mut self.pixels;
                     shader.shade_primaries(
-                        &self.rays,
-                        &self.hits,
+                        block_rays,
+                        hits,
                         |i| {
-                            let (pixel, row, col) = ray_pixels[i];
+                            let pixel = ray_pixels[i];
+                            let (row, col) =
+                                (tile.row + pixel / tile.width, tile.col + pixel % tile.width);
                             FilmPoint {
                                 pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
                                 spacing,
-                                differentials: &differentials[pixel],
+                                differentials: &differentials[pixel as usize],
                             }
                         },
                         &mut self.lit,
-                        |i, color| pixels[ray_pixels[i].0] += color,
+                        |i, color| pixels[ray_pixels[i] as usize] += color,
                         &mut rays,
                     );
                 }

@@ -592,6 +592,56 @@ fn the_image_is_the_same_on_any_number_of_threads_and_tiles() {
     assert!(one == small_tiles, "tile sizes differ");
 }
 
+/// Through a fisheye the neighbouring rays of each pixel differ from pixel to pixel, so
+/// a grid's filter width depends on where the pixel lies: one sample per pixel (blocks
+/// of shared samples), square tiles of 16 and 5 and tiles of one pixel give the same
+/// image, pixel for pixel within the tiles too.
+#[test]
+fn a_fisheye_grid_is_the_same_for_any_tile_size() {
+    let scene = scene(&format!(
+        "(image: (width: 67, height: 45, samples: 1), shading: Flat,
+          camera: (eye: (0.0, 1.5, 0.0), look_at: (2.0, 0.0, -3.0),
+                   projection: Fisheye(fov: 180.0)),
+          {GRID}
+          )"
+    ));
+    let image = |tile_size: u32| {
+        render_with(
+            &scene,
+            RenderSettings {
+                threads: Some(1),
+                tile_size,
+                ..RenderSettings::default()
+            },
+        )
+        .image
+    };
+    let (one, five, sixteen) = (image(1), image(5), image(16));
+    let grey = (0..45)
+        .flat_map(|row| (0..67).map(move |col| (row, col)))
+        .filter(|&(row, col)| {
+            let p = one.pixel(row, col);
+            p.x > 0.05 && p.x < 0.95
+        })
+        .count();
+    assert!(
+        grey > 100,
+        "{grey} filtered pixels: the grid is not filtered"
+    );
+    for (row, col) in (0..45).flat_map(|row| (0..67).map(move |col| (row, col))) {
+        assert_eq!(
+            one.pixel(row, col),
+            five.pixel(row, col),
+            "({row}, {col}), tiles of 5"
+        );
+        assert_eq!(
+            one.pixel(row, col),
+            sixteen.pixel(row, col),
+            "({row}, {col}), tiles of 16"
+        );
+    }
+}
+
 #[test]
 fn progress_reaches_the_total_and_rays_are_counted() {
     let scene = scene(&sphere_ahead(40, 20, 3, "Flat", ""));
