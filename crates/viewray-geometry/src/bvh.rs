@@ -1825,6 +1825,32 @@ mod tests {
         assert_eq!(visited[0], later_item, "the later slot first");
     }
 
+    /// 40 boxes with one centre, which no plane separates: asked for leaves of up to
+    /// 100 items (clamped to 16) and of up to 0 (counted as 1), they still become
+    /// leaves of 1 to 16 items that hold every item once. (A leaf's ref has four bits
+    /// for its count: a leaf of 40 would name the wrong items.)
+    #[test]
+    fn leaves_hold_at_most_sixteen_items_whatever_is_asked() {
+        let boxes = vec![Aabb::new(Vec3::ZERO, Vec3::ONE); 40];
+        for max_leaf_items in [0, 100] {
+            let bvh = Bvh::build(
+                &boxes,
+                BuildParams {
+                    max_leaf_items,
+                    ..BuildParams::default()
+                },
+            );
+            let mut seen = [0; 40];
+            for (start, count) in bvh.leaves() {
+                assert!((1..=MAX_LEAF).contains(&count), "{max_leaf_items}: {count}");
+                for position in start..start + count {
+                    seen[bvh.item_order()[position as usize] as usize] += 1;
+                }
+            }
+            assert_eq!(seen, [1; 40], "{max_leaf_items}");
+        }
+    }
+
     /// Boxes along x at geometric distances (1.1^k) make the binned SAH peel a few off
     /// at each level, the deepest trees a build makes, and a ray down the row that hits
     /// nothing walks all of it, pushing up to seven children a level: the traversal
