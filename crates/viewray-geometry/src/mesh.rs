@@ -271,7 +271,7 @@ impl PacketRay {
     fn new(ray: &WatertightRay) -> Self {
         Self {
             k: ray.k,
-            origin: ray.k.map(|k| Vec4::splat(ray.origin[k])),
+            origin: ray.k.map(|k| Vec4::splat(ray.origin.to_array()[k])),
             shear: [
                 Vec4::splat(ray.shear.x),
                 Vec4::splat(ray.shear.y),

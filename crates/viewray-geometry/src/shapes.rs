@@ -311,8 +311,10 @@ pub(crate) struct WatertightRay {
 
 impl WatertightRay {
     pub(crate) fn new(ray: &Ray) -> Self {
-        let d = ray.direction;
-        let abs = d.abs();
+        // Arrays, not glam's `Index` on `Vec3`, which is a `match` on the axis: branches
+        // for every lookup below.
+        let d = ray.direction.to_array();
+        let abs = ray.direction.abs();
         let kz = if abs.x >= abs.y && abs.x >= abs.z {
             0
         } else if abs.y >= abs.z {
@@ -320,8 +322,9 @@ impl WatertightRay {
         } else {
             2
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
+        // The two axes after `kz`, cyclically.
+        const NEXT: [[usize; 2]; 3] = [[1, 2], [2, 0], [0, 1]];
+        let [mut kx, mut ky] = NEXT[kz];
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
@@ -339,7 +342,7 @@ impl WatertightRay {
     #[inline]
     fn project(&self, p: Vec3) -> (f32, f32, f32) {
         let [kx, ky, kz] = self.k;
-        let rel = p - self.origin;
+        let rel = (p - self.origin).to_array();
         let z = rel[kz];
         (rel[kx] - self.shear.x * z, rel[ky] - self.shear.y * z, z)
     }
