@@ -305,8 +305,11 @@ impl PacketRay {
         if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).any() {
             [u, v, w] = recompute_edges_f64([ax, ay, bx, by, cx, cy], [u, v, w]);
         }
-        let negative = u.cmplt(zero) | v.cmplt(zero) | w.cmplt(zero);
-        let positive = u.cmpgt(zero) | v.cmpgt(zero) | w.cmpgt(zero);
+        // Outside where the edge functions differ in sign: some below zero and some
+        // above, that is the least below and the greatest above. (A NaN lane may come
+        // out either way here; its `det`, and so its `t`, is NaN, and no NaN is a hit.)
+        let negative = u.min(v).min(w).cmplt(zero);
+        let positive = u.max(v).max(w).cmpgt(zero);
         let inside = !(negative & positive);
         inside.any().then_some(PacketEdges {
             inside,
