@@ -124,25 +124,56 @@
 //! runs back to back a spell fell on whichever ran then (viewray's packets came out at
 //! 0.82x of `rtcIntersect16` in one run and 1.02x in the next). Three full runs after
 //! the latest round of changes (`VIEWRAY_BENCH_RUNS=3`, so each figure a median of 3),
-//! and the three runs of the round before (contenders back to back); read the ratios
-//! within a run, as Embree's own figures move by a tenth to a third between runs:
+//! and the ratios of the three runs of the round before; read the ratios within a run,
+//! as Embree's own figures move by a tenth to a third between runs. Embree's one-thread
+//! builds before the latest round ran on two threads (see *Embree's one-thread build*
+//! below), so that column's build ratios understate viewray:
 //!
 //! | 1 thread unless stated | run 1 | run 2 | run 3 | round before (three runs) |
 //! |---|---|---|---|---|
-//! | build | 0.322 s (Embree 0.238: 0.74x) | 0.315 s (0.300: 0.95x) | 0.380 s (0.260: 0.68x) | 0.76x, 0.86x, 0.75x |
-//! | build, 2 threads | 0.210 s (0.238: 1.13x) | 0.197 s (0.282: 1.43x) | 0.186 s (0.250: 1.34x) | 1.28x, 1.45x, 1.32x |
-//! | coherent, packets of 64 vs `rtcIntersect16` | 20.46 Mrays/s (1.11x) | 20.72 (1.12x) | 19.63 (1.10x) | 0.93x, 1.01x, 0.91x |
-//! | coherent, packets of 64 vs `rtcIntersect8` | 1.34x | 1.35x | 1.36x | 1.13x, 1.24x, 1.10x |
-//! | primary, ray by ray vs `rtcIntersect1` | 8.15 Mrays/s (0.87x) | 8.01 (0.87x) | 7.35 (0.83x) | 0.80x, 0.79x, 0.81x |
-//! | incoherent vs `rtcIntersect1` | 2.09 Mrays/s (1.01x) | 1.74 (0.92x) | 1.77 (0.94x) | 0.91x, 0.91x, 0.94x |
-//! | coherent, 2 threads, vs `rtcIntersect16` | 33.16 Mrays/s (0.96x) | 30.57 (0.90x) | 32.18 (0.90x) | 0.86x, 0.92x, 1.02x |
-//! | incoherent, 2 threads, vs `rtcIntersect1` | 3.53 Mrays/s (0.97x) | 3.78 (0.95x) | 3.23 (0.91x) | 0.86x, 0.90x, 1.18x |
+//! | build | 0.396 s (Embree 0.431: 1.09x) | 0.296 s (0.517: 1.75x) | 0.333 s (0.461: 1.38x) | 0.74x, 0.95x, 0.68x |
+//! | build, 2 threads | 0.160 s (0.226: 1.41x) | 0.226 s (0.276: 1.22x) | 0.214 s (0.280: 1.31x) | 1.13x, 1.43x, 1.34x |
+//! | coherent, packets of 64 vs `rtcIntersect16` | 19.74 Mrays/s (1.06x) | 20.45 (1.10x) | 19.22 (1.14x) | 1.11x, 1.12x, 1.10x |
+//! | coherent, packets of 64 vs `rtcIntersect8` | 1.32x | 1.33x | 1.36x | 1.34x, 1.35x, 1.36x |
+//! | primary, ray by ray vs `rtcIntersect1` | 8.10 Mrays/s (0.88x) | 7.92 (0.86x) | 8.09 (0.89x) | 0.87x, 0.87x, 0.83x |
+//! | incoherent vs `rtcIntersect1` | 1.98 Mrays/s (1.02x) | 1.88 (1.00x) | 1.91 (0.98x) | 1.01x, 0.92x, 0.94x |
+//! | coherent, 2 threads, vs `rtcIntersect16` | 41.32 Mrays/s (1.12x) | 36.71 (1.03x) | 34.77 (0.97x) | 0.96x, 0.90x, 0.90x |
+//! | incoherent, 2 threads, vs `rtcIntersect1` | 4.26 Mrays/s (1.05x) | 3.92 (0.96x) | 4.31 (1.01x) | 0.97x, 0.95x, 0.91x |
 //!
 //! Memory: 53.9 bytes per triangle (BVH + triangle packets; obvhs 60.3). viewray is
-//! 1.87x to 5.33x faster than obvhs everywhere. Embree finds the same closest hit
+//! 1.94x to 4.71x faster than obvhs everywhere. Embree finds the same closest hit
 //! (within 1e-4 of `t`) for all but 2 of the 1,048,576 primary rays and of the million
-//! incoherent ones. The latest round changed the traversals and kept the hierarchy,
-//! the hits and the images bit for bit:
+//! incoherent ones. The latest round kept the hierarchy, the hits and the images bit
+//! for bit:
+//!
+//! - **Embree's one-thread build.** Embree runs a build on as many threads as the most
+//!   any live device asked for (`getMaxNumThreads` in its `device.cpp`), not on the
+//!   count of the device that builds. The bench kept the tracing scene's device, made
+//!   with all threads, alive through the build cases, so the "1 thread" Embree builds
+//!   of the rounds before ran on both cores (0.22 to 0.30 s, its two-thread figure).
+//!   That device now asks for one thread: a scratch program timing one-thread devices
+//!   with `getrusage` saw 0.42 to 0.46 s a build with user time equal to wall time, and
+//!   0.22 s with twice the wall time in user time while a device of all threads lived.
+//! - **The sweep's block counts.** A bin's three counts are one register, a side's
+//!   counts an integer vector, and the blocks of the three lanes one add, one shift and
+//!   one conversion, the choice between shifting and dividing made once per sweep (a
+//!   fifth of each bin's step had gone to three scalar conversions and a branch). The
+//!   same trees (counts are below 2^27, where `i32` and `u32` agree; the block size is
+//!   clamped to 2^27, which counts as any larger block does): the profile example's
+//!   `build` 4,409 M to 4,113 M instructions, its wall time within the noise.
+//! - **A ray's watertight set-up and the packets' sign test.** Each ray reaching a
+//!   leaf picks its axes once; the lookups went through glam's `Index` on `Vec3`, a
+//!   `match` on the axis (branches that depend on the ray's direction), now arrays and
+//!   a constant table of successors. A packet is rejected when the least edge function
+//!   is below zero and the greatest above (two minima, two maxima, two comparisons,
+//!   for six comparisons and four ORs; a NaN lane may go either way, and its `t` is
+//!   NaN, never a hit). 100,000 incoherent rays 130.5 M to 126.8 M instructions, the
+//!   profile example's coherent packets 37.6 M to 36.3 M. The three runs before these
+//!   two changes had the incoherent rays at 0.93x, 0.94x and 0.95x of
+//!   `rtcIntersect1`; the three after, above, at 0.98x to 1.02x.
+//!
+//! The round before changed the traversals and kept the hierarchy, the hits and the
+//! images bit for bit:
 //!
 //! - **AVX box tests.** Callgrind, which models the caches, put 100,000 of the
 //!   incoherent rays at the same first-level cache misses as `rtcIntersect1` (22.3
@@ -173,17 +204,22 @@
 //!   0.19 to 0.21 s in the kernel, one-thread builds 2% to 3% faster by the fastest
 //!   runs. (`viewray render` uses mimalloc, which already reused the items' pages.)
 //!
-//! Targets and where they stand, 1 thread: coherent packets at 1.10x to 1.12x of
-//! `rtcIntersect16` (met); incoherent rays at 0.92x to 1.01x of `rtcIntersect1` (met in
-//! one run of three; short by up to 8%); the build at 0.68x to 0.95x of Embree's time
-//! (short by 5% to 32%; ahead on 2 threads, 1.13x to 1.43x); memory 53.9 bytes per
-//! triangle (met). What is left of the incoherent gap is still instructions (1,305
-//! against Embree's 836 per ray, which on this machine runs AVX-512 kernels): about
-//! 100 per node visit (the box test is 30 of them; the rest the hit children's
-//! prefetches, sorting and stack) and 280 per leaf (the watertight triangle test, four
-//! triangles a time). Measured and left out: the leaves' triangle tests compiled for
-//! AVX too (1.1% fewer instructions); prefetching fewer lines of a child node (no
-//! change beyond the noise).
+//! Targets and where they stand, 1 thread: coherent packets at 1.06x to 1.14x of
+//! `rtcIntersect16` (met); the build at 1.09x to 1.75x of Embree's speed (met; 1.22x
+//! to 1.41x on 2 threads); memory 53.9 bytes per triangle (met); incoherent rays at
+//! 0.98x to 1.02x of `rtcIntersect1` (even: met in two runs of three, 2% short in the
+//! third). What is left of the incoherent gap is instructions (about 1,270 against
+//! Embree's 836 per ray, which on this machine runs AVX-512 kernels) around waiting on
+//! memory: about 100 per node visit (the box test is 30 of them; the rest the hit
+//! children's prefetches, sorting and stack) and about 260 per leaf (a call with its
+//! saved registers, the ray's set-up once, the watertight test of four triangles
+//! at a time). perf of a million of them puts two thirds of the leaf tests' time on the
+//! first load of a leaf's triangles and a third of the traversal's on the first load
+//! of a node: prefetched as the ray reaches the parent, too late for the child it
+//! enters next. Measured and left out: the leaves' triangle tests compiled for AVX too
+//! (1.1% fewer instructions); prefetching fewer lines of a child node (no change beyond
+//! the noise); prefetching the children nearest first, after sorting them (1M rays
+//! 0.537 s against 0.528 s, medians of five alternated runs).
 //!
 //! **Huge pages.** A mesh's build items (32 bytes a triangle), nodes and triangle
 //! packets (40 bytes a triangle) are tens of megabytes each; filled page by page at 4
@@ -205,8 +241,9 @@
 //! huge pages, made the steady builds slower (0.29 to 0.31 s) and the bench's no
 //! steadier, so every large buffer asks.
 //!
-//! Where the build stands, at 0.68x to 0.95x of Embree on 1 thread this round (0.71x to
-//! 0.86x the round before; ahead on 2 threads): perf of the 1-thread build puts about a
+//! Where the build stands: ahead of Embree on 1 thread (1.09x to 1.75x) and on 2 (1.22x
+//! to 1.41x). The rounds before measured 0.68x to 0.95x on 1 thread against an Embree
+//! that, unknown to the bench, built on two (above). perf of the 1-thread build puts about a
 //! quarter of its time on binning (three bins' boxes and counts updated per item and
 //! axis), a quarter on choosing splits (the small ranges' binning and the sweeps: a
 //! build sees half a million ranges of at most 32 items) and a sixth on the partition
@@ -214,12 +251,16 @@
 //! allocator, up to a third of the whole on the kernel zeroing fresh pages (before the
 //! packets reused the items' memory). The tree is the same as Embree's kind
 //! (binned SAH, 32 bins, eight children), and every item is visited about twenty times
-//! over the levels; what is left is per-visit work, where Embree runs code compiled for
-//! the machine's widest instruction set (its kernels are built once per instruction set
-//! and chosen at run time; viewray's are SSE2). Measured and left out this round: a
-//! branch-free block partition (swapping only misplaced items, BlockQuicksort-style: no
-//! faster), and the sweep's counts as one integer vector per bin (no measurable
-//! change).
+//! over the levels; the time goes to that per-visit work (Embree's kernels are compiled
+//! once per instruction set and chosen at run time; viewray's builder is SSE2, and
+//! faster on one thread all the same). Measured and left out: a branch-free
+//! block partition (swapping only misplaced items, BlockQuicksort-style: no faster);
+//! reusing the split a small child's second look chose when the child is opened (the
+//! same split; only 0.3% of the instructions, and a larger range record cost more);
+//! transposing all the bins before the sweep instead of each side's extents in it (15%
+//! more instructions: the stores of the transposed bins); the builder compiled for AVX2
+//! (10% fewer instructions but 15% to 25% slower: a 32-byte load of an item just
+//! written as two 16-byte halves cannot be forwarded, and the partition waits on it).
 //!
 //! The packets trace a leaf's triangles one ray at a time against four triangles per
 //! SSE instruction, where Embree's 16-wide kernel tests sixteen rays at once; they came
@@ -244,10 +285,12 @@
 //! instruction counts: `examples/profile.rs` is a fixed workload for callgrind (see its
 //! doc). On its 81,920-triangle icosphere (6 subdivisions) the tracing of the 65,536
 //! primary rays in packets of 64 (`--toggle-collect='*closest_triangles*'`) executes
-//! 37.6 M instructions where the processor has AVX (callgrind's does; 48.8 M with the
-//! SSE box tests the round before, 49.6 M at its start). Its `build` workload (the
-//! icosphere generated once, then built five times) executes 990 M instructions for the
-//! whole program on one thread (1,187 M before the build changes of the round before;
+//! 36.3 M instructions where the processor has AVX (callgrind's does; 37.6 M before the
+//! latest round's watertight set-up and sign test, 48.8 M with the SSE box tests
+//! before the AVX ones, 49.6 M before that round). Its `build` workload (the
+//! icosphere generated once, then built five times) executes 926 M instructions for the
+//! whole program on one thread (990 M before the latest round's sweep; 1,187 M before
+//! the build changes of the round before that;
 //! 1,151 M before the partition lost its branches: more instructions, less time;
 //! 1,179 M before a split's bounds were folded after the partition, 1,849 M before
 //! the builder's rewrite); at 8 subdivisions (1.3 M triangles) it runs in 2.29 s on 1
@@ -315,7 +358,16 @@
 //!   `render --stats` 0.060 to 0.067 s on 1 thread. What is left
 //!   is the camera's `f64` arithmetic (two divisions a ray), the block's bookkeeping
 //!   (clearing the tile's sums alone writes as many bytes as the image) and Flat
-//!   shading, about 140 instructions a ray together.
+//!   shading, about 140 instructions a ray together. The latest round put a block's rays,
+//!   pixel indices and hits in fixed slots written by index (each push had stored the
+//!   vector's length back to memory and loaded it again, the ray's stores being possible
+//!   aliases of it) and kept only each ray's pixel index (the row and column follow from
+//!   the tile where a film point asks): the render's own instructions outside the
+//!   tracing 95.9 M to 83.6 M for the million rays (the whole tile loop 649.7 M to
+//!   637.4 M). At the round's start the example put the render at 1.12x the bare tracing
+//!   by the fastest runs on 1 thread (1.13x by the medians, 1.14x on 2 threads); after
+//!   the change the machine was too noisy to tell (ratios of one binary from 0.87x to
+//!   1.54x between alternated runs).
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
 //!   1`, 16 objects on a ground plane) executed about 1,760 instructions per sample
 //!   (405.8 M, the render loop alone) at the start of the latest round of work on it and
