@@ -364,10 +364,14 @@
 //!   aliases of it) and kept only each ray's pixel index (the row and column follow from
 //!   the tile where a film point asks): the render's own instructions outside the
 //!   tracing 95.9 M to 83.6 M for the million rays (the whole tile loop 649.7 M to
-//!   637.4 M). At the round's start the example put the render at 1.12x the bare tracing
-//!   by the fastest runs on 1 thread (1.13x by the medians, 1.14x on 2 threads); after
-//!   the change the machine was too noisy to tell (ratios of one binary from 0.87x to
-//!   1.54x between alternated runs).
+//!   637.4 M). In five alternated runs of the example against a binary from the round's
+//!   start, the render took 1.086x to 1.107x the bare tracing's time by the fastest runs
+//!   on 1 thread (middle run 1.097x) against 1.104x to 1.126x (1.116x); by the medians
+//!   1.07x to 1.14x (one run at 1.46x) against 1.11x to 1.13x. With the round's faster
+//!   leaf set-up, which speeds the bare tracing as much as the render, four more
+//!   alternated runs: 1.098x to 1.127x on 1 thread and 1.111x to 1.129x on 2 (the
+//!   round's start: 1.104x to 1.113x and 1.100x to 1.139x). The render stands at the 10%
+//!   line, not clearly inside it.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
 //!   1`, 16 objects on a ground plane) executed about 1,760 instructions per sample
 //!   (405.8 M, the render loop alone) at the start of the latest round of work on it and
