@@ -317,9 +317,7 @@ impl<'a> Contender<'a> {
             }),
         }
     }
-}
 
-impl<'a> Contender<'a> {
     /// Times `trace` on `pool`.
     fn traced(
         pool: &'a rayon::ThreadPool,
@@ -462,9 +460,7 @@ fn main() {
     let mesh = Mesh::new(data.clone()).expect("the icosphere is valid");
     let obvhs_input = obvhs_triangles(&data);
     let peer = Obvhs::build(&obvhs_input);
-    // On one thread: this device lives through the build cases, and Embree builds on
-    // the most threads any live device asked for (see `Embree::build`), so a device of
-    // all threads would put the one-thread build on all of them.
+    // On one thread: it lives through the build cases (see `Embree::build`).
     #[cfg(feature = "embree")]
     let embree = Embree::build(&data, 1);
     let primary = primary_rays(1024, 1024);

@@ -503,10 +503,6 @@ impl Bvh {
     /// Builds from prepared items (boxes with their indices); used by meshes, which
     /// compute the boxes of their triangles themselves.
     pub(crate) fn build_from(items: &mut [BuildItem], params: BuildParams) -> Self {
-        let params = BuildParams {
-            max_leaf_items: params.max_leaf_items.clamp(1, MAX_LEAF),
-            ..params
-        };
         if items.is_empty() {
             return Self::default();
         }
@@ -1250,6 +1246,8 @@ struct Builder {
 }
 
 impl Builder {
+    /// A builder for `params`, brought into range: leaves of 1 to [`MAX_LEAF`] items
+    /// (a leaf's ref has room for no more), blocks of 1 to 2^27 items.
     fn new(params: BuildParams) -> Self {
         // No range holds more than `MAX_ITEMS` (2^27) items, so a larger block counts
         // as one block, as a block of that size does; `n + block_size - 1` then stays
@@ -1258,6 +1256,7 @@ impl Builder {
         Self {
             params: BuildParams {
                 block_size: size,
+                max_leaf_items: params.max_leaf_items.clamp(1, MAX_LEAF),
                 ..params
             },
             block_shift: size.is_power_of_two().then(|| size.trailing_zeros()),
@@ -1611,8 +1610,8 @@ mod tests {
 
         /// The three axes swept side by side choose what a sweep axis by axis chooses,
         /// with the same cost to the bit, for 8 and 32 bins and blocks of 1, 3, 4, 8 and
-        /// 2^31 items (more than a range holds); the boxes lie on a coarse grid so that bins are often empty, costs
-        /// often tie and an axis often has no extent.
+        /// 2^31 items (more than a range holds); the boxes lie on a coarse grid so that
+        /// bins are often empty, costs often tie and an axis often has no extent.
         #[test]
         fn the_sweep_of_three_axes_is_the_sweep_axis_by_axis(
             boxes in prop::collection::vec(
