@@ -222,7 +222,14 @@
 //! 0.537 s against 0.528 s, medians of five alternated runs); the leaf test inlined
 //! into the traversal (tried with a nightly compiler's `#[inline(always)]` on the
 //! closure: 4.8% fewer instructions, but 0.559 s against 0.537 s, medians of six
-//! alternated runs, with sixteen copies of the leaf test in the traversals).
+//! alternated runs, with sixteen copies of the leaf test in the traversals); a hit
+//! child's prefetch without a branch on its kind (the address chosen between node and
+//! leaf, six lines either way: five alternated runs within 3% both ways); the SAH's
+//! node cost raised from 1 to 2 blocks, with leaves of up to 8 or 12 triangles (the
+//! same hits; 51.0 and 50.0 bytes a triangle instead of 53.9, but 1M incoherent rays
+//! at 0.515 and 0.513 s against 0.516 s and coherent packets at 0.0501 and 0.0502 s
+//! against 0.0506 s, medians of six alternated runs: no speed to show for a different
+//! hierarchy).
 //!
 //! **Huge pages.** A mesh's build items (32 bytes a triangle), nodes and triangle
 //! packets (40 bytes a triangle) are tens of megabytes each; filled page by page at 4
@@ -375,6 +382,27 @@
 //!   alternated runs: 1.098x to 1.127x on 1 thread and 1.111x to 1.129x on 2 (the
 //!   round's start: 1.104x to 1.113x and 1.100x to 1.139x). The render stands at the 10%
 //!   line, not clearly inside it.
+//!
+//!   The latest round made the example's figure steadier (the render on the bare
+//!   loop's pool, as `viewray render` uses rayon's global one, timed up to the finished
+//!   image as `--stats` times it, 21 runs, and the median of each render's ratio to the
+//!   bare run just before it: the middle half of those ratios now spans about 2%), put
+//!   a block's rays, pixel indices and hits in arrays of 64 (the render's own
+//!   instructions 70.9 M to 62.4 M per million rays at 6 subdivisions; each ray's
+//!   write compares against a constant instead of a slice's length) and takes the
+//!   image from a zeroed allocation (its pages arrive zeroed and are first touched by
+//!   the tiles' copies on every thread, not filled by one thread first). Paired ratios
+//!   before: 1.101x, 1.098x, 1.101x on 1 thread, 1.128x, 1.111x, 1.105x on 2; after:
+//!   1.095x, 1.091x, 1.066x and 1.116x, 1.108x, 1.107x; three more runs on the final
+//!   code: 1.101x, 1.116x, 1.076x and 1.106x, 1.120x, 1.104x. Taking each part out in
+//!   turn (wrong images, timing only; 1.091x to 1.120x with every part, in the same
+//!   runs) shows where the tenth goes on 1 thread: Flat shading and the sums 3% to 5%
+//!   (1.057x and 1.068x without them), generating the rays 2% to 5% (generating them
+//!   twice: 1.138x), and writing the 12 MB image, whose fresh pages the kernel zeroes
+//!   as they are first touched, 1% to 5% (1.040x to 1.086x without the tiles' copies). Generation is about 20 instructions a ray (two `f64`
+//!   sums and the rounding to `f32` for a ray stored whole); the image is the render's
+//!   output. The render stays at the 10% line: 1.07x to 1.12x on 1 thread, 1.10x to
+//!   1.12x on 2.
 //! - **The default scene, Lit** (`viewray render --size 320x180 --samples 4 --threads
 //!   1`, 16 objects on a ground plane) executed about 1,760 instructions per sample
 //!   (405.8 M, the render loop alone) at the start of the latest round of work on it and
