@@ -208,7 +208,12 @@
 //! `rtcIntersect16` (met); the build at 1.09x to 1.75x of Embree's speed (met; 1.22x
 //! to 1.41x on 2 threads); memory 53.9 bytes per triangle (met); incoherent rays at
 //! 0.98x to 1.02x of `rtcIntersect1` (even: met in two runs of three, 2% short in the
-//! third). What is left of the incoherent gap is instructions (about 1,270 against
+//! third). Three more runs a round later, with the tracing unchanged: build 1.92x,
+//! 1.76x, 1.58x (2 threads 1.35x, 1.37x, 1.45x); coherent packets 0.97x, 1.10x, 1.13x
+//! (the 0.97x in a slow spell over viewray's runs: 16.1 to 19.3 Mrays/s against 20.4
+//! to 20.6 in the other two); incoherent 1.01x, 0.94x, 1.00x (the 0.94x with viewray's
+//! runs at 1.56 to 1.80 Mrays/s). Over the six runs the incoherent rays stand at even,
+//! 0.94x to 1.02x, median 1.00x. What is left of the incoherent gap is instructions (about 1,270 against
 //! Embree's 836 per ray, which on this machine runs AVX-512 kernels) around waiting on
 //! memory: about 100 per node visit (the box test is 30 of them; the rest the hit
 //! children's prefetches, sorting and stack) and about 260 per leaf (a call with its
