@@ -9,7 +9,9 @@
 //! speed to theirs (above 1: viewray is faster). Each figure is the median of
 //! `VIEWRAY_BENCH_RUNS` runs (default 5) after a warm-up run, with the spread (slowest
 //! to fastest) beside it. A case's contenders take turns, one run each per round, so
-//! that a slow spell of a shared machine weighs on all of them alike.
+//! that a slow spell of a shared machine weighs on all of them alike; the ratio is
+//! given both ways, of the medians and as the median of each round's ratio (runs
+//! moments apart, so a spell over one round moves both of its runs).
 //!
 //! viewray traces coherent rays with `Mesh::closest_triangles`, 64 at a time (the
 //! primary rays in tiles of 8 x 8 pixels, as the renderer does), and single rays with
@@ -281,12 +283,14 @@ fn parallel(rays: &[Ray], chunk: usize, trace: impl Fn(&[Ray]) -> f32 + Sync) ->
     rays.par_chunks(chunk).map(&trace).sum()
 }
 
-/// Seconds per run: the median, fastest and slowest of a benchmark's runs.
-#[derive(Clone, Copy, Debug)]
+/// Seconds per run: the median, fastest and slowest of a benchmark's runs, and every
+/// run in its round's order.
+#[derive(Clone, Debug)]
 struct Timing {
     median: f64,
     min: f64,
     max: f64,
+    rounds: Vec<f64>,
 }
 
 /// One way of running a case: who runs it, how, and one run that reports its own
@@ -351,12 +355,14 @@ fn race(table: &mut Table, case: &str, mut contenders: Vec<Contender<'_>>) {
             seconds.push((contender.run)());
         }
     }
-    for (contender, mut seconds) in contenders.into_iter().zip(seconds) {
+    for (contender, rounds) in contenders.into_iter().zip(seconds) {
+        let mut seconds = rounds.clone();
         seconds.sort_by(f64::total_cmp);
         let timing = Timing {
             median: seconds[seconds.len() / 2],
             min: seconds[0],
             max: seconds[seconds.len() - 1],
+            rounds,
         };
         table.add(case, contender.who, contender.how, timing);
     }
@@ -392,13 +398,16 @@ impl Table {
 
     /// Prints every line with its figure (seconds for builds, Mrays/s for tracing), the
     /// spread of its runs, and the ratio of viewray's speed to the peer's (above 1:
-    /// viewray is faster).
+    /// viewray is faster): of the two medians, and the median of each round's ratio
+    /// (the peer's run against viewray's in the same round, moments apart: the steadier
+    /// of the two when the machine has slow spells).
     fn print(&self, rays_of: impl Fn(&str) -> Option<usize>) {
         println!();
         println!("ratio: viewray's speed over the peer's (above 1.00x: viewray is faster)");
+        println!("paired: the median of each round's ratio");
         println!(
-            "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6}",
-            "case", "who", "how", "median", "spread", "ratio"
+            "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6} {:>6}",
+            "case", "who", "how", "median", "spread", "ratio", "paired"
         );
         let mut ours: Option<&Line> = None;
         for line in &self.lines {
@@ -420,20 +429,29 @@ impl Table {
                     line.timing.max,
                 ),
             };
-            let ratio = match ours {
+            let (ratio, paired) = match ours {
                 Some(ours) if line.who != "viewray" && ours.case == line.case => {
-                    format!("{:.2}x", line.timing.median / ours.timing.median)
+                    let mut rounds: Vec<f64> = (line.timing.rounds.iter())
+                        .zip(&ours.timing.rounds)
+                        .map(|(theirs, ours)| theirs / ours)
+                        .collect();
+                    rounds.sort_by(f64::total_cmp);
+                    (
+                        format!("{:.2}x", line.timing.median / ours.timing.median),
+                        format!("{:.2}x", rounds[rounds.len() / 2]),
+                    )
                 }
-                _ => String::new(),
+                _ => (String::new(), String::new()),
             };
             println!(
-                "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6}",
+                "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6} {:>6}",
                 line.case,
                 line.who,
                 line.how,
                 figure,
                 format!("{low:.2}-{high:.2}"),
-                ratio
+                ratio,
+                paired
             );
         }
     }
