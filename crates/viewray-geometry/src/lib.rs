@@ -213,7 +213,21 @@
 //! (the 0.97x in a slow spell over viewray's runs: 16.1 to 19.3 Mrays/s against 20.4
 //! to 20.6 in the other two); incoherent 1.01x, 0.94x, 1.00x (the 0.94x with viewray's
 //! runs at 1.56 to 1.80 Mrays/s). Over the six runs the incoherent rays stand at even,
-//! 0.94x to 1.02x, median 1.00x. What is left of the incoherent gap is instructions (about 1,270 against
+//! 0.94x to 1.02x, median 1.00x.
+//!
+//! These standings hold for the benchmark's 1.3M triangles, whose 70 MB are twice the
+//! development machine's 32 MB L3: there both libraries wait on memory. On meshes that
+//! fit in the caches the instructions show, and Embree's kernels (AVX-512 on this
+//! machine, fused multiply-adds) lead: at 6 subdivisions (81,920 triangles) coherent
+//! packets 0.83x of `rtcIntersect16` and incoherent rays 0.83x of `rtcIntersect1`; at
+//! 5 (20,480) 0.69x and 0.84x (one run each of `VIEWRAY_BENCH_SUBDIVISIONS=6` and
+//! `=5`). The leaf tests are most of the difference for packets (232 of the 420
+//! instructions a coherent ray costs at 5 subdivisions): each lane's ray meets four
+//! triangles per instruction, where Embree's 16-wide kernel meets one triangle with
+//! sixteen rays. viewray's box and triangle tests stay without fused multiply-adds, so
+//! that the baseline and AVX paths give the same bits and a scene renders the same on
+//! every machine. Prefetching still pays at that size (1M incoherent rays at 5
+//! subdivisions 0.19 s against 0.20 s without it, at 6 0.25 s against 0.27 to 0.33 s). What is left of the incoherent gap is instructions (about 1,270 against
 //! Embree's 836 per ray, which on this machine runs AVX-512 kernels) around waiting on
 //! memory: about 100 per node visit (the box test is 30 of them; the rest the hit
 //! children's prefetches, sorting and stack) and about 260 per leaf (a call with its
