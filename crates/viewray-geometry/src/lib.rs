@@ -227,7 +227,19 @@
 //! sixteen rays. viewray's box and triangle tests stay without fused multiply-adds, so
 //! that the baseline and AVX paths give the same bits and a scene renders the same on
 //! every machine. Prefetching still pays at that size (1M incoherent rays at 5
-//! subdivisions 0.19 s against 0.20 s without it, at 6 0.25 s against 0.27 to 0.33 s). What is left of the incoherent gap is instructions (about 1,270 against
+//! subdivisions 0.19 s against 0.20 s without it, at 6 0.25 s against 0.27 to 0.33 s).
+//! At 5 subdivisions a packet reaches a leaf with 12.6 of its rays on average (at 8,
+//! with 1.2: there the leaves are tested ray by ray whatever the kernel). Measured and
+//! left out: a ray-parallel leaf test for packets, one triangle against eight rays
+//! sharing their watertight axes per AVX instruction, the same operations and the same
+//! choice within a packet as the four-triangle test (the same checksums): about 108
+//! instructions a triangle for eight rays against about 24 a ray and triangle, but
+//! gathering the rays' numbers into eight lanes and the call's set-up ate the gain.
+//! Compacting the lanes that share their axes, the 65,536 coherent rays of the
+//! profile example at 5 subdivisions took 26.7 M instructions against 27.5 M (-3%);
+//! testing fixed groups of eight lanes in place, whose numbers lie side by side,
+//! 28.5 M, and 52.4 M against 50.6 M at 7. A kernel of its own for packets would have
+//! to keep their rays in that layout from the start, as Embree's 16-wide one does. What is left of the incoherent gap is instructions (about 1,270 against
 //! Embree's 836 per ray, which on this machine runs AVX-512 kernels) around waiting on
 //! memory: about 100 per node visit (the box test is 30 of them; the rest the hit
 //! children's prefetches, sorting and stack) and about 260 per leaf (a call with its
