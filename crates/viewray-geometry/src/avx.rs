@@ -231,15 +231,13 @@ fn interval<const OCTANT: u8>(
     axis: usize,
     far: bool,
 ) -> __m256 {
-    // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
-    // reads.
-    let plane = unsafe { _mm256_loadu_ps(planes[plane_index::<OCTANT>(axis, far)].as_ptr()) };
-    let origin = if far {
-        packet.bound_origin_far[axis]
-    } else {
-        packet.bound_origin_near[axis]
-    };
-    let d = _mm256_sub_ps(plane, origin);
+    let d = from_origin::<OCTANT>(
+        planes,
+        axis,
+        far,
+        &packet.bound_origin_near,
+        &packet.bound_origin_far,
+    );
     let (low, high) = (
         _mm256_mul_ps(d, packet.inverse_min[axis]),
         _mm256_mul_ps(d, packet.inverse_max[axis]),
@@ -261,15 +259,31 @@ fn distances<const OCTANT: u8>(
     axis: usize,
     far: bool,
 ) -> __m256 {
+    let d = from_origin::<OCTANT>(planes, axis, far, &ray.origin_near, &ray.origin_far);
+    _mm256_mul_ps(d, ray.inverse[axis])
+}
+
+/// `plane - origin` for the eight boxes' near (or, with `far`, far) planes on `axis`,
+/// the origin moved for that plane (`origin_near` or `origin_far`): what the single
+/// ray's distances and the packet's intervals both start from.
+#[target_feature(enable = "avx")]
+#[inline]
+fn from_origin<const OCTANT: u8>(
+    planes: &[[f32; WIDTH]; 6],
+    axis: usize,
+    far: bool,
+    origin_near: &[__m256; 3],
+    origin_far: &[__m256; 3],
+) -> __m256 {
     // SAFETY: a row of `planes` is eight f32, exactly what an unaligned 256-bit load
     // reads.
     let plane = unsafe { _mm256_loadu_ps(planes[plane_index::<OCTANT>(axis, far)].as_ptr()) };
     let origin = if far {
-        ray.origin_far[axis]
+        origin_far[axis]
     } else {
-        ray.origin_near[axis]
+        origin_near[axis]
     };
-    _mm256_mul_ps(_mm256_sub_ps(plane, origin), ray.inverse[axis])
+    _mm256_sub_ps(plane, origin)
 }
 
 #[cfg(test)]
