@@ -4,22 +4,25 @@
 //!
 //! `cargo bench -p viewray-geometry --features bench` prints the memory per triangle of
 //! both structures, a check that they find the same hits, then one table: each case
-//! (build; coherent primary rays; primary and incoherent rays ray by ray; on 1 thread
-//! and on all) with viewray's line first, then its peers' with the ratio of viewray's
-//! speed to theirs (above 1: viewray is faster). Each figure is the median of
-//! `VIEWRAY_BENCH_RUNS` runs (default 5) after a warm-up run, with the spread (slowest
-//! to fastest) beside it. A case's contenders take turns, one run each per round, so
-//! that a slow spell of a shared machine weighs on all of them alike; the ratio is
-//! given both ways, of the medians and as the median of each round's ratio (runs
-//! moments apart, so a spell over one round moves both of its runs).
+//! (build; coherent primary rays; primary and incoherent rays ray by ray; incoherent
+//! rays in batches; on 1 thread and on all) with viewray's line first, then its peers'
+//! with the ratio of viewray's speed to theirs (above 1: viewray is faster). Each
+//! figure is the median of `VIEWRAY_BENCH_RUNS` runs (default 5) after a warm-up run,
+//! with the spread (slowest to fastest) beside it. A case's contenders take turns, one
+//! run each per round, so that a slow spell of a shared machine weighs on all of them
+//! alike; the ratio is given both ways, of the medians and as the median of each
+//! round's ratio (runs moments apart, so a spell over one round moves both of its runs).
 //!
 //! viewray traces coherent rays with `Mesh::closest_triangles`, 64 at a time (the
 //! primary rays in tiles of 8 x 8 pixels, as the renderer does), and single rays with
-//! `Mesh::closest_triangle` (t and face, as the peers report them). With `--features
-//! embree` (needs the system's Embree 3, e.g. Debian's `libembree-dev`) Embree traces
-//! the coherent rays with its packet kernels, `rtcIntersect16` on tiles of 4 x 4 pixels
-//! and `rtcIntersect8` on 4 x 2, in a coherent context, and single rays with
-//! `rtcIntersect1`. Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a smaller icosphere
+//! `Mesh::closest_triangle` (t and face, as the peers report them); the incoherent rays
+//! also 64 at a time with `Mesh::closest_triangles`, which walks a large mesh's
+//! incoherent packets ray by ray, several rays side by side. With `--features embree`
+//! (needs the system's Embree 3, e.g. Debian's `libembree-dev`) Embree traces the
+//! coherent rays with its packet kernels, `rtcIntersect16` on tiles of 4 x 4 pixels and
+//! `rtcIntersect8` on 4 x 2, in a coherent context, single rays with `rtcIntersect1`,
+//! and the incoherent batches with both `rtcIntersect1` and `rtcIntersect16` (in an
+//! incoherent context). Set `VIEWRAY_BENCH_SUBDIVISIONS` to bench a smaller icosphere
 //! (default 8: 20 * 4^8 triangles).
 
 use std::hint::black_box;
@@ -214,9 +217,14 @@ impl Embree {
         sum
     }
 
-    /// The same 16 at a time (`rtcIntersect16`): `rays` holds tiles of 4 x 4 pixels.
-    fn trace_16(&self, rays: &[Ray]) -> f32 {
-        let mut context = embree3::IntersectContext::coherent();
+    /// The same 16 at a time (`rtcIntersect16`), in a coherent context when `rays`
+    /// holds tiles of 4 x 4 pixels, else in an incoherent one.
+    fn trace_16(&self, rays: &[Ray], coherent: bool) -> f32 {
+        let mut context = if coherent {
+            embree3::IntersectContext::coherent()
+        } else {
+            embree3::IntersectContext::incoherent()
+        };
         let valid = embree3::ValidMaskN::<16>::all_active();
         let mut sum = 0.0;
         for tile in rays.chunks_exact(16) {
@@ -584,7 +592,7 @@ fn main() {
             contenders.push(traced(
                 "embree",
                 "rtcIntersect16 (4 x 4)",
-                Box::new(|| parallel(&primary_4x4, 1024, |r| embree.trace_16(r))),
+                Box::new(|| parallel(&primary_4x4, 1024, |r| embree.trace_16(r, true))),
             ));
             contenders.push(traced(
                 "embree",
@@ -620,6 +628,32 @@ fn main() {
                 contenders,
             );
         }
+        // Incoherent rays handed over many at a time: viewray walks each packet's rays
+        // side by side; Embree's packet kernel, beside its single-ray one.
+        #[cfg_attr(not(feature = "embree"), allow(unused_mut))]
+        let mut contenders = vec![traced(
+            "viewray",
+            "closest_triangles, 64 at a time",
+            Box::new(|| parallel(&incoherent, 1024, |r| trace_viewray_packets(&mesh, r))),
+        )];
+        #[cfg(feature = "embree")]
+        {
+            contenders.push(traced(
+                "embree",
+                "rtcIntersect1",
+                Box::new(|| parallel(&incoherent, 1024, |r| embree.trace_single(r))),
+            ));
+            contenders.push(traced(
+                "embree",
+                "rtcIntersect16, incoherent",
+                Box::new(|| parallel(&incoherent, 1024, |r| embree.trace_16(r, false))),
+            ));
+        }
+        race(
+            &mut table,
+            &format!("incoherent, batches, {label}"),
+            contenders,
+        );
     }
     table.print(|case| {
         if case.starts_with("primary") {

@@ -446,12 +446,15 @@ mod tests {
                 Ray::new(eye, Vec3::new(x, y, -1.0))
             })
             .collect();
-        for rays in [&primary, &rays] {
+        // The random rays also walked side by side (see `Bvh::walks_pay`).
+        for (rays, walk) in [(&primary, false), (&rays, false), (&rays, true)] {
             let trace = |baseline: bool| {
                 BASELINE_ONLY.set(baseline);
+                crate::bvh::WALK_ALWAYS.set(walk);
                 let mut hits = vec![None; rays.len()];
                 mesh.closest_triangles(rays, 0.0..f32::INFINITY, &mut hits);
                 BASELINE_ONLY.set(false);
+                crate::bvh::WALK_ALWAYS.set(false);
                 hits.iter()
                     .map(|hit| hit.map(|h| (h.t.to_bits(), h.primitive)))
                     .collect::<Vec<_>>()

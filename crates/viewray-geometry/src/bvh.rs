@@ -150,7 +150,7 @@ pub(crate) struct Stack {
 }
 
 impl Stack {
-    const EMPTY: Self = Self {
+    pub(crate) const EMPTY: Self = Self {
         refs: [0; STACK_ROOM],
         t: [0.0; STACK_ROOM],
     };
@@ -191,6 +191,44 @@ pub(crate) fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
             f(&mut fresh)
         }
         (None, None) => unreachable!("the stack closure runs at most once"),
+    }
+}
+
+/// How many rays walk the tree side by side in an incoherent packet.
+pub(crate) const WALKS: usize = 8;
+/// The fewest nodes for which an incoherent packet's rays walk side by side: 2 MiB of
+/// nodes, twice a core's L2 cache on common processors. Below it most of a walk's loads
+/// hit the caches, and taking turns only adds work. 1M incoherent rays on 1 thread, in
+/// packets of 64, side by side against one after another: 0.30 s against 0.23 s on a
+/// 20k-triangle icosphere (938 nodes), 0.29 s against 0.27 s on 82k (4,660 nodes);
+/// 0.30-0.32 s against 0.39-0.43 s on 330k (24,936 nodes), 0.33-0.36 s against
+/// 0.47-0.51 s on 1.3M (53,038 nodes).
+const WALK_NODES: usize = 8192;
+
+thread_local! {
+    /// The stacks of walks side by side.
+    static WALK_STACKS: RefCell<[Stack; WALKS]> = const { RefCell::new([Stack::EMPTY; WALKS]) };
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests set this to walk incoherent packets side by side in trees of any size.
+    pub(crate) static WALK_ALWAYS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with this thread's [`WALKS`] stacks for walks side by side (fresh ones if a
+/// callback nests another such walk).
+#[inline(always)]
+pub(crate) fn with_walk_stacks<R>(f: impl FnOnce(&mut [Stack; WALKS]) -> R) -> R {
+    let mut f = Some(f);
+    let done = WALK_STACKS.with(|cell| {
+        let mut stacks = cell.try_borrow_mut().ok()?;
+        f.take().map(|f| f(&mut stacks))
+    });
+    match (done, f) {
+        (Some(result), _) => result,
+        (None, Some(f)) => f(&mut Box::new([Stack::EMPTY; WALKS])),
+        (None, None) => unreachable!("the stacks closure runs at most once"),
     }
 }
 
@@ -339,6 +377,26 @@ pub(crate) fn plane_distances(
 #[inline(always)]
 pub(crate) fn per_axis<T>(f: impl Fn(usize) -> T) -> [T; 3] {
     [f(0), f(1), f(2)]
+}
+
+/// Where a ray's closest-hit walk stands (see [`Bvh::closest_step`]): the subtree it
+/// visits next, how many entries of its stack are pending, and its closest hit so far.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Walk {
+    pub(crate) current: u32,
+    pub(crate) sp: usize,
+    pub(crate) t_max: f32,
+}
+
+impl Walk {
+    /// A walk that starts at `start` (a node index or a leaf ref) with nothing pending.
+    pub(crate) const fn new(start: u32, t_max: f32) -> Self {
+        Self {
+            current: start,
+            sp: 0,
+            t_max,
+        }
+    }
 }
 
 /// A single ray's test against a node's eight boxes: [`BoxRay`] with SSE, the x86-64
@@ -536,6 +594,16 @@ impl Bvh {
         self.nodes.len()
     }
 
+    /// Whether an incoherent packet's rays walk this tree side by side (see
+    /// [`WALK_NODES`]) rather than one after another.
+    pub(crate) fn walks_pay(&self) -> bool {
+        #[cfg(test)]
+        if WALK_ALWAYS.get() {
+            return !self.nodes.is_empty();
+        }
+        self.nodes.len() >= WALK_NODES
+    }
+
     /// The memory held by the nodes and the item order, in bytes.
     pub fn memory_bytes(&self) -> usize {
         self.nodes.len() * std::mem::size_of::<Node>() + self.item_order.len() * 4
@@ -679,7 +747,7 @@ impl Bvh {
         &self,
         traversal: &mut RayTraversal<'_, R, L, P>,
         start: u32,
-        mut t_max: f32,
+        t_max: f32,
         stack: &mut Stack,
     ) -> f32
     where
@@ -693,90 +761,117 @@ impl Bvh {
             leaf,
             prefetch_leaf,
         } = traversal;
+        let mut walk = Walk::new(start, t_max);
+        while self.closest_step::<OCTANT, _, _, _>(
+            *ray,
+            *t_min,
+            &mut walk,
+            stack,
+            leaf,
+            prefetch_leaf,
+        ) {}
+        walk.t_max
+    }
+
+    /// One step of [`Bvh::closest_with_stack`]: visits `walk.current`, then chooses
+    /// what to visit next. Returns false once the walk is over.
+    #[inline(always)]
+    pub(crate) fn closest_step<const OCTANT: u8, R, L, P>(
+        &self,
+        ray: &R,
+        t_min: f32,
+        walk: &mut Walk,
+        stack: &mut Stack,
+        leaf: &mut L,
+        prefetch_leaf: &P,
+    ) -> bool
+    where
+        R: ChildBoxes,
+        L: FnMut(u32, u32, f32) -> f32,
+        P: Fn(u32, u32),
+    {
         let Stack {
             refs: stack_refs,
             t: stack_t,
         } = stack;
-        let mut sp = 0usize;
-        let mut current = start;
-        loop {
-            if current & LEAF != 0 {
-                let (start, count) = decode_leaf(current);
-                t_max = leaf(start, count, t_max);
-            } else {
-                let node = &self.nodes[current as usize];
-                let (mask, t_near) = ray.hit_children::<OCTANT>(node, *t_min, t_max);
-                if mask != 0 {
-                    let mut bits = mask;
-                    while bits != 0 {
-                        let child = node.children[bits.trailing_zeros() as usize];
-                        bits &= bits - 1;
-                        if child & LEAF == 0 {
-                            prefetch(&self.nodes, child as usize, [0, 64, 128, 192]);
-                        } else {
-                            let (start, count) = decode_leaf(child);
-                            prefetch_leaf(start, count);
-                        }
+        let current = walk.current;
+        if current & LEAF != 0 {
+            let (start, count) = decode_leaf(current);
+            walk.t_max = leaf(start, count, walk.t_max);
+        } else {
+            let node = &self.nodes[current as usize];
+            let (mask, t_near) = ray.hit_children::<OCTANT>(node, t_min, walk.t_max);
+            if mask != 0 {
+                let mut bits = mask;
+                while bits != 0 {
+                    let child = node.children[bits.trailing_zeros() as usize];
+                    bits &= bits - 1;
+                    if child & LEAF == 0 {
+                        prefetch(&self.nodes, child as usize, [0, 64, 128, 192]);
+                    } else {
+                        let (start, count) = decode_leaf(child);
+                        prefetch_leaf(start, count);
                     }
-                    if mask.count_ones() == 1 {
-                        current = node.children[mask.trailing_zeros() as usize];
-                        continue;
-                    }
-                    if mask.count_ones() == 2 {
-                        // What the sort below does with two children (on a tie the
-                        // later slot comes first), without its loops.
-                        let (a, b) = (
-                            mask.trailing_zeros() as usize,
-                            (mask & (mask - 1)).trailing_zeros() as usize,
-                        );
-                        let (near, far) = if t_near[a] < t_near[b] {
-                            (a, b)
-                        } else {
-                            (b, a)
-                        };
-                        stack_refs[sp] = node.children[far];
-                        stack_t[sp] = t_near[far];
-                        sp += 1;
-                        current = node.children[near];
-                        continue;
-                    }
-                    // Sort the hit children far to near, push all but the nearest and
-                    // descend into it.
-                    let mut refs = [0u32; WIDTH];
-                    let mut dists = [0f32; WIDTH];
-                    let mut k = 0;
-                    let mut bits = mask;
-                    while bits != 0 {
-                        let slot = bits.trailing_zeros() as usize;
-                        bits &= bits - 1;
-                        let (child, dist) = (node.children[slot], t_near[slot]);
-                        let mut j = k;
-                        while j > 0 && dists[j - 1] < dist {
-                            refs[j] = refs[j - 1];
-                            dists[j] = dists[j - 1];
-                            j -= 1;
-                        }
-                        refs[j] = child;
-                        dists[j] = dist;
-                        k += 1;
-                    }
-                    stack_refs[sp..sp + WIDTH].copy_from_slice(&refs);
-                    stack_t[sp..sp + WIDTH].copy_from_slice(&dists);
-                    sp += k - 1;
-                    current = refs[k - 1];
-                    continue;
                 }
+                if mask.count_ones() == 1 {
+                    walk.current = node.children[mask.trailing_zeros() as usize];
+                    return true;
+                }
+                if mask.count_ones() == 2 {
+                    // What the sort below does with two children (on a tie the later
+                    // slot comes first), without its loops.
+                    let (a, b) = (
+                        mask.trailing_zeros() as usize,
+                        (mask & (mask - 1)).trailing_zeros() as usize,
+                    );
+                    let (near, far) = if t_near[a] < t_near[b] {
+                        (a, b)
+                    } else {
+                        (b, a)
+                    };
+                    stack_refs[walk.sp] = node.children[far];
+                    stack_t[walk.sp] = t_near[far];
+                    walk.sp += 1;
+                    walk.current = node.children[near];
+                    return true;
+                }
+                // Sort the hit children far to near, push all but the nearest and
+                // descend into it.
+                let mut refs = [0u32; WIDTH];
+                let mut dists = [0f32; WIDTH];
+                let mut k = 0;
+                let mut bits = mask;
+                while bits != 0 {
+                    let slot = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let (child, dist) = (node.children[slot], t_near[slot]);
+                    let mut j = k;
+                    while j > 0 && dists[j - 1] < dist {
+                        refs[j] = refs[j - 1];
+                        dists[j] = dists[j - 1];
+                        j -= 1;
+                    }
+                    refs[j] = child;
+                    dists[j] = dist;
+                    k += 1;
+                }
+                let sp = walk.sp;
+                stack_refs[sp..sp + WIDTH].copy_from_slice(&refs);
+                stack_t[sp..sp + WIDTH].copy_from_slice(&dists);
+                walk.sp += k - 1;
+                walk.current = refs[k - 1];
+                return true;
             }
-            // Pop the nearest pending subtree that can still hold a closer hit.
-            loop {
-                if sp == 0 {
-                    return t_max;
-                }
-                sp -= 1;
-                if stack_t[sp] <= t_max {
-                    current = stack_refs[sp];
-                    break;
-                }
+        }
+        // Pop the nearest pending subtree that can still hold a closer hit.
+        loop {
+            if walk.sp == 0 {
+                return false;
+            }
+            walk.sp -= 1;
+            if stack_t[walk.sp] <= walk.t_max {
+                walk.current = stack_refs[walk.sp];
+                return true;
             }
         }
     }
@@ -1976,6 +2071,24 @@ mod tests {
 
     /// A range large enough to be built in parallel gives the same hierarchy, node for
     /// node, on one thread (where it is built serially) and on three.
+    /// A walk side by side inside another (a callback's) gets stacks of its own.
+    #[test]
+    fn nested_walks_side_by_side_get_stacks_of_their_own() {
+        let outer_inner = with_walk_stacks(|outer| {
+            outer[0].refs[0] = 1;
+            let inner = with_walk_stacks(|inner| {
+                inner[0].refs[0] = 2;
+                std::ptr::from_ref(&inner[0]) as usize
+            });
+            assert_eq!(outer[0].refs[0], 1);
+            (std::ptr::from_ref(&outer[0]) as usize, inner)
+        });
+        assert_ne!(outer_inner.0, outer_inner.1);
+        // Once the outer one is done, its stacks are free again.
+        let again = with_walk_stacks(|stacks| std::ptr::from_ref(&stacks[0]) as usize);
+        assert_eq!(again, outer_inner.0);
+    }
+
     #[test]
     fn the_hierarchy_is_the_same_on_one_thread_and_on_three() {
         let mut bits = xorshift(0x2545_f491);

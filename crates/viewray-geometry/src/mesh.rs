@@ -478,6 +478,11 @@ impl Mesh {
         &self.data
     }
 
+    #[cfg(test)]
+    pub(crate) fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
     /// The number of triangles intersected: the faces less the zero-area ones.
     pub fn triangle_count(&self) -> usize {
         self.triangle_count
@@ -703,7 +708,9 @@ impl Mesh {
     /// `hits`: the same hits as [`Mesh::closest_triangle`] ray by ray, found faster
     /// when the rays are coherent (neighbouring pixels' viewing rays, in blocks of up to
     /// 64 such as 8 x 8 pixels), because each block is traced as a packet through the
-    /// upper levels of the BVH.
+    /// upper levels of the BVH. Incoherent rays (origins and directions all over) gain
+    /// too on meshes too large for the caches (from about 150k triangles): their walks
+    /// down the BVH take turns, so that their waits for memory overlap.
     ///
     /// # Panics
     ///

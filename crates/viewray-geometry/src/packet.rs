@@ -10,6 +10,10 @@
 //! traversal. Every packet test is conservative with respect to the single-ray one, and
 //! each ray's own tests are exactly the single-ray arithmetic, so a packet finds the
 //! same hits as its rays traced alone.
+//!
+//! An incoherent packet (directions spread too far for a shared test) is traced ray by
+//! ray; in a tree too large for the caches its rays walk side by side, taking turns one
+//! node each, so that their waits for memory overlap.
 
 use std::cell::RefCell;
 
@@ -18,8 +22,8 @@ use glam::{BVec4A, Vec4};
 use crate::Ray;
 use crate::bvh::{
     BoxRay, Bvh, ChildBoxes, GROUPS, LEAF, Node, RayTraversal, STACK_ROOM, STACK_SIZE, Stack,
-    WIDTH, decode_leaf, node_planes, per_axis, plane_distances, plane_index, prefetch,
-    slab_numbers, slab_test, with_stack,
+    WALKS, WIDTH, Walk, decode_leaf, node_planes, per_axis, plane_distances, plane_index, prefetch,
+    slab_numbers, slab_test, with_stack, with_walk_stacks,
 };
 use crate::hit::RawHit;
 
@@ -33,7 +37,8 @@ pub(crate) type Lanes = [Vec4; PACKET_GROUPS];
 
 /// The largest spread of a packet's unit directions (on any axis) for which it is
 /// traversed as a packet. Beyond it the packet's bounds grow so loose that it would
-/// visit many nodes none of its rays needs, and its rays are traced one by one.
+/// visit many nodes none of its rays needs, and its rays are traced one by one (or side
+/// by side, see [`Bvh::closest_walks`]).
 const MAX_DIRECTION_SPREAD: f32 = 0.05;
 
 /// When the packet enters this many children of a node or more, they are small next to
@@ -654,15 +659,45 @@ macro_rules! closest_packet_octants {
                 })
             };
         }
-        match $boxes.packet().octant {
-            0 => octant!(0),
-            1 => octant!(1),
-            2 => octant!(2),
-            3 => octant!(3),
-            4 => octant!(4),
-            5 => octant!(5),
-            6 => octant!(6),
-            _ => octant!(7),
+        macro_rules! walks {
+            ($octant:literal) => {
+                // The stacks are taken here, as in `octant!`: in a closure of
+                // `closest_walks`, the box tests were no longer inlined.
+                with_walk_stacks(|stacks| {
+                    $bvh.closest_walks::<$octant, _, _, _>(
+                        $boxes,
+                        $t_min,
+                        $visitor,
+                        $prefetch_leaf,
+                        $lanes,
+                        $t_max,
+                        stacks,
+                    )
+                })
+            };
+        }
+        if $boxes.packet().coherent || !$bvh.walks_pay() {
+            match $boxes.packet().octant {
+                0 => octant!(0),
+                1 => octant!(1),
+                2 => octant!(2),
+                3 => octant!(3),
+                4 => octant!(4),
+                5 => octant!(5),
+                6 => octant!(6),
+                _ => octant!(7),
+            }
+        } else {
+            match $boxes.packet().octant {
+                0 => walks!(0),
+                1 => walks!(1),
+                2 => walks!(2),
+                3 => walks!(3),
+                4 => walks!(4),
+                5 => walks!(5),
+                6 => walks!(6),
+                _ => walks!(7),
+            }
         }
     }};
 }
@@ -822,6 +857,69 @@ impl Bvh {
                 if rays != 0 {
                     self.single_rays::<OCTANT, B, V, P>(traversal, child, rays, t_max);
                     t_max_all = max_lane(t_max, lanes);
+                }
+            }
+        }
+    }
+
+    /// The closest hits of an incoherent packet's rays (see [`MAX_DIRECTION_SPREAD`]):
+    /// each ray walks the whole tree on its own, as [`Bvh::closest`] does, but
+    /// [`WALKS`] of them take turns, one node or leaf each, so that while one waits for
+    /// the node it goes to next (whose loading its previous step started), the others
+    /// work. One ray's walk waits for memory at every level of a tree larger than the
+    /// caches; several walks side by side keep several loads in flight.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn closest_walks<const OCTANT: u8, B: PacketBoxes, V: PacketVisitor, P: Fn(u32, u32)>(
+        &self,
+        boxes: &B,
+        t_min: f32,
+        visitor: &mut V,
+        prefetch_leaf: P,
+        lanes: u64,
+        t_max: &mut Lanes,
+        stacks: &mut [Stack; WALKS],
+    ) {
+        // Each slot's lane and walk; `active` has a bit per slot with a walk under way,
+        // `pending` one per lane still to start.
+        let mut slot_lane = [0usize; WALKS];
+        let mut walks = [Walk::new(0, 0.0); WALKS];
+        let mut active = 0u32;
+        let mut pending = lanes;
+        for (k, (slot, walk)) in slot_lane.iter_mut().zip(&mut walks).enumerate() {
+            if pending == 0 {
+                break;
+            }
+            let i = pending.trailing_zeros() as usize;
+            pending &= pending - 1;
+            *slot = i;
+            *walk = Walk::new(0, lane(t_max, i));
+            active |= 1 << k;
+        }
+        while active != 0 {
+            let mut bits = active;
+            while bits != 0 {
+                let k = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let i = slot_lane[k];
+                let more = self.closest_step::<OCTANT, _, _, _>(
+                    &boxes.lane_ray(i),
+                    t_min,
+                    &mut walks[k],
+                    &mut stacks[k],
+                    &mut |start, count, t_max| visitor.leaf(i, start, count, t_max),
+                    &prefetch_leaf,
+                );
+                if !more {
+                    set_lane(t_max, i, walks[k].t_max);
+                    if pending == 0 {
+                        active &= !(1 << k);
+                    } else {
+                        let next = pending.trailing_zeros() as usize;
+                        pending &= pending - 1;
+                        slot_lane[k] = next;
+                        walks[k] = Walk::new(0, lane(t_max, next));
+                    }
                 }
             }
         }

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 
 use crate::{
     Aabb, BuildParams, Bvh, GeometryError, Hit, Instance, Mesh, MeshData, Object, ObjectHit, Plane,
-    Ray, Sphere, Triangle, World,
+    Ray, Sphere, Triangle, TriangleHit, World,
 };
 
 fn vec3(range: std::ops::Range<f32>) -> impl Strategy<Value = Vec3> {
@@ -345,6 +345,62 @@ proptest! {
             check_world_packet(&world, rays, 0.5..2.0);
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+
+    /// Incoherent packets walked side by side (which only trees of thousands of nodes
+    /// do by themselves) find the hits of their rays traced alone: each walk is a single
+    /// ray's, whichever walks it takes turns with.
+    #[test]
+    fn packets_walked_side_by_side_find_the_hits_of_single_rays(data in soup(), objects in prop::collection::vec(object(), 1..30), packets in prop::collection::vec(packet(), 4)) {
+        crate::bvh::WALK_ALWAYS.set(true);
+        let mesh = Mesh::new(data).unwrap();
+        let world = World::new(objects).unwrap();
+        for rays in &packets {
+            check_mesh_packet(&mesh, rays, 0.0..f32::INFINITY);
+            check_mesh_packet(&mesh, rays, 0.5..2.0);
+            check_world_packet(&world, rays, 0.0..f32::INFINITY);
+        }
+    }
+}
+
+/// A mesh large enough to walk its incoherent packets side by side does so by itself,
+/// and finds the hits of the rays traced alone, to the bit: random rays from inside
+/// and around a 330k-triangle icosphere (of radius 1, in a cube of side 2), 64 at a
+/// time.
+#[test]
+fn a_large_mesh_walks_incoherent_packets_side_by_side() {
+    let mesh = Mesh::icosphere(7, 1.0);
+    assert!(mesh.bvh().walks_pay(), "{} nodes", mesh.bvh().node_count());
+    assert!(!Mesh::icosphere(5, 1.0).bvh().walks_pay());
+    let mut random = splitmix(7);
+    let rays: Vec<Ray> = (0..4096)
+        .map(|_| {
+            let origin = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+            let direction = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+            Ray::new(origin, direction)
+        })
+        .collect();
+    let mut hits = vec![None; rays.len()];
+    mesh.closest_triangles(&rays, 0.0..f32::INFINITY, &mut hits);
+    let key = |h: TriangleHit| {
+        (
+            h.t.to_bits(),
+            h.primitive,
+            h.barycentric.to_array().map(f32::to_bits),
+        )
+    };
+    let alone: Vec<_> = rays
+        .iter()
+        .map(|ray| mesh.closest_triangle(ray, 0.0..f32::INFINITY).map(key))
+        .collect();
+    assert!(alone.iter().flatten().count() > 2000);
+    assert_eq!(
+        hits.into_iter().map(|h| h.map(key)).collect::<Vec<_>>(),
+        alone
+    );
 }
 
 /// A surface mesh's packets fit in the room its build items' buffer keeps for them, and
