@@ -413,8 +413,9 @@ impl Table {
         println!();
         println!("ratio: viewray's speed over the peer's (above 1.00x: viewray is faster)");
         println!("paired: the median of each round's ratio");
+        let how = self.lines.iter().map(|line| line.how.len()).max().unwrap_or(0);
         println!(
-            "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6} {:>6}",
+            "{:<34} {:<8} {:<how$} {:>14} {:>12} {:>6} {:>6}",
             "case", "who", "how", "median", "spread", "ratio", "paired"
         );
         let mut ours: Option<&Line> = None;
@@ -452,7 +453,7 @@ impl Table {
                 _ => (String::new(), String::new()),
             };
             println!(
-                "{:<34} {:<8} {:<24} {:>14} {:>12} {:>6} {:>6}",
+                "{:<34} {:<8} {:<how$} {:>14} {:>12} {:>6} {:>6}",
                 line.case,
                 line.who,
                 line.how,
