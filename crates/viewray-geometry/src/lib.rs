@@ -215,6 +215,47 @@
 //! runs at 1.56 to 1.80 Mrays/s). Over the six runs the incoherent rays stand at even,
 //! 0.94x to 1.02x, median 1.00x.
 //!
+//! **Incoherent rays side by side (the latest round).** A ray's walk through a tree
+//! larger than the caches waits on memory at every level, one load at a time: the next
+//! node is known only once the current one is tested. [`Mesh::closest_triangles`]
+//! (and [`World::closest_objects`] for a world whose one bounded object is a large
+//! mesh, or whose own tree is that large) now walks an incoherent packet's rays
+//! (directions too spread for the shared box test) eight at a time, taking turns one node or leaf
+//! each: the node a walk goes to next was prefetched by its step, and arrives while the
+//! other seven take theirs, so up to eight loads are in flight instead of one. Each walk
+//! is exactly a single ray's (the traversal loop is one step function, which the
+//! single-ray walk calls in a loop), so the hits are the same to the bit; tests compare
+//! them with single rays, on the AVX and SSE paths, with a switch that makes every tree
+//! walk side by side and on a 330k-triangle mesh that does so by itself. Taking turns
+//! costs instructions (a fifth more per ray) and the branch predictor's grip on each
+//! walk, so only trees of 8,192 nodes or more do it (see `WALK_NODES` in `bvh.rs`: 1M
+//! incoherent rays side by side against one after another, 1 thread: 0.30 s against
+//! 0.23 s at 20k triangles, 0.29 against 0.27 s at 82k, 0.30 to 0.32 s against 0.39 to
+//! 0.43 s at 330k, 0.33 to 0.36 s against 0.47 to 0.51 s at 1.3M). Four walks side by
+//! side took 0.42 s at 1.3M, sixteen the same as eight. Coherent packets keep handing
+//! their subtrees to single rays one after another: interleaving those cost them 3%.
+//! The bench's new case, the million incoherent rays handed over 64 at a time, four
+//! runs:
+//!
+//! | 1 thread unless stated | run 1 | run 2 | run 3 | run 4 |
+//! |---|---|---|---|---|
+//! | incoherent, 64 at a time, vs `rtcIntersect1` | 2.30 Mrays/s (1.30x) | 2.38 (1.27x) | 2.84 (1.41x) | 2.46 (1.31x) |
+//! | the same vs `rtcIntersect16` (incoherent context) | 1.26x | 1.25x | 1.38x | 1.26x |
+//! | the same, 2 threads, vs `rtcIntersect1` | 4.98 Mrays/s (1.26x) | 4.69 (1.31x) | 5.06 (1.23x) | 4.93 (1.29x) |
+//! | incoherent, ray by ray, vs `rtcIntersect1` | 1.78 Mrays/s (1.01x) | 1.76 (0.97x) | 1.97 (0.99x) | 2.02 (1.03x) |
+//! | coherent, packets of 64, vs `rtcIntersect16` | 20.58 Mrays/s (1.11x) | 17.30 (0.96x) | 17.13 (0.95x) | 20.34 (1.14x) |
+//! | build vs Embree | 0.422 s (1.42x) | 0.277 s (1.77x) | 0.390 s (1.29x) | 0.398 s (1.35x) |
+//! | build, 2 threads | 1.26x | 1.33x | 1.35x | 1.79x |
+//!
+//! Runs 2 and 3 ran back to back in a slow spell that took viewray's coherent packets
+//! to 17.1 to 17.3 Mrays/s and Embree's to 17.9 (scratch timings of the packets just
+//! after swung between 0.050 and 0.061 s a pass every minute or so, for the round's
+//! binary and the one before alike, whose callgrind instruction counts agree within
+//! 0.01%). Embree's 16-wide kernel, handed the same rays in an incoherent context,
+//! traces them at its single-ray speed (1.82 to 2.06 Mrays/s). Ray by ray, the
+//! incoherent rays stay even with `rtcIntersect1` (0.97x to 1.03x): one ray alone has
+//! nothing to take turns with.
+//!
 //! These standings hold for the benchmark's 1.3M triangles, whose 70 MB are twice the
 //! development machine's 32 MB L3: there both libraries wait on memory. On meshes that
 //! fit in the caches the instructions show, and Embree's kernels (AVX-512 on this
@@ -325,7 +366,9 @@
 //! Tracing two rays of one octant side by side, a step of each in turn so that one's
 //! wait overlaps the other's work (the same hits), was 20% slower (0.65 to 0.67 s
 //! against 0.52 to 0.54 s for the 1M rays, three runs): each step's mispredicted
-//! branches flush the other ray's work with its own. The rule for handing subtrees to
+//! branches flush the other ray's work with its own. Eight side by side, each step
+//! prefetching the next node of its walk, pay on trees beyond the caches (the latest
+//! round, above): enough loads in flight to outweigh the lost predictions. The rule for handing subtrees to
 //! single rays trades the benchmark against finer meshes: handing them over only where
 //! the packet enters all eight children would trace the 1.3M-triangle icosphere 6% to
 //! 7% faster but 5.2M and 21M triangles 6% to 40% slower (bare packet tracing at 1024 x
