@@ -413,7 +413,12 @@ impl Table {
         println!();
         println!("ratio: viewray's speed over the peer's (above 1.00x: viewray is faster)");
         println!("paired: the median of each round's ratio");
-        let how = self.lines.iter().map(|line| line.how.len()).max().unwrap_or(0);
+        let how = self
+            .lines
+            .iter()
+            .map(|line| line.how.len())
+            .max()
+            .unwrap_or(0);
         println!(
             "{:<34} {:<8} {:<how$} {:>14} {:>12} {:>6} {:>6}",
             "case", "who", "how", "median", "spread", "ratio", "paired"

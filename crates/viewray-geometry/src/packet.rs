@@ -676,28 +676,24 @@ macro_rules! closest_packet_octants {
                 })
             };
         }
+        macro_rules! by_octant {
+            ($traversal:ident) => {
+                match $boxes.packet().octant {
+                    0 => $traversal!(0),
+                    1 => $traversal!(1),
+                    2 => $traversal!(2),
+                    3 => $traversal!(3),
+                    4 => $traversal!(4),
+                    5 => $traversal!(5),
+                    6 => $traversal!(6),
+                    _ => $traversal!(7),
+                }
+            };
+        }
         if $boxes.packet().coherent || !$bvh.walks_pay() {
-            match $boxes.packet().octant {
-                0 => octant!(0),
-                1 => octant!(1),
-                2 => octant!(2),
-                3 => octant!(3),
-                4 => octant!(4),
-                5 => octant!(5),
-                6 => octant!(6),
-                _ => octant!(7),
-            }
+            by_octant!(octant)
         } else {
-            match $boxes.packet().octant {
-                0 => walks!(0),
-                1 => walks!(1),
-                2 => walks!(2),
-                3 => walks!(3),
-                4 => walks!(4),
-                5 => walks!(5),
-                6 => walks!(6),
-                _ => walks!(7),
-            }
+            by_octant!(walks)
         }
     }};
 }
