@@ -233,7 +233,10 @@
 //! 0.23 s at 20k triangles, 0.29 against 0.27 s at 82k, 0.30 to 0.32 s against 0.39 to
 //! 0.43 s at 330k, 0.33 to 0.36 s against 0.47 to 0.51 s at 1.3M). Four walks side by
 //! side took 0.42 s at 1.3M, sixteen the same as eight. Coherent packets keep handing
-//! their subtrees to single rays one after another: interleaving those cost them 3%.
+//! their subtrees to single rays one after another: walking those side by side too
+//! gained nothing (the million primary rays 0.0505 to 0.0516 s against 0.0504 to
+//! 0.0507 s, three alternated runs), since a packet's rays in one subtree share its
+//! nodes and the first ray's loads serve the others.
 //! The bench's new case, the million incoherent rays handed over 64 at a time, four
 //! runs:
 //!
