@@ -7,6 +7,7 @@
 //! [`Bounded`] and intersect the items of a leaf themselves, in a closure.
 
 use std::cell::RefCell;
+use std::thread::LocalKey;
 
 use glam::{IVec4, Mat3A, Vec3, Vec3A, Vec3Swizzles, Vec4};
 use rayon::prelude::*;
@@ -150,7 +151,7 @@ pub(crate) struct Stack {
 }
 
 impl Stack {
-    pub(crate) const EMPTY: Self = Self {
+    const EMPTY: Self = Self {
         refs: [0; STACK_ROOM],
         t: [0.0; STACK_ROOM],
     };
@@ -171,27 +172,37 @@ thread_local! {
     };
 }
 
-/// Runs `f` with a free traversal stack of this thread (a fresh one when callbacks
-/// nest traversals more than four deep).
+/// Runs `f` with a value of this thread's `pool` that no caller up the stack holds, or
+/// hands `f` back when callbacks nest deeper than the pool has values.
 #[inline(always)]
-pub(crate) fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
+fn with_free<T, const N: usize, R, F: FnOnce(&mut T) -> R>(
+    pool: &'static LocalKey<[RefCell<T>; N]>,
+    f: F,
+) -> Result<R, F> {
     let mut f = Some(f);
-    let done = STACKS.with(|stacks| {
-        for cell in stacks {
-            if let Ok(mut stack) = cell.try_borrow_mut() {
-                return f.take().map(|f| f(&mut stack));
+    let done = pool.with(|cells| {
+        for cell in cells {
+            if let Ok(mut value) = cell.try_borrow_mut() {
+                return f.take().map(|f| f(&mut value));
             }
         }
         None
     });
     match (done, f) {
-        (Some(result), _) => result,
-        (None, Some(f)) => {
-            let mut fresh = Stack::EMPTY;
-            f(&mut fresh)
-        }
-        (None, None) => unreachable!("the stack closure runs at most once"),
+        (Some(result), _) => Ok(result),
+        (None, Some(f)) => Err(f),
+        (None, None) => unreachable!("the closure runs at most once"),
     }
+}
+
+/// Runs `f` with a free traversal stack of this thread (a fresh one when callbacks
+/// nest traversals more than four deep).
+#[inline(always)]
+pub(crate) fn with_stack<R>(f: impl FnOnce(&mut Stack) -> R) -> R {
+    with_free(&STACKS, f).unwrap_or_else(|f| {
+        let mut fresh = Stack::EMPTY;
+        f(&mut fresh)
+    })
 }
 
 /// How many rays walk the tree side by side in an incoherent packet.
@@ -207,7 +218,8 @@ const WALK_NODES: usize = 8192;
 
 thread_local! {
     /// The stacks of walks side by side.
-    static WALK_STACKS: RefCell<[Stack; WALKS]> = const { RefCell::new([Stack::EMPTY; WALKS]) };
+    static WALK_STACKS: [RefCell<[Stack; WALKS]>; 1] =
+        const { [RefCell::new([Stack::EMPTY; WALKS])] };
 }
 
 #[cfg(test)]
@@ -220,16 +232,7 @@ thread_local! {
 /// callback nests another such walk).
 #[inline(always)]
 pub(crate) fn with_walk_stacks<R>(f: impl FnOnce(&mut [Stack; WALKS]) -> R) -> R {
-    let mut f = Some(f);
-    let done = WALK_STACKS.with(|cell| {
-        let mut stacks = cell.try_borrow_mut().ok()?;
-        f.take().map(|f| f(&mut stacks))
-    });
-    match (done, f) {
-        (Some(result), _) => result,
-        (None, Some(f)) => f(&mut Box::new([Stack::EMPTY; WALKS])),
-        (None, None) => unreachable!("the stacks closure runs at most once"),
-    }
+    with_free(&WALK_STACKS, f).unwrap_or_else(|f| f(&mut Box::new([Stack::EMPTY; WALKS])))
 }
 
 /// Asks the CPU to start loading the bytes at `offsets` from the start of
@@ -599,7 +602,7 @@ impl Bvh {
     pub(crate) fn walks_pay(&self) -> bool {
         #[cfg(test)]
         if WALK_ALWAYS.get() {
-            return !self.nodes.is_empty();
+            return true;
         }
         self.nodes.len() >= WALK_NODES
     }
@@ -2069,8 +2072,6 @@ mod tests {
         assert!(in_pool(3, 100 * PARALLEL_ITEMS));
     }
 
-    /// A range large enough to be built in parallel gives the same hierarchy, node for
-    /// node, on one thread (where it is built serially) and on three.
     /// A walk side by side inside another (a callback's) gets stacks of its own.
     #[test]
     fn nested_walks_side_by_side_get_stacks_of_their_own() {
@@ -2089,6 +2090,8 @@ mod tests {
         assert_eq!(again, outer_inner.0);
     }
 
+    /// A range large enough to be built in parallel gives the same hierarchy, node for
+    /// node, on one thread (where it is built serially) and on three.
     #[test]
     fn the_hierarchy_is_the_same_on_one_thread_and_on_three() {
         let mut bits = xorshift(0x2545_f491);

@@ -877,17 +877,19 @@ impl Bvh {
         stacks: &mut [Stack; WALKS],
     ) {
         // Each slot's lane and walk; `active` has a bit per slot with a walk under way,
-        // `pending` one per lane still to start.
+        // `pending` yields the lanes still to start.
         let mut slot_lane = [0usize; WALKS];
         let mut walks = [Walk::new(0, 0.0); WALKS];
         let mut active = 0u32;
-        let mut pending = lanes;
-        for (k, (slot, walk)) in slot_lane.iter_mut().zip(&mut walks).enumerate() {
-            if pending == 0 {
-                break;
-            }
-            let i = pending.trailing_zeros() as usize;
-            pending &= pending - 1;
+        let mut pending = lanes_of(lanes);
+        // The slots first: `zip` stops at the first that ends, and a lane taken from
+        // `pending` for a slot that does not exist would be lost.
+        for (k, ((slot, walk), i)) in slot_lane
+            .iter_mut()
+            .zip(&mut walks)
+            .zip(&mut pending)
+            .enumerate()
+        {
             *slot = i;
             *walk = Walk::new(0, lane(t_max, i));
             active |= 1 << k;
@@ -908,13 +910,12 @@ impl Bvh {
                 );
                 if !more {
                     set_lane(t_max, i, walks[k].t_max);
-                    if pending == 0 {
-                        active &= !(1 << k);
-                    } else {
-                        let next = pending.trailing_zeros() as usize;
-                        pending &= pending - 1;
-                        slot_lane[k] = next;
-                        walks[k] = Walk::new(0, lane(t_max, next));
+                    match pending.next() {
+                        Some(next) => {
+                            slot_lane[k] = next;
+                            walks[k] = Walk::new(0, lane(t_max, next));
+                        }
+                        None => active &= !(1 << k),
                     }
                 }
             }
