@@ -29,24 +29,20 @@ pub struct BrowserArgs {
 /// # Errors
 /// A missing tool that cannot be installed, a build that fails, or a failed check.
 pub fn browser(root: &Path, args: &BrowserArgs) -> Result<()> {
-    let target = root.join("target");
-    let work = target.join("browser");
+    let work = crate::target_dir(root)?.join("browser");
     let out = args.out.clone().unwrap_or_else(|| work.clone());
     std::fs::create_dir_all(&work).with_context(|| format!("cannot create {}", work.display()))?;
 
     ensure_system_packages()?;
     ensure_playwright(root, &work)?;
 
-    run(Command::new(cargo())
-        .args(["build", "--package", "viewray"])
-        .current_dir(root))?;
-    let viewray = target.join("debug").join("viewray");
+    let viewray = crate::build_executable(root, &["--package", "viewray"])?;
     let mut server = Server::start(&viewray)?;
     // Run from beside node_modules: an ES module finds its imports from where it is.
     let script = work.join("playground.mjs");
     std::fs::copy(root.join("xtask/browser/playground.mjs"), &script)
         .context("cannot copy the browser test script")?;
-    eprintln!("$ node target/browser/playground.mjs {}", server.url);
+    eprintln!("$ node {} {}", script.display(), server.url);
     let status = Command::new("node")
         .arg(&script)
         .arg(&server.url)
@@ -158,10 +154,6 @@ impl Drop for Server {
     fn drop(&mut self) {
         self.stop();
     }
-}
-
-fn cargo() -> String {
-    std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned())
 }
 
 /// Runs `command`, echoing it, and fails unless it succeeds.

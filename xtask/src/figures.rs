@@ -25,10 +25,10 @@ pub struct FiguresArgs {
 /// # Errors
 /// When the folder cannot be created or a file cannot be written.
 pub fn figures(root: &Path, args: &FiguresArgs) -> Result<()> {
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| root.join("target").join("figures"));
+    let out = match &args.out {
+        Some(out) => out.clone(),
+        None => crate::target_dir(root)?.join("figures"),
+    };
     lecture_figures(&out)?;
     animations(&out.join("animations"))
 }

@@ -442,7 +442,7 @@ pub fn write_failure_report(
             _ => None,
         })
         .collect();
-    let dir = root.join("target/golden");
+    let dir = crate::target_dir(root)?.join("golden");
     // A report shows this run only: clear the images a previous run left.
     if dir.exists() {
         std::fs::remove_dir_all(&dir)

@@ -43,10 +43,10 @@ const SCENE: &str = "\
 /// # Errors
 /// When a file cannot be written.
 pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| root.join("target").join("icosphere"));
+    let out = match &args.out {
+        Some(out) => out.clone(),
+        None => crate::target_dir(root)?.join("icosphere"),
+    };
     let mesh = MeshData::icosphere(SUBDIVISIONS, 1.0);
     let obj = out.join("icosphere.obj");
     crate::write_atomically(&obj, obj_text(&mesh).as_bytes())?;
@@ -55,7 +55,7 @@ pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
     eprintln!(
         "wrote {} ({} triangles) and {}\n\
          measure the renderer on it with\n  \
-         cargo run --release -p viewray -- render {} -o target/icosphere.png --stats --threads 1",
+         cargo run --release -p viewray -- render {} -o icosphere.png --stats --threads 1",
         obj.display(),
         mesh.triangles.len(),
         scene.display(),

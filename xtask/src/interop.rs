@@ -96,7 +96,7 @@ impl Worst {
 /// When a tool cannot be installed or run, or any error is above 1e-5.
 pub fn interop(root: &Path, args: &InteropArgs) -> Result<()> {
     let started = Instant::now();
-    let interop = root.join("target/interop");
+    let interop = crate::target_dir(root)?.join("interop");
     let paths = Paths {
         root: root.to_path_buf(),
         python: interop.join("venv/bin/python"),
@@ -107,7 +107,8 @@ pub fn interop(root: &Path, args: &InteropArgs) -> Result<()> {
     install(&paths)?;
     let installed = started.elapsed();
     if paths.work.exists() {
-        std::fs::remove_dir_all(&paths.work).context("cannot clear target/interop/work")?;
+        std::fs::remove_dir_all(&paths.work)
+            .with_context(|| format!("cannot clear {}", paths.work.display()))?;
     }
     std::fs::create_dir_all(&paths.work)?;
     let cases: Vec<Case> = cases(root)?

@@ -26,7 +26,7 @@ enum Task {
     /// Render every scene in fixtures/scenes (and the default scene), every lecture
     /// figure and the first, middle and last frames of every built-in animation, and
     /// compare each with golden/{scenes,figures,animations}/<name>.png; a report of the
-    /// failures goes to target/golden/index.html.
+    /// failures goes to golden/index.html in the target directory.
     Golden(golden::GoldenArgs),
     /// Draw every lecture figure, pictures ray traced, as <name>.png and <name>.svg, and
     /// every built-in animation as animations/<demo>.gif.
@@ -34,19 +34,19 @@ enum Task {
     /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
     /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.
     Icosphere(icosphere::IcosphereArgs),
-    /// Install Mitsuba 3 and bpy (PyPI) and three.js (npm) under target/interop, export
+    /// Install Mitsuba 3 and bpy (PyPI) and three.js (npm) under the target directory (interop/), export
     /// every fixture scene and camera case to each tool, and check the tools' own rays
     /// and projections against viewray's, and each importer by round trips (1e-5
     /// relative).
     Interop(interop::InteropArgs),
     /// Drive the live playground (`viewray serve`) in headless Chromium: it loads with no
     /// console errors, renders, follows a slider, survives a reload, and shows a clicked
-    /// pixel's ray as `viewray rays` prints it; screenshots in target/browser/. Installs
-    /// Debian's chromium and playwright-core (into target/) when missing.
+    /// pixel's ray as `viewray rays` prints it; screenshots in browser/ in the target directory. Installs
+    /// Debian's chromium and playwright-core (into the target directory) when missing.
     Browser(browser::BrowserArgs),
     /// Mutation testing: run cargo-mutants on one crate (viewray-camera by default) with
     /// that crate's own tests, one job at a time, and print the mutants no test caught.
-    /// Installs cargo-mutants from crates.io when missing. Output in target/mutants/.
+    /// Installs cargo-mutants from crates.io when missing. Output in mutants/ in the target directory.
     Mutants(mutants::MutantsArgs),
 }
 

@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
+use crate::cargo;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
@@ -77,7 +78,7 @@ pub fn mutants(root: &Path, args: &MutantsArgs) -> Result<()> {
     if !source.join("Cargo.toml").is_file() {
         bail!("no crate {} under crates/", args.krate);
     }
-    let out = root.join("target/mutants").join(&args.krate);
+    let out = crate::target_dir(root)?.join("mutants").join(&args.krate);
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
 
     let mut command = Command::new(cargo());
@@ -288,10 +289,6 @@ fn git(root: &Path, args: &[&str]) -> Result<String> {
         );
     }
     String::from_utf8(output.stdout).context("git printed something that is not UTF-8")
-}
-
-fn cargo() -> String {
-    std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned())
 }
 
 #[cfg(test)]

@@ -1182,3 +1182,38 @@ fn sphere_uv_are_the_angles_of_the_normal() {
         );
     }
 }
+
+/// proptest's float `Range` samplers (f32 and f64) clamp a draw that overshoots the low
+/// end, then check it with a debug assertion that is wrong whenever |low| < |high|; the
+/// workspace turns proptest's debug assertions off (the root Cargo.toml) so that no
+/// randomized test in any crate can fail by chance. A range whose low end lies just below
+/// its high end's grid overshoots on about a quarter of its draws, so 400 draws from a
+/// fixed seed meet that assertion for certain while it is on.
+#[test]
+fn proptest_float_ranges_never_panic() {
+    use proptest::strategy::ValueTree as _;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[7; 32]),
+    );
+    let (low, high) = (1.0 - f32::EPSILON / 2.0, 1.0 + f32::EPSILON);
+    let (mut at_low, mut at_one) = (0, 0);
+    for _ in 0..400 {
+        let x = (low..high).new_tree(&mut runner).unwrap().current();
+        assert!((low..high).contains(&x), "{x} outside {low}..{high}");
+        at_low += usize::from(x == low);
+        at_one += usize::from(x == 1.0);
+    }
+    // The range holds two floats, and the draws reach both: the clamped low end too.
+    assert!(
+        at_low > 0 && at_one > 0,
+        "{at_low} at the low end, {at_one} at 1"
+    );
+    let (low, high) = (1.0 - f64::EPSILON / 2.0, 1.0 + f64::EPSILON);
+    for _ in 0..400 {
+        let x = (low..high).new_tree(&mut runner).unwrap().current();
+        assert!((low..high).contains(&x), "{x} outside {low}..{high}");
+    }
+}

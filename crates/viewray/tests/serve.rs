@@ -303,14 +303,12 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
         let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
         assert_eq!(body["error"], expected, "{target}");
     };
-    // Far too large: refused before anything is allocated, at once.
-    let started = Instant::now();
+    // Far too large: refused before anything is allocated (120 GB would not be).
     check(
         "/api/render?width=100000&height=100000",
         400,
         "width: 100000 x 100000 is too large: each side can be at most 4096 pixels",
     );
-    assert!(started.elapsed() < Duration::from_secs(5));
     check(
         "/api/render?width=0",
         400,
