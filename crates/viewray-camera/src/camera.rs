@@ -5,7 +5,7 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
-use crate::{CameraError, Frame, Projection, sample_unit_disk_concentric};
+use crate::{CameraError, Frame, Mistake, Mistakes, Projection, sample_unit_disk_concentric};
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///
@@ -68,6 +68,9 @@ pub struct Camera {
     height: u32,
     /// For a perspective camera, what all its world-space rays share (see [`Pinhole`]).
     pinhole: Option<Pinhole>,
+    /// The catalogue's mistakes this camera makes ([`Camera::with_mistakes`]); none for
+    /// every camera a scene describes.
+    mistakes: Mistakes,
 }
 
 /// The parts of a perspective camera's world-space rays that are the same for every
@@ -98,20 +101,95 @@ impl Camera {
         }
         crate::frame::check_finite_vector("eye", frame.e)?;
         projection.validate()?;
+        Ok(Self::from_parts(
+            frame,
+            projection,
+            width,
+            height,
+            Mistakes::NONE,
+        ))
+    }
+
+    /// A camera from checked parts, with the perspective shortcut where it applies.
+    fn from_parts(
+        frame: Frame,
+        projection: Projection,
+        width: u32,
+        height: u32,
+        mistakes: Mistakes,
+    ) -> Self {
         let pinhole = match projection {
-            Projection::Perspective(p) => Some(Pinhole {
+            Projection::Perspective(p) if !mistakes.moves_pixels() => Some(Pinhole {
                 origin: frame.world_from_camera_point(DVec3::ZERO),
                 depth: p.direction(DVec2::ZERO).z * frame.w,
             }),
             _ => None,
         };
-        Ok(Self {
+        Self {
             frame,
             projection,
             width,
             height,
             pinhole,
-        })
+            mistakes,
+        }
+    }
+
+    /// The camera a student wrote who made `mistakes` (entries of the lecture's
+    /// catalogue, see [`Mistake`]): its rays, frame and pictures are this camera's with
+    /// each mistaken formula in place of the right one. `up` is the up vector the frame
+    /// was built from, as given (`u-not-normalized` needs its length; the other basis
+    /// entries only its side).
+    ///
+    /// A mistaken camera generates rays (finite ones: the catalogue never divides by
+    /// zero where it fits) and reports its mistaken [`Camera::frame`] and
+    /// [`Camera::projection`] (with `distance-sign`, a perspective `d` below zero); it
+    /// does not [`Camera::project`]. Mistakes are made on top of the right camera:
+    /// calling this on a mistaken camera starts again from its mistaken parts.
+    ///
+    /// # Errors
+    /// [`CameraError::MistakeDoesNotFit`] for a mistake that cannot be made in this
+    /// family ([`Mistake::fits`]), or `size-minus-one` in an image one pixel wide or
+    /// high; [`CameraError::ZeroUp`] or [`CameraError::UpParallelToView`] for an `up`
+    /// that could not have made this frame.
+    pub fn with_mistakes(&self, mistakes: Mistakes, up: DVec3) -> Result<Self, CameraError> {
+        for mistake in mistakes.iter() {
+            let detail = if !mistake.fits(&self.projection) {
+                String::new()
+            } else if mistake == Mistake::SizeMinusOne && (self.width < 2 || self.height < 2) {
+                format!(" of {} x {} pixels", self.width, self.height)
+            } else {
+                continue;
+            };
+            return Err(CameraError::MistakeDoesNotFit {
+                id: mistake.id(),
+                family: self.projection.family_name(),
+                detail,
+            });
+        }
+        crate::frame::check_finite_vector("up", up)?;
+        if up == DVec3::ZERO {
+            return Err(CameraError::ZeroUp);
+        }
+        if up.cross(self.frame.w).length() <= 1e-9 * up.length() {
+            return Err(CameraError::UpParallelToView);
+        }
+        let right = [self.frame.e, self.frame.u, self.frame.v, self.frame.w];
+        let [e, u, v, w] = mistakes.frame(right, up);
+        let frame = Frame { e, u, v, w };
+        Ok(Self::from_parts(
+            frame,
+            mistakes.projection(self.projection),
+            self.width,
+            self.height,
+            mistakes,
+        ))
+    }
+
+    /// The catalogue's mistakes this camera makes: none unless it was made by
+    /// [`Camera::with_mistakes`].
+    pub fn mistakes(&self) -> Mistakes {
+        self.mistakes
     }
 
     /// The lecture's canonical camera: eye at the origin looking down `-z`, `d = 1`, a
@@ -133,7 +211,23 @@ impl Camera {
     /// # Errors
     /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
     pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
-        Self::new(self.frame, self.projection, width, height)
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage { width, height });
+        }
+        if self.mistakes.contains(Mistake::SizeMinusOne) && (width < 2 || height < 2) {
+            return Err(CameraError::MistakeDoesNotFit {
+                id: Mistake::SizeMinusOne.id(),
+                family: self.projection.family_name(),
+                detail: format!(" of {width} x {height} pixels"),
+            });
+        }
+        Ok(Self::from_parts(
+            self.frame,
+            self.projection,
+            width,
+            height,
+            self.mistakes,
+        ))
     }
 
     /// The camera's pose.
@@ -247,7 +341,15 @@ impl Camera {
         } else {
             DVec2::ZERO
         };
-        let ray = self.projection.camera_space_ray(image, self.size(), lens)?;
+        let image = if self.mistakes.moves_pixels() {
+            self.mistakes.image_point(image, self.size())
+        } else {
+            image
+        };
+        let mut ray = self.projection.camera_space_ray(image, self.size(), lens)?;
+        if self.mistakes.contains(Mistake::OrthoOriginFixed) {
+            ray.origin = DVec3::ZERO;
+        }
         Some(DRay::new(
             self.frame.world_from_camera_point(ray.origin),
             self.frame.world_from_camera_vector(ray.direction),
@@ -291,9 +393,13 @@ impl Camera {
     /// (col + ox, row + oy)` for every `t > 0` (through the lens centre for a thin lens).
     /// `None` where the point is not visible: behind a perspective eye or behind a
     /// parallel camera's image plane, at a panoramic camera's eye, or outside a
-    /// fisheye's field of view. Points beyond the image's edges still project (to
+    /// fisheye's field of view, and always for a camera with mistakes
+    /// ([`Camera::with_mistakes`]). Points beyond the image's edges still project (to
     /// coordinates outside `[0, W) x [0, H)`).
     pub fn project(&self, p: DVec3) -> Option<DVec2> {
+        if !self.mistakes.is_empty() {
+            return None;
+        }
         let q = self.frame.camera_from_world_point(p);
         self.projection.project_camera_space(q, self.size())
     }

@@ -49,4 +49,15 @@ pub enum CameraError {
         /// Rows.
         height: u32,
     },
+    /// A catalogue mistake that cannot be made in this camera (see
+    /// [`crate::Mistake::fits`]; `size-minus-one` also needs two pixels each way).
+    #[error("the mistake {id} cannot be made in a {family} camera{detail}")]
+    MistakeDoesNotFit {
+        /// The mistake's id.
+        id: &'static str,
+        /// The camera's family, as scene files spell it.
+        family: &'static str,
+        /// Why, when the family alone does not say: `" of 1 x 4 pixels"`.
+        detail: String,
+    },
 }
