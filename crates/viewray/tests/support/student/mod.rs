@@ -8,6 +8,7 @@
 //! - [`camera`]: the lecture's three steps (pixel to `u, v`; the frame `e, U, V, W`; each
 //!   family's ray) with the mistakes made at their step, and `project`;
 //! - [`mistakes`]: the [`Mistake`] enum, one variant per catalogue id;
+//! - [`scene`]: spheres, boxes, planes, lights, materials, and the scene as viewray's RON;
 //!
 //! Its own tests are in `tests/` beside this file, compiled only by
 //! `tests/student_tracer.rs` (so the other test binaries, which share this module, do not
@@ -18,10 +19,12 @@
 
 pub(crate) mod camera;
 pub(crate) mod mistakes;
+pub(crate) mod scene;
 pub(crate) mod vec3;
 
 pub(crate) use camera::{
     Aim, CameraSpec, Frame, Projection, Ray, frame, image_plane, project, ray,
 };
 pub(crate) use mistakes::Mistake;
+pub(crate) use scene::{Light, Material, Object, Scene, Shape, Specular};
 pub(crate) use vec3::Vec3;
