@@ -9,6 +9,8 @@
 //!   family's ray) with the mistakes made at their step, and `project`;
 //! - [`mistakes`]: the [`Mistake`] enum, one variant per catalogue id;
 //! - [`scene`]: spheres, boxes, planes, lights, materials, and the scene as viewray's RON;
+//! - [`render`]: the student's shading (Lambert, Phong, shadows, gamma choices) into a
+//!   [`Picture`], which [`picture`] writes as PPM, PGM or PNG;
 //!
 //! Its own tests are in `tests/` beside this file, compiled only by
 //! `tests/student_tracer.rs` (so the other test binaries, which share this module, do not
@@ -19,6 +21,8 @@
 
 pub(crate) mod camera;
 pub(crate) mod mistakes;
+pub(crate) mod picture;
+pub(crate) mod render;
 pub(crate) mod scene;
 pub(crate) mod vec3;
 
@@ -26,5 +30,7 @@ pub(crate) use camera::{
     Aim, CameraSpec, Frame, Projection, Ray, frame, image_plane, project, ray,
 };
 pub(crate) use mistakes::Mistake;
+pub(crate) use picture::{Format, Picture};
+pub(crate) use render::{Gamma, LightChange, RenderOptions, render};
 pub(crate) use scene::{Light, Material, Object, Scene, Shape, Specular};
 pub(crate) use vec3::Vec3;

@@ -2,6 +2,7 @@
 
 mod camera;
 mod mistakes;
+mod pictures;
 mod viewray;
 
 use crate::support::student::Vec3;
