@@ -11,6 +11,7 @@
 //! - [`scene`]: spheres, boxes, planes, lights, materials, and the scene as viewray's RON;
 //! - [`render`]: the student's shading (Lambert, Phong, shadows, gamma choices) into a
 //!   [`Picture`], which [`picture`] writes as PPM, PGM or PNG;
+//! - [`answers`]: frames, rays and projections printed in every spelling `check` reads.
 //!
 //! Its own tests are in `tests/` beside this file, compiled only by
 //! `tests/student_tracer.rs` (so the other test binaries, which share this module, do not
@@ -19,6 +20,7 @@
 // The re-exports are the map; each test binary uses a part of them.
 #![allow(unused_imports)]
 
+pub(crate) mod answers;
 pub(crate) mod camera;
 pub(crate) mod mistakes;
 pub(crate) mod picture;
@@ -26,6 +28,7 @@ pub(crate) mod render;
 pub(crate) mod scene;
 pub(crate) mod vec3;
 
+pub(crate) use answers::{Answer, AnswerStyle, Number, Syntax, write_answers};
 pub(crate) use camera::{
     Aim, CameraSpec, Frame, Projection, Ray, frame, image_plane, project, ray,
 };

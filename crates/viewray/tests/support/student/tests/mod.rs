@@ -1,5 +1,6 @@
 //! The student tracer's own tests (compiled only by `tests/student_tracer.rs`).
 
+mod answers;
 mod camera;
 mod mistakes;
 mod pictures;
