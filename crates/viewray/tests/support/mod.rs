@@ -94,3 +94,4 @@ fn bad_input(args: &[&str], out: Output) -> String {
 
 pub(crate) mod http;
 pub(crate) mod pictures;
+pub(crate) mod student;
