@@ -120,7 +120,11 @@ impl Camera {
     ) -> Self {
         let pinhole = match projection {
             Projection::Perspective(p) if !mistakes.moves_pixels() => Some(Pinhole {
-                origin: frame.world_from_camera_point(DVec3::ZERO),
+                origin: if mistakes.contains(Mistake::EyeMissing) {
+                    frame.world_from_camera_vector(DVec3::ZERO)
+                } else {
+                    frame.world_from_camera_point(DVec3::ZERO)
+                },
                 depth: p.direction(DVec2::ZERO).z * frame.w,
             }),
             _ => None,
@@ -142,7 +146,8 @@ impl Camera {
     /// entries only its side).
     ///
     /// A mistaken camera generates rays (finite ones: the catalogue never divides by
-    /// zero where it fits) and reports its mistaken [`Camera::frame`] and
+    /// zero where it fits) and reports its mistaken [`Camera::frame`] (the basis
+    /// entries; with `eye-missing` the frame keeps `e`, only the rays leave it out) and
     /// [`Camera::projection`] (with `distance-sign`, a perspective `d` below zero); it
     /// does not [`Camera::project`]. Mistakes are made on top of the right camera:
     /// calling this on a mistaken camera starts again from its mistaken parts.
@@ -350,8 +355,14 @@ impl Camera {
         if self.mistakes.contains(Mistake::OrthoOriginFixed) {
             ray.origin = DVec3::ZERO;
         }
+        let origin = if self.mistakes.contains(Mistake::EyeMissing) {
+            // The student's origin: 0 + u U + v V, without e.
+            self.frame.world_from_camera_vector(ray.origin)
+        } else {
+            self.frame.world_from_camera_point(ray.origin)
+        };
         Some(DRay::new(
-            self.frame.world_from_camera_point(ray.origin),
+            origin,
             self.frame.world_from_camera_vector(ray.direction),
         ))
     }

@@ -20,7 +20,8 @@
 //! (u, v)  =  ((x / W - 1/2) vw, -(y / H - 1/2) vh), vw and vh after viewport-missing
 //!            and viewport-swapped
 //! ray     =  the family's rule with d, (sx, sy), L, phi after the projection mistakes
-//! world   =  origin and direction through (e; U, V, W) after the basis mistakes
+//! world   =  origin and direction through (e; U, V, W) after the basis mistakes, the
+//!            origin without e after eye-missing
 //! ```
 
 use std::fmt;
@@ -505,13 +506,10 @@ impl Mistakes {
     /// The frame `(e; U, V, W)` the student's basis amounts to, from the right frame
     /// and the `up` vector as given; the right basis itself, to the bit, when no basis
     /// entry is in the set.
+    /// `eye-missing` is not a basis entry: the student's frame keeps `e = eye` (Problem
+    /// 2 done right) and only the rays leave it out.
     pub(crate) fn frame(self, right: [DVec3; 4], up: DVec3) -> [DVec3; 4] {
         let [e, right_u, right_v, w] = right;
-        let e = if self.contains(Mistake::EyeMissing) {
-            DVec3::ZERO
-        } else {
-            e
-        };
         if self.contains(Mistake::BasisMissing) {
             return [e, DVec3::X, DVec3::Y, DVec3::Z];
         }

@@ -298,6 +298,12 @@ fn a_mistaken_camera_reports_its_mistaken_frame_and_projection() {
     assert_eq!(mistaken.project(p), None);
     // No mistake: the same camera.
     assert_eq!(camera.with_mistakes(Mistakes::NONE, UP).unwrap(), camera);
+    // eye-missing leaves the rays' origin without e, not the frame: a student's
+    // Problem 2 answer keeps e = eye.
+    let no_eye = camera
+        .with_mistakes(Mistake::EyeMissing.into(), UP)
+        .unwrap();
+    assert_eq!(no_eye.frame(), camera.frame());
 }
 
 #[test]

@@ -98,12 +98,14 @@
 //! ```
 
 mod image;
+mod labels;
 mod lanes;
 mod render;
 mod sampling;
 mod shade;
 
 pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};
+pub use crate::labels::{BACKGROUND_LABEL, object_labels};
 pub use crate::render::{
     MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, View,
     render, render_view,
