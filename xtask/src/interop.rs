@@ -640,7 +640,7 @@ fn blender(
                             continue;
                         }
                         let seen = camera
-                            .project(camera.frame().e + d)
+                            .project(camera.frame().e() + d)
                             .map_or(Value::Null, |q| json!([q.x, q.y]));
                         cycles.add(image_error(centre, &seen, size), || {
                             format!("{} pixel ({row}, {col})", case.name)

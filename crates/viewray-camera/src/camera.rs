@@ -99,7 +99,6 @@ impl Camera {
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage { width, height });
         }
-        crate::frame::check_finite_vector("eye", frame.e)?;
         projection.validate()?;
         Ok(Self::from_parts(
             frame,
@@ -125,7 +124,7 @@ impl Camera {
                 } else {
                     frame.world_from_camera_point(DVec3::ZERO)
                 },
-                depth: p.direction(DVec2::ZERO).z * frame.w,
+                depth: p.direction(DVec2::ZERO).z * frame.w(),
             }),
             _ => None,
         };
@@ -141,9 +140,8 @@ impl Camera {
 
     /// The camera a student wrote who made `mistakes` (entries of the lecture's
     /// catalogue, see [`Mistake`]): its rays, frame and pictures are this camera's with
-    /// each mistaken formula in place of the right one. `up` is the up vector the frame
-    /// was built from, as given (`u-not-normalized` needs its length; the other basis
-    /// entries only its side).
+    /// each mistaken formula in place of the right one (`u-not-normalized` takes the
+    /// length of the frame's [`Frame::up`] as given).
     ///
     /// A mistaken camera generates rays (finite ones: the catalogue never divides by
     /// zero where it fits) and reports its mistaken [`Camera::frame`] (the basis
@@ -155,9 +153,8 @@ impl Camera {
     /// # Errors
     /// [`CameraError::MistakeDoesNotFit`] for a mistake that cannot be made in this
     /// family ([`Mistake::fits`]), or `size-minus-one` in an image one pixel wide or
-    /// high; [`CameraError::ZeroUp`] or [`CameraError::UpParallelToView`] for an `up`
-    /// that could not have made this frame.
-    pub fn with_mistakes(&self, mistakes: Mistakes, up: DVec3) -> Result<Self, CameraError> {
+    /// high.
+    pub fn with_mistakes(&self, mistakes: Mistakes) -> Result<Self, CameraError> {
         for mistake in mistakes.iter() {
             let detail = if !mistake.fits(&self.projection) {
                 String::new()
@@ -172,18 +169,10 @@ impl Camera {
                 detail,
             });
         }
-        crate::frame::check_finite_vector("up", up)?;
-        if up == DVec3::ZERO {
-            return Err(CameraError::ZeroUp);
-        }
-        if up.cross(self.frame.w).length() <= 1e-9 * up.length() {
-            return Err(CameraError::UpParallelToView);
-        }
-        let right = [self.frame.e, self.frame.u, self.frame.v, self.frame.w];
-        let [e, u, v, w] = mistakes.frame(right, up);
-        let frame = Frame { e, u, v, w };
+        let f = &self.frame;
+        let [e, u, v, w] = mistakes.frame([f.e(), f.u(), f.v(), f.w()], f.up());
         Ok(Self::from_parts(
-            frame,
+            Frame::from_parts(e, u, v, w, f.up()),
             mistakes.projection(self.projection),
             self.width,
             self.height,
@@ -319,11 +308,11 @@ impl Camera {
             let mut across = [DVec3::ZERO; MAX_COLUMNS];
             for (term, col) in across.iter_mut().zip(cols.clone()) {
                 let u = image_x_to_u(f64::from(col) + sample.p_film.x, size.x, p.viewport.x);
-                *term = (u + p.shift.x) * self.frame.u;
+                *term = (u + p.shift.x) * self.frame.u();
             }
             for row in rows {
                 let v = image_y_to_v(f64::from(row) + sample.p_film.y, size.y, p.viewport.y);
-                let down = (v + p.shift.y) * self.frame.v;
+                let down = (v + p.shift.y) * self.frame.v();
                 for (col, term) in cols.clone().zip(&across) {
                     let direction = *term + down + pinhole.depth;
                     ray(row, col, Some(DRay::new(pinhole.origin, direction)));

@@ -4,31 +4,82 @@ use glam::{DVec2, DVec3};
 
 use crate::CameraError;
 
-/// The camera's pose: the eye `e` and an orthonormal, right-handed basis `u`, `v`, `w`.
+/// The camera's pose: the eye `e` and an orthonormal, right-handed basis `u`, `v`, `w`,
+/// with the `up` vector it was built from.
 ///
 /// `u` points right in the image, `v` points up, `w` points back (the camera looks
 /// along `-w`). A point with camera coordinates `(a, b, c)` is the world point
 /// `e + a u + b v + c w`.
+///
+/// A `Frame` is only made by its constructors, which check their inputs: its fields are
+/// private, so every frame that exists is finite and orthonormal (but for the mistaken
+/// frames of the catalogue, see [`crate::Camera::with_mistakes`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
-    /// The eye: the centre of projection, or for parallel cameras a point on the image plane.
-    pub e: DVec3,
-    /// Points right in the image.
-    pub u: DVec3,
-    /// Points up in the image.
-    pub v: DVec3,
-    /// Points back, away from what the camera sees.
-    pub w: DVec3,
+    e: DVec3,
+    u: DVec3,
+    v: DVec3,
+    w: DVec3,
+    up: DVec3,
 }
 
 impl Frame {
-    /// The lecture's canonical frame: eye at the origin, looking down `-z`, `v` along `+y`.
+    /// The lecture's canonical frame: eye at the origin, looking down `-z`, `v` along `+y`
+    /// (and up `+y`).
     pub const CANONICAL: Frame = Frame {
         e: DVec3::ZERO,
         u: DVec3::X,
         v: DVec3::Y,
         w: DVec3::Z,
+        up: DVec3::Y,
     };
+
+    /// `e`, the eye: the centre of projection, or for parallel cameras a point on the
+    /// image plane.
+    #[inline]
+    pub fn e(&self) -> DVec3 {
+        self.e
+    }
+
+    /// `u`: points right in the image.
+    #[inline]
+    pub fn u(&self) -> DVec3 {
+        self.u
+    }
+
+    /// `v`: points up in the image.
+    #[inline]
+    pub fn v(&self) -> DVec3 {
+        self.v
+    }
+
+    /// `w`: points back, away from what the camera sees.
+    #[inline]
+    pub fn w(&self) -> DVec3 {
+        self.w
+    }
+
+    /// The up vector the frame was built from, as given (not normalized, not
+    /// necessarily perpendicular to the view); `+y` for [`Frame::CANONICAL`].
+    #[inline]
+    pub fn up(&self) -> DVec3 {
+        self.up
+    }
+
+    /// The same basis with the eye moved to `eye`.
+    ///
+    /// # Errors
+    /// [`CameraError::NotFinite`] if a coordinate of `eye` is NaN or infinite.
+    pub fn with_eye(self, eye: DVec3) -> Result<Self, CameraError> {
+        check_finite_vector("eye", eye)?;
+        Ok(Self { e: eye, ..self })
+    }
+
+    /// A frame from its parts as they are: the catalogue's mistaken frames, which need
+    /// not be orthonormal.
+    pub(crate) fn from_parts(e: DVec3, u: DVec3, v: DVec3, w: DVec3, up: DVec3) -> Self {
+        Self { e, u, v, w, up }
+    }
 
     /// The frame of a camera at `eye` looking along `view`, with `up` fixing its roll
     /// (lecture, "Creating a camera basis").
@@ -52,6 +103,7 @@ impl Frame {
         check_finite_vector("eye", eye)?;
         check_finite_vector("view", view)?;
         check_finite_vector("up", up)?;
+        let given_up = up;
         // Normalize the inputs first so the tests below are relative and so huge or tiny
         // (but finite) vectors do not overflow or underflow.
         let view = normalize_scaled(view).ok_or(CameraError::ZeroView)?;
@@ -66,7 +118,13 @@ impl Frame {
         // w x u is a unit vector in exact arithmetic; normalizing removes the last-bit
         // error (1.0000000000000002) that would otherwise show in a homework answer.
         let v = w.cross(u).normalize();
-        Ok(Self { e: eye, u, v, w })
+        Ok(Self {
+            e: eye,
+            u,
+            v,
+            w,
+            up: given_up,
+        })
     }
 
     /// The frame of a camera at `eye` looking at the point `look_at`, with `up` fixing its

@@ -6,19 +6,14 @@ use viewray_camera::Frame;
 
 #[track_caller]
 fn check(frame: Frame, e: [f64; 3], u: [f64; 3], v: [f64; 3], w: [f64; 3]) {
-    let expected = Frame {
-        e: e.into(),
-        u: u.into(),
-        v: v.into(),
-        w: w.into(),
-    };
+    let expected = [e, u, v, w].map(DVec3::from);
     let close = |a: DVec3, b: DVec3| a.abs_diff_eq(b, 1e-12);
     assert!(
-        close(frame.e, expected.e)
-            && close(frame.u, expected.u)
-            && close(frame.v, expected.v)
-            && close(frame.w, expected.w),
-        "got {frame:?}\nexpected {expected:?}"
+        close(frame.e(), expected[0])
+            && close(frame.u(), expected[1])
+            && close(frame.v(), expected[2])
+            && close(frame.w(), expected[3]),
+        "got {frame:?}\nexpected e, u, v, w = {expected:?}"
     );
 }
 
@@ -89,19 +84,19 @@ proptest! {
         let sin = view.normalize_or_zero().cross(up.normalize_or_zero()).length();
         prop_assume!(view.length() > 1e-3 && up.length() > 1e-3 && sin > 1e-3);
         let f = Frame::from_eye_view_up(eye, view, up).unwrap();
-        for (a, name) in [(f.u, "u"), (f.v, "v"), (f.w, "w")] {
+        for (a, name) in [(f.u(), "u"), (f.v(), "v"), (f.w(), "w")] {
             prop_assert!((a.length() - 1.0).abs() < 1e-12, "|{}| = {}", name, a.length());
         }
-        prop_assert!(f.u.dot(f.v).abs() < 1e-12);
-        prop_assert!(f.v.dot(f.w).abs() < 1e-12);
-        prop_assert!(f.w.dot(f.u).abs() < 1e-12);
+        prop_assert!(f.u().dot(f.v()).abs() < 1e-12);
+        prop_assert!(f.v().dot(f.w()).abs() < 1e-12);
+        prop_assert!(f.w().dot(f.u()).abs() < 1e-12);
         // Right-handed: u x v = w.
-        prop_assert!(f.u.cross(f.v).abs_diff_eq(f.w, 1e-12));
+        prop_assert!(f.u().cross(f.v()).abs_diff_eq(f.w(), 1e-12));
         // w points away from view; v lies in the plane of up and view, on up's side.
-        prop_assert!(f.w.abs_diff_eq(-view.normalize(), 1e-12));
-        prop_assert!(f.v.dot(up.cross(view).normalize()).abs() < 1e-9);
-        prop_assert!(f.v.dot(up) > 0.0);
-        prop_assert_eq!(f.e, eye);
+        prop_assert!(f.w().abs_diff_eq(-view.normalize(), 1e-12));
+        prop_assert!(f.v().dot(up.cross(view).normalize()).abs() < 1e-9);
+        prop_assert!(f.v().dot(up) > 0.0);
+        prop_assert_eq!(f.e(), eye);
     }
 
     #[test]
@@ -167,4 +162,19 @@ fn look_at_means_view_is_target_minus_eye() {
             value: "(0, inf, 0)".into()
         })
     );
+}
+
+#[test]
+fn a_frame_keeps_its_up_as_given_and_moves_its_eye_alone() {
+    let up = DVec3::new(0.1, 2.0, 0.3);
+    let frame = Frame::from_eye_view_up(DVec3::ONE, DVec3::new(0.0, 0.0, -2.0), up).unwrap();
+    assert_eq!(frame.up(), up);
+    assert_eq!(Frame::CANONICAL.up(), DVec3::Y);
+    let moved = frame.with_eye(DVec3::new(4.0, 5.0, 6.0)).unwrap();
+    assert_eq!(moved.e(), DVec3::new(4.0, 5.0, 6.0));
+    assert_eq!(
+        (moved.u(), moved.v(), moved.w(), moved.up()),
+        (frame.u(), frame.v(), frame.w(), frame.up())
+    );
+    assert!(frame.with_eye(DVec3::new(f64::INFINITY, 0.0, 0.0)).is_err());
 }

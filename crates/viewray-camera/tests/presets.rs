@@ -196,7 +196,7 @@ fn check_preset(
     let f = got.frame();
     let close = |a: DVec3, b: DVec3| a.abs_diff_eq(b, 1e-12);
     assert!(
-        close(f.e, eye) && close(f.u, u) && close(f.v, v) && close(f.w, w),
+        close(f.e(), eye) && close(f.u(), u) && close(f.v(), v) && close(f.w(), w),
         "{}: got {f:?}, expected e = {eye}, u = {u}, v = {v}, w = {w}",
         preset.name()
     );

@@ -157,7 +157,7 @@ proptest! {
         // The focus plane is at camera depth f; find where each ray crosses it.
         let crossing = |ray: viewray_geometry::DRay| {
             let origin_depth = -frame.camera_from_world_point(ray.origin).z;
-            let speed = -ray.direction.dot(frame.w);
+            let speed = -ray.direction.dot(frame.w());
             ray.at((focus - origin_depth) / speed)
         };
         let a = crossing(center);

@@ -31,10 +31,10 @@ fn ray_table(camera: &Camera, sample: CameraSample) -> String {
     let mut out = format!(
         "{:?}\ne = {}, u = {}, v = {}, w = {}; image {} x {}\n",
         camera.projection(),
-        vec3(f.e),
-        vec3(f.u),
-        vec3(f.v),
-        vec3(f.w),
+        vec3(f.e()),
+        vec3(f.u()),
+        vec3(f.v()),
+        vec3(f.w()),
         camera.width(),
         camera.height()
     );
@@ -87,10 +87,9 @@ fn canonical_camera_two_by_two_by_hand() {
 fn breaking_the_assumptions_one_by_one() {
     // d = 2, vw = 4, vh = 2, eye at (1, 2, 3), W = 4, H = 2; pixel (i, j) = (1, 4):
     // u = ((4 - 1/2)/4 - 1/2) 4 = 1.5, v = -((1 - 1/2)/2 - 1/2) 2 = 0.5.
-    let frame = Frame {
-        e: DVec3::new(1.0, 2.0, 3.0),
-        ..Frame::CANONICAL
-    };
+    let frame = Frame::CANONICAL
+        .with_eye(DVec3::new(1.0, 2.0, 3.0))
+        .unwrap();
     let projection = Projection::Perspective(Perspective {
         distance: 2.0,
         viewport: DVec2::new(4.0, 2.0),
@@ -263,7 +262,7 @@ fn ray_differentials_step_by_the_lecture_pixel_size() {
     // (y runs down, v up), whatever the eye, d, shift or image point.
     let viewport = DVec2::new(4.0, 2.0);
     let frame = tilted_frame();
-    let (u, v) = (frame.u, frame.v);
+    let (u, v) = (frame.u(), frame.v());
     let step = 0.25;
     let (du, dv) = (0.5 * step * u, -0.5 * step * v);
     let image = DVec2::new(1.3, 2.9);

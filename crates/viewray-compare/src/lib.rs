@@ -55,6 +55,7 @@ mod comparison;
 mod diagnosis;
 mod estimate;
 mod flip;
+mod geometry;
 mod golden;
 mod instructor;
 mod load;
@@ -67,6 +68,10 @@ pub use image::{RgbImage, RgbaImage};
 
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
+pub use geometry::{
+    AGREEMENT_NEEDED, CANDIDATE_MARGIN, CameraCandidates, GeometryJudgement, GeometryVerdict,
+    LabelMap,
+};
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};

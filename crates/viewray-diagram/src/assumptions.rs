@@ -327,10 +327,7 @@ pub(crate) fn assumption_eye() -> Diagram {
     sketch.title("Breaking the assumptions: eye at *e*");
     let canonical = Camera::canonical(5, 5).expect("a canonical camera");
     let eye = DVec3::new(0.0, 1.3, -0.9);
-    let moved = Frame {
-        e: eye,
-        ..Frame::CANONICAL
-    };
+    let moved = Frame::CANONICAL.with_eye(eye).expect("a finite eye");
     let camera = perspective(moved, 1.0, DVec2::ONE, (5, 5));
     let view = SideView::fit((-1.0, 3.3), (-1.0, 2.4), DRAWING);
     let far = 2.2;
@@ -441,9 +438,9 @@ pub(crate) fn assumption_basis() -> Diagram {
         DVec3::X * 0.8,
         DVec3::Y * 0.8,
         DVec3::Z * 0.8,
-        eye + frame.w * 0.7,
-        eye + frame.v * 0.7,
-        eye + frame.u * 0.7,
+        eye + frame.w() * 0.7,
+        eye + frame.v() * 0.7,
+        eye + frame.u() * 0.7,
     ]);
     let view =
         CameraView::fit_orthographic(DVec3::new(0.25, 0.45, 1.0), DVec3::Y, &fit, DRAWING, 50.0);
@@ -502,9 +499,9 @@ pub(crate) fn assumption_basis() -> Diagram {
         viewport,
     );
     let legs = [
-        (-distance * frame.w, style::W_AXIS),
-        (uv.x * frame.u, style::U_AXIS),
-        (uv.y * frame.v, style::V_AXIS),
+        (-distance * frame.w(), style::W_AXIS),
+        (uv.x * frame.u(), style::U_AXIS),
+        (uv.y * frame.v(), style::V_AXIS),
     ];
     let mut p = eye;
     for (leg, color) in legs {
@@ -520,9 +517,9 @@ pub(crate) fn assumption_basis() -> Diagram {
     // The frame at the eye.
     let e = at(eye);
     for (axis, color, name) in [
-        (frame.u, style::U_AXIS, "*u*"),
-        (frame.v, style::V_AXIS, "*v*"),
-        (frame.w, style::W_AXIS, "*w*"),
+        (frame.u(), style::U_AXIS, "*u*"),
+        (frame.v(), style::V_AXIS, "*v*"),
+        (frame.w(), style::W_AXIS, "*w*"),
     ] {
         let tip = at(eye + axis * 0.6);
         sketch.arrow(e, tip, Stroke::new(color, style::LINE_THICK));

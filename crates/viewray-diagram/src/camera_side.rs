@@ -74,13 +74,13 @@ impl SideWindow {
             .map_or(DVec2::ZERO, |(min, max)| (min + max) / 2.0);
         let mut by_distance: Vec<&Camera> = cameras.iter().collect();
         by_distance.sort_by(|a, b| {
-            let distance = |c: &Camera| (on_plane(c.frame().e) - centre).length();
+            let distance = |c: &Camera| (on_plane(c.frame().e()) - centre).length();
             distance(a).total_cmp(&distance(b))
         });
         if let Some(nearest) = by_distance.first() {
             if bounds.range().is_none() {
                 let frame = nearest.frame();
-                bounds.add(on_plane(frame.e - frame.w * 4.0));
+                bounds.add(on_plane(frame.e() - frame.w() * 4.0));
             }
             camera_points(nearest).for_each(|p| bounds.add(on_plane(p)));
         }
@@ -122,9 +122,9 @@ impl SideWindow {
         let shown = bounds;
         for camera in cameras {
             let frame = camera.frame();
-            if shown.holds(on_plane(frame.e)) {
-                for axis in [frame.v, frame.w] {
-                    bounds.add(on_plane(frame.e + axis * AXIS_ROOM * size));
+            if shown.holds(on_plane(frame.e())) {
+                for axis in [frame.v(), frame.w()] {
+                    bounds.add(on_plane(frame.e() + axis * AXIS_ROOM * size));
                 }
             }
         }
@@ -311,15 +311,15 @@ pub(crate) fn side_view(
     }
 
     // The thin lens's focus plane and lens.
-    let eye_in_view = view.bounds.contains(view.plane_point(frame.e).as_vec2());
+    let eye_in_view = view.bounds.contains(view.plane_point(frame.e()).as_vec2());
     if let Some((aperture, focus)) = lens(camera) {
         draw_focus_plane(&mut sketch, &view, camera, focus);
         if eye_in_view {
             let half = view.length(aperture).max(2.0);
             sketch.push(Item::Ellipse {
-                center: view.to_figure(frame.e),
+                center: view.to_figure(frame.e()),
                 radii: Vec2::new((half * 0.18).max(3.0), half),
-                rotation: -tilt_on_figure(&view, frame.v),
+                rotation: -tilt_on_figure(&view, frame.v()),
                 fill: Some(style::IMAGE_PLANE_FILL),
                 stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN)),
             });
@@ -376,7 +376,7 @@ pub(crate) fn side_view(
         draw_side_frame(&mut sketch, &view, &frame, axis_length, false);
         draw_frame_labels(&mut sketch, &view, &frame, axis_length);
     } else {
-        draw_eye_beyond(&mut sketch, &view, frame.e);
+        draw_eye_beyond(&mut sketch, &view, frame.e());
     }
     if let Some((top, bottom)) = plane_ends {
         draw_image_plane_label(&mut sketch, camera, top, bottom);
@@ -553,8 +553,8 @@ fn camera_points(camera: &Camera) -> impl Iterator<Item = DVec3> {
         .projection()
         .viewport()
         .map(|_| viewport_edges(camera));
-    let focus = lens(camera).map(|(_, focus)| frame.e - frame.w * focus);
-    std::iter::once(frame.e)
+    let focus = lens(camera).map(|(_, focus)| frame.e() - frame.w() * focus);
+    std::iter::once(frame.e())
         .chain(edges.into_iter().flat_map(|(top, bottom)| [top, bottom]))
         .chain(focus)
 }
@@ -576,7 +576,7 @@ fn draw_frame_labels(
     frame: &viewray_camera::Frame,
     length: f64,
 ) {
-    let e = view.to_figure(frame.e);
+    let e = view.to_figure(frame.e());
     let around = |at: Vec2, gap: f32| {
         [
             beside(at, -gap, gap),
@@ -590,10 +590,10 @@ fn draw_frame_labels(
         ]
     };
     for (axis, color, name) in [
-        (frame.v, style::V_AXIS, "*v*"),
-        (frame.w, style::W_AXIS, "*w*"),
+        (frame.v(), style::V_AXIS, "*v*"),
+        (frame.w(), style::W_AXIS, "*w*"),
     ] {
-        let tip = view.to_figure(frame.e + axis * length);
+        let tip = view.to_figure(frame.e() + axis * length);
         let out = (tip - e).normalize_or_zero();
         let mut candidates = vec![(tip + out * 26.0, (Anchor::Middle, Baseline::Middle))];
         candidates.extend(around(tip, 16.0));
@@ -621,13 +621,13 @@ fn draw_frame_labels(
 /// A camera that is not rolled has a horizontal **u**, so up is `+y` itself.
 fn side_plane(camera: &Camera) -> (DVec3, DVec3) {
     let frame = camera.frame();
-    let world_up = DVec3::Y - DVec3::Y.dot(frame.u) * frame.u;
+    let world_up = DVec3::Y - DVec3::Y.dot(frame.u()) * frame.u();
     let up = if world_up.length() > 1e-6 {
         world_up.normalize()
     } else {
-        frame.v
+        frame.v()
     };
-    (up.cross(frame.u), up)
+    (up.cross(frame.u()), up)
 }
 
 /// The angle (radians, counter-clockwise on the figure) of the world direction `d` from
@@ -821,15 +821,15 @@ fn draw_plane(sketch: &mut Sketch, view: &SideView, point: DVec3, normal: DVec3,
 /// distance `focus` along `-w`, labelled.
 fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus: f64) {
     let frame = camera.frame();
-    let centre = frame.e - frame.w * focus;
+    let centre = frame.e() - frame.w() * focus;
     let half = match camera.projection() {
         Projection::ThinLens(p) => p.viewport.y / 2.0 * focus / p.distance,
         _ => camera.projection().viewport().map_or(1.0, |v| v.y / 2.0),
     };
     // The segment across the frustum, a little longer, clipped to the view.
     let across = DRay {
-        origin: centre - frame.v * half * 1.15,
-        direction: frame.v * half * 2.3,
+        origin: centre - frame.v() * half * 1.15,
+        direction: frame.v() * half * 2.3,
     };
     let Some((t0, t1)) = view.clip_ray(&across, (0.0, 1.0)) else {
         return;

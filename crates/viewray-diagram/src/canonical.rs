@@ -145,9 +145,14 @@ fn canonical_camera_on(canvas: Canvas) -> Diagram {
     let e = at(DVec3::ZERO);
     let frame = camera.frame();
     let basis = [
-        (frame.u, style::U_AXIS, "*u* = $x$", Vec2::new(44.0, 18.0)),
-        (frame.v, style::V_AXIS, "*v* = $y$", Vec2::new(0.0, -30.0)),
-        (frame.w, style::W_AXIS, "*w* = $z$", Vec2::new(-30.0, 34.0)),
+        (frame.u(), style::U_AXIS, "*u* = $x$", Vec2::new(44.0, 18.0)),
+        (frame.v(), style::V_AXIS, "*v* = $y$", Vec2::new(0.0, -30.0)),
+        (
+            frame.w(),
+            style::W_AXIS,
+            "*w* = $z$",
+            Vec2::new(-30.0, 34.0),
+        ),
     ];
     for (axis, color, text, offset) in basis {
         let tip = at(axis * 0.5);

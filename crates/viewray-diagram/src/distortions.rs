@@ -106,7 +106,7 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
                 .project(p)
                 .expect("the posts are in front of the camera");
             // The ray's direction has -d w, so it reaches depth D at t = D / d.
-            let depth = -(p - frame.e).dot(frame.w);
+            let depth = -(p - frame.e()).dot(frame.w());
             sketch.camera_ray_through(
                 &fv,
                 &camera,
@@ -277,13 +277,13 @@ fn draw_tower_side_view(sketch: &mut Sketch, view: &SideView, camera: &Camera) {
     draw_frustum_edges(sketch, view, camera, (0.0, 10.0), &edges);
     let frame = camera.frame();
     sketch.line(
-        view.to_figure(frame.e),
-        view.to_figure(frame.e - frame.w * 7.2),
+        view.to_figure(frame.e()),
+        view.to_figure(frame.e() - frame.w() * 7.2),
         Stroke::new(style::ANNOTATION, style::LINE_THIN).dashed(&style::DASH),
     );
     draw_image_plane(sketch, view, camera, style::IMAGE_PLANE, 0.0);
     draw_side_frame(sketch, view, frame, 0.9, false);
-    let e = view.to_figure(frame.e);
+    let e = view.to_figure(frame.e());
     sketch.label_at(
         "*e*",
         e + Vec2::new(-26.0, -16.0),

@@ -52,8 +52,13 @@ fn camera_frame_on(canvas: Canvas) -> Diagram {
         EYE - UP * 0.5 + VIEW.normalize() * 1.9,
     ];
     let mut fit = span.to_vec();
-    fit.extend([EYE + frame.u * 1.2, EYE - frame.u * 0.3, view_tip, up_tip]);
-    let towards = 0.6 * frame.u + 0.4 * frame.v + 1.0 * frame.w;
+    fit.extend([
+        EYE + frame.u() * 1.2,
+        EYE - frame.u() * 0.3,
+        view_tip,
+        up_tip,
+    ]);
+    let towards = 0.6 * frame.u() + 0.4 * frame.v() + 1.0 * frame.w();
     let view = CameraView::fit_orthographic(
         towards,
         DVec3::Y,
@@ -118,16 +123,16 @@ fn camera_frame_on(canvas: Canvas) -> Diagram {
     // The three right angles, each mark a different size so that they read as three
     // marks rather than one small cube.
     for (a, b, size) in [
-        (frame.v, frame.w, 0.22),
-        (frame.w, frame.u, 0.16),
-        (frame.u, frame.v, 0.11),
+        (frame.v(), frame.w(), 0.22),
+        (frame.w(), frame.u(), 0.16),
+        (frame.u(), frame.v(), 0.11),
     ] {
         sketch.right_angle(&fv, EYE, (a, b), size, style::TEXT);
     }
     for (axis, color, name, by) in [
-        (frame.u, style::U_AXIS, "*u*", 28.0),
-        (frame.v, style::V_AXIS, "*v*", 28.0),
-        (frame.w, style::W_AXIS, "*w*", 28.0),
+        (frame.u(), style::U_AXIS, "*u*", 28.0),
+        (frame.v(), style::V_AXIS, "*v*", 28.0),
+        (frame.w(), style::W_AXIS, "*w*", 28.0),
     ] {
         let tip = at(EYE + axis);
         sketch.arrow(e, tip, Stroke::new(color, style::LINE_THICK));
@@ -147,9 +152,9 @@ fn camera_frame_on(canvas: Canvas) -> Diagram {
     let given_line = format!("*eye* = {}", vector(EYE));
     let view_line = format!("*view* = {}", vector(VIEW));
     let up_line = format!("*up* = {}", vector(UP));
-    let u_line = format!("*u* = {}", vector(frame.u));
-    let v_line = format!("*v* = {}", vector(frame.v));
-    let w_line = format!("*w* = {}", vector(frame.w));
+    let u_line = format!("*u* = {}", vector(frame.u()));
+    let v_line = format!("*v* = {}", vector(frame.v()));
+    let w_line = format!("*w* = {}", vector(frame.w()));
     let recipe = |size: f32| {
         [
             ("1.  *e* = *eye*", style::EYE, size),

@@ -496,7 +496,7 @@ fn circle_of_confusion(camera: &Camera, p: DVec3) -> Option<f64> {
     }
     let image = camera.project(p)?;
     let rim = camera.generate_ray_through(image, DVec2::new(1.0, 0.5))?;
-    let w = camera.frame().w;
+    let w = camera.frame().w();
     // The rim ray at p's depth along -w.
     let t = (p - rim.origin).dot(w) / rim.direction.dot(w);
     let miss = rim.at(t);

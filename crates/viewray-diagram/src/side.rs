@@ -28,7 +28,7 @@ pub(crate) fn viewport_edges(camera: &Camera) -> (DVec3, DVec3) {
             .generate_ray_through(DVec2::new(w / 2.0, y), DVec2::splat(0.5))
             .expect("a planar camera has a ray at every image point");
         match distance {
-            Some(d) => ray.at(d / -ray.direction.dot(camera.frame().w)),
+            Some(d) => ray.at(d / -ray.direction.dot(camera.frame().w())),
             None => ray.origin,
         }
     };
@@ -96,12 +96,12 @@ pub(crate) fn draw_side_frame(
     length: f64,
     labels: bool,
 ) {
-    let e = view.to_figure(frame.e);
+    let e = view.to_figure(frame.e());
     for (axis, color, name) in [
-        (frame.v, style::V_AXIS, "*v*"),
-        (frame.w, style::W_AXIS, "*w*"),
+        (frame.v(), style::V_AXIS, "*v*"),
+        (frame.w(), style::W_AXIS, "*w*"),
     ] {
-        let tip = view.to_figure(frame.e + axis * length);
+        let tip = view.to_figure(frame.e() + axis * length);
         sketch.arrow(e, tip, Stroke::new(color, style::LINE_THICK));
         if labels {
             let out = (tip - e).normalize_or_zero();
@@ -116,9 +116,9 @@ pub(crate) fn draw_side_frame(
     // u is out of the page when it points towards the viewer of the side view (along x
     // in the lecture's figures, seen from +x). Its label goes in the quadrant between v
     // (up) and w, on the side away from -w.
-    let towards_viewer = frame.u.dot(view.towards_viewer()) > 0.0;
+    let towards_viewer = frame.u().dot(view.towards_viewer()) > 0.0;
     if labels {
-        let away = view.to_figure(frame.e + frame.w) - e;
+        let away = view.to_figure(frame.e() + frame.w()) - e;
         let side = if away.x <= 0.0 { -1.0 } else { 1.0 };
         sketch.label(
             "*u*",

@@ -92,7 +92,9 @@ impl CameraView {
         // past the nearest point so that everything lies in front of the image plane.
         let centre = (min + max) / 2.0;
         let eye = frame.world_from_camera_point(DVec3::new(centre.x, centre.y, max.z + 1.0));
-        let frame = Frame { e: eye, ..frame };
+        let frame = frame
+            .with_eye(eye)
+            .expect("finite points make a finite eye");
         let projection = Projection::Orthographic(Orthographic {
             viewport,
             lens: None,

@@ -35,10 +35,9 @@ struct Panel {
 /// orthographic, oblique and shifted perspective.
 fn panels() -> [Panel; 4] {
     let canonical = Frame::CANONICAL;
-    let on_plane = Frame {
-        e: DVec3::new(0.0, 0.0, -PLANE_DEPTH),
-        ..Frame::CANONICAL
-    };
+    let on_plane = Frame::CANONICAL
+        .with_eye(DVec3::new(0.0, 0.0, -PLANE_DEPTH))
+        .expect("a finite eye");
     let camera = |frame: Frame, projection: Projection| {
         Camera::new(frame, projection, SIZE.0, SIZE.1).expect("a valid camera")
     };
@@ -172,10 +171,10 @@ fn draw_panel(sketch: &mut Sketch, panel: &Panel, cell: Rect) {
     {
         // The unshifted window and the optical axis, for comparison.
         let axis = Stroke::new(style::ANNOTATION, style::LINE_THIN).dashed(&style::DASH);
-        let e = camera.frame().e;
+        let e = camera.frame().e();
         sketch.line(
             view.to_figure(e),
-            view.to_figure(e - camera.frame().w * FAR_DEPTH),
+            view.to_figure(e - camera.frame().w() * FAR_DEPTH),
             axis.clone(),
         );
         let half = VIEWPORT.y / 2.0;
@@ -187,7 +186,7 @@ fn draw_panel(sketch: &mut Sketch, panel: &Panel, cell: Rect) {
     }
     draw_image_plane(sketch, &view, camera, style::IMAGE_PLANE, 0.0);
     draw_side_frame(sketch, &view, camera.frame(), 0.35, false);
-    let e = view.to_figure(camera.frame().e);
+    let e = view.to_figure(camera.frame().e());
     sketch.label_at(
         "*e*",
         e + Vec2::new(-14.0, 14.0),

@@ -166,7 +166,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         num(pixel_aspect.0),
         num(pixel_aspect.1)
     );
-    let (u, v, w, e) = (frame.u, frame.v, frame.w, frame.e);
+    let (u, v, w, e) = (frame.u(), frame.v(), frame.w(), frame.e());
     let _ = writeln!(
         out,
         "camera = bpy.data.objects.new('viewray camera', cam)\ncamera.matrix_world = Matrix((\n    ({}, {}, {}, {}),\n    ({}, {}, {}, {}),\n    ({}, {}, {}, {}),\n    (0.0, 0.0, 0.0, 1.0),\n))\nscene.collection.objects.link(camera)\nscene.camera = camera",

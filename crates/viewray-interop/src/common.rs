@@ -280,10 +280,10 @@ pub(crate) fn num32(x: f32) -> String {
 /// `e + a U + b V + c W`: columns `U`, `V`, `W`, `e`.
 pub(crate) fn world_from_camera(frame: &Frame) -> DMat4 {
     DMat4::from_cols(
-        frame.u.extend(0.0),
-        frame.v.extend(0.0),
-        frame.w.extend(0.0),
-        frame.e.extend(1.0),
+        frame.u().extend(0.0),
+        frame.v().extend(0.0),
+        frame.w().extend(0.0),
+        frame.e().extend(1.0),
     )
 }
 
@@ -388,5 +388,5 @@ pub(crate) fn material_name(index: usize) -> String {
 /// The eye, the view direction and up as a look-at point for tools that take one:
 /// `target = e - W`, `up = V`.
 pub(crate) fn look_at(frame: &Frame) -> (DVec3, DVec3, DVec3) {
-    (frame.e, frame.e - frame.w, frame.v)
+    (frame.e(), frame.e() - frame.w(), frame.v())
 }

@@ -93,7 +93,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
          # left-handed, so `Scale -1 1 1` makes camera x = U, y = V, z = -W.\n",
     );
     let look_at = |out: &mut String, look: DVec3, up: DVec3| {
-        let e = frame.e;
+        let e = frame.e();
         let _ = writeln!(
             out,
             "LookAt {} {} {}  {} {} {}  {} {} {}",
@@ -148,7 +148,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
     match camera.projection() {
         Projection::Perspective(p) => {
             out += "Scale -1 1 1\n";
-            look_at(&mut out, frame.e - frame.w, frame.v);
+            look_at(&mut out, frame.e() - frame.w(), frame.v());
             let _ = writeln!(
                 out,
                 "Camera \"perspective\"{}",
@@ -157,7 +157,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         }
         Projection::ThinLens(t) => {
             out += "Scale -1 1 1\n";
-            look_at(&mut out, frame.e - frame.w, frame.v);
+            look_at(&mut out, frame.e() - frame.w(), frame.v());
             let _ = writeln!(
                 out,
                 "Camera \"perspective\"{}{}",
@@ -167,7 +167,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         }
         Projection::Orthographic(o) => {
             out += "Scale -1 1 1\n";
-            look_at(&mut out, frame.e - frame.w, frame.v);
+            look_at(&mut out, frame.e() - frame.w(), frame.v());
             let (vw, vh) = (o.viewport.x / 2.0, o.viewport.y / 2.0);
             let _ = writeln!(
                 out,
@@ -178,7 +178,7 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         }
         Projection::Equirectangular => {
             out += "# The spherical camera looks along camera -x: x = W, y = V, z = -U.\n";
-            look_at(&mut out, frame.e - frame.u, frame.v);
+            look_at(&mut out, frame.e() - frame.u(), frame.v());
             out += "Camera \"spherical\" \"string mapping\" \"equirectangular\"\n";
         }
         Projection::Oblique(_) => {

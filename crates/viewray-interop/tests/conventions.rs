@@ -342,7 +342,7 @@ fn a_gltf_camera_without_an_image_size_gets_one_of_its_aspect_ratio() {
     );
     let p = perspective(&scene);
     close(p.viewport.y, 2.0 * 0.4f64.tan());
-    close(scene.camera().frame().e.y, 1.0);
+    close(scene.camera().frame().e().y, 1.0);
 }
 
 // What each tool lacks --------------------------------------------------------------------

@@ -120,10 +120,10 @@ impl PixelIndices {
 /// The line of `viewray frame`: `{"e":[..],"u":[..],"v":[..],"w":[..]}`.
 pub fn frame_line(frame: &Frame) -> Value {
     json!({
-        "e": vector(frame.e),
-        "u": vector(frame.u),
-        "v": vector(frame.v),
-        "w": vector(frame.w),
+        "e": vector(frame.e()),
+        "u": vector(frame.u()),
+        "v": vector(frame.v()),
+        "w": vector(frame.w()),
     })
 }
 

@@ -84,8 +84,8 @@ impl DepthMap {
     pub(crate) fn new(camera: &Camera) -> Self {
         let frame = camera.frame();
         Self {
-            eye: frame.e.as_vec3(),
-            forward: (-frame.w).as_vec3(),
+            eye: frame.e().as_vec3(),
+            forward: (-frame.w()).as_vec3(),
             panoramic: matches!(
                 camera.projection(),
                 Projection::Equirectangular | Projection::Fisheye(_)

@@ -82,10 +82,10 @@ fn every_fixture_scene_loads() {
             scene.samples(),
             scene.world().objects().len(),
             scene.world().triangle_count(),
-            vec3(f.e),
-            vec3(f.u),
-            vec3(f.v),
-            vec3(f.w),
+            vec3(f.e()),
+            vec3(f.u()),
+            vec3(f.v()),
+            vec3(f.w()),
             round_numbers(&format!("{:?}", camera.projection())),
         )
         .unwrap();

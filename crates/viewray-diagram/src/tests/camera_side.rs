@@ -161,12 +161,18 @@ fn the_view_is_the_plane_of_v_and_w_with_world_up_up() {
             view.up
         );
         let out = view.towards_viewer();
-        assert!(out.dot(frame.v).abs() < 1e-12, "{name}: v leaves the plane");
-        assert!(out.dot(frame.w).abs() < 1e-12, "{name}: w leaves the plane");
+        assert!(
+            out.dot(frame.v()).abs() < 1e-12,
+            "{name}: v leaves the plane"
+        );
+        assert!(
+            out.dot(frame.w()).abs() < 1e-12,
+            "{name}: w leaves the plane"
+        );
         // u points at the viewer.
-        assert!(out.dot(frame.u) > 0.999, "{name}");
+        assert!(out.dot(frame.u()) > 0.999, "{name}");
         // The camera looks right: -w has a positive right component, or none at all.
-        assert!((-frame.w).dot(view.right) >= -1e-12, "{name}");
+        assert!((-frame.w()).dot(view.right) >= -1e-12, "{name}");
     }
 }
 
@@ -276,7 +282,7 @@ fn an_animations_window_keeps_the_objects_still_and_far_eyes_as_arrows() {
                 .iter()
                 .map(|label| label.text.as_str())
                 .collect();
-            let far = camera.frame().e.z > 100.0;
+            let far = camera.frame().e().z > 100.0;
             assert_eq!(texts.contains(&"*e*"), !far, "{texts:?}");
             assert_eq!(
                 texts.iter().any(|text| text.starts_with("*e*, 9")),

@@ -269,7 +269,7 @@ fn thin_lens_cone_meets_at_the_focus_plane() {
         .expect("a ray");
     let focus_point = pinhole.at(1.0);
     assert!(
-        (-(focus_point - frame.e).dot(frame.w) - FOCUS).abs() < 1e-9,
+        (-(focus_point - frame.e()).dot(frame.w()) - FOCUS).abs() < 1e-9,
         "the pinhole ray reaches the focus plane at t = 1"
     );
     let mut origins: Vec<DVec3> = Vec::new();
@@ -279,8 +279,8 @@ fn thin_lens_cone_meets_at_the_focus_plane() {
             .generate_ray(ray.row, ray.col, ray.sample)
             .expect("a ray");
         // Where the ray crosses the focus plane: camera depth -(p - e).w = f.
-        let t =
-            (FOCUS + (generated.origin - frame.e).dot(frame.w)) / -generated.direction.dot(frame.w);
+        let t = (FOCUS + (generated.origin - frame.e()).dot(frame.w()))
+            / -generated.direction.dot(frame.w());
         assert_close(generated.at(t), focus_point, "meets at the focus plane");
         assert!(ray.t.1 > t, "drawn past the focus plane");
         assert!(
@@ -292,7 +292,7 @@ fn thin_lens_cone_meets_at_the_focus_plane() {
     // The lens points span the aperture.
     let spread = origins
         .iter()
-        .map(|o| o.distance(frame.e))
+        .map(|o| o.distance(frame.e()))
         .fold(0.0, f64::max);
     assert!(spread > 0.3, "{spread}");
 }

@@ -1,0 +1,461 @@
+//! Judging a picture's geometry, whatever its shading: do its edges fall where a camera's
+//! label map says objects meet?
+//!
+//! A student's ray tracer shades as it likes (its lights, its gamma, its brightness, its
+//! samples), so its picture cannot be compared with the reference pixel by pixel. What
+//! its camera decides is where each object shows: the silhouettes and occlusion edges.
+//! The caller (who knows the scene) gives label maps, what each pixel's centre ray meets
+//! for the right camera and for candidate wrong ones (the catalogue's mistakes), and this
+//! module measures how well each explains the student's picture:
+//!
+//! - the picture is made blind to shading level: each channel is replaced by its rank
+//!   in the picture (its share of darker pixels), which any brightening, darkening or
+//!   gamma leaves as it is;
+//! - the contrast of each pair of neighbouring pixels (right and down) is the summed
+//!   difference of their ranks;
+//! - a label map splits the pairs into boundary pairs (labels differ) and inner pairs;
+//!   its **agreement** is the chance that a boundary pair has more contrast than an
+//!   inner pair (the area under the ROC curve: 1 when every edge of the picture is on a
+//!   boundary, 1/2 when the boundaries are no better than anywhere else).
+//!
+//! Shading edges (shadows, highlights, creases) lower every candidate's agreement alike;
+//! a camera that puts the boundaries elsewhere lowers its own. A map with no boundary at
+//! all (a picture of one colour, or nothing in view) agrees as much as the picture is
+//! flat: the share of its pairs with no contrast.
+
+use image::RgbaImage;
+
+/// What each pixel of an image sees, as labels: equal labels for the same surface.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LabelMap {
+    width: u32,
+    height: u32,
+    labels: Vec<u32>,
+}
+
+impl LabelMap {
+    /// A label map of `width x height` pixels, row by row; `None` unless `labels` holds
+    /// exactly that many.
+    pub fn new(width: u32, height: u32, labels: Vec<u32>) -> Option<LabelMap> {
+        (labels.len() == width as usize * height as usize).then_some(LabelMap {
+            width,
+            height,
+            labels,
+        })
+    }
+
+    /// The map's width and height.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The pairs whose labels differ, as [`pair indices`](pairs_of).
+    fn boundaries(&self) -> Vec<u32> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let mut pairs = Vec::new();
+        for row in 0..h {
+            for col in 0..w {
+                let p = row * w + col;
+                if col + 1 < w && self.labels[p] != self.labels[p + 1] {
+                    pairs.push(pair_index(p, Direction::Right));
+                }
+                if row + 1 < h && self.labels[p] != self.labels[p + w] {
+                    pairs.push(pair_index(p, Direction::Down));
+                }
+            }
+        }
+        pairs
+    }
+}
+
+/// Which neighbour a pair joins a pixel to.
+#[derive(Clone, Copy)]
+enum Direction {
+    Right,
+    Down,
+}
+
+/// Pair `2p` joins pixel `p` to its right neighbour, pair `2p + 1` to the one below.
+fn pair_index(pixel: usize, direction: Direction) -> u32 {
+    let index = 2 * pixel
+        + match direction {
+            Direction::Right => 0,
+            Direction::Down => 1,
+        };
+    u32::try_from(index).expect("images have fewer than 2^31 pixels")
+}
+
+/// The right camera's label map and the candidates', prepared once (their boundary
+/// pairs) to judge many pictures against.
+#[derive(Clone, Debug)]
+pub struct CameraCandidates {
+    width: u32,
+    height: u32,
+    right: Vec<u32>,
+    names: Vec<String>,
+    candidates: Vec<Vec<u32>>,
+}
+
+/// How a picture's geometry was judged.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeometryJudgement {
+    /// The right camera's agreement with the picture.
+    pub right: f64,
+    /// Each candidate's agreement, in the order given.
+    pub candidates: Vec<f64>,
+    /// The verdict those numbers give.
+    pub verdict: GeometryVerdict,
+}
+
+/// The verdict of [`CameraCandidates::judge`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum GeometryVerdict {
+    /// The right camera explains the picture as well as any candidate, and well.
+    Right,
+    /// Candidates explain the picture clearly better than the right camera: these
+    /// (indices into the candidates; several when their maps agree equally well).
+    Candidate(Vec<usize>),
+    /// Nothing explains the picture well: neither the right camera nor a candidate.
+    Unexplained,
+}
+
+/// The agreement the explanation of a picture must reach: below it, the picture's
+/// edges are not where any camera given puts them.
+pub const AGREEMENT_NEEDED: f64 = 0.80;
+/// How much better than the right camera a candidate must explain a picture to be named
+/// (agreements tied within this are the right camera's).
+pub const CANDIDATE_MARGIN: f64 = 0.02;
+/// Candidates whose agreements lie within this of the best are named together.
+const TIE: f64 = 1e-3;
+
+impl CameraCandidates {
+    /// Prepares the right camera's map and the candidates' (each with a name the caller
+    /// chooses, such as a catalogue id).
+    ///
+    /// # Errors
+    /// The name of the first candidate whose map is not the right map's size.
+    pub fn new(right: &LabelMap, candidates: Vec<(String, LabelMap)>) -> Result<Self, String> {
+        let (names, maps): (Vec<String>, Vec<LabelMap>) = candidates.into_iter().unzip();
+        if let Some(k) = maps.iter().position(|m| m.size() != right.size()) {
+            return Err(names[k].clone());
+        }
+        Ok(CameraCandidates {
+            width: right.width,
+            height: right.height,
+            right: right.boundaries(),
+            names,
+            candidates: maps.iter().map(LabelMap::boundaries).collect(),
+        })
+    }
+
+    /// The image size the maps are for.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The candidates' names, in order.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Judges `picture` (of the maps' size; `None` otherwise): how well the right camera
+    /// and each candidate explain its edges, and the verdict.
+    pub fn judge(&self, picture: &RgbaImage) -> Option<GeometryJudgement> {
+        if picture.dimensions() != (self.width, self.height) {
+            return None;
+        }
+        let contrast = Contrast::of(picture);
+        let right = contrast.agreement(&self.right);
+        let candidates: Vec<f64> = self
+            .candidates
+            .iter()
+            .map(|pairs| contrast.agreement(pairs))
+            .collect();
+        let best = candidates.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let verdict = if best > right + CANDIDATE_MARGIN && best >= AGREEMENT_NEEDED {
+            GeometryVerdict::Candidate(
+                (0..candidates.len())
+                    .filter(|&k| candidates[k] >= best - TIE)
+                    .collect(),
+            )
+        } else if right >= AGREEMENT_NEEDED && right + CANDIDATE_MARGIN >= best {
+            GeometryVerdict::Right
+        } else {
+            GeometryVerdict::Unexplained
+        };
+        Some(GeometryJudgement {
+            right,
+            candidates,
+            verdict,
+        })
+    }
+}
+
+/// The levels a pair's contrast is counted in: three channels of ranks 0..=255.
+const LEVELS: usize = 3 * 255 + 1;
+
+/// A picture's neighbour contrasts, blind to its shading level.
+struct Contrast {
+    /// Each pair's contrast (see [`pair_index`]); pairs off the image's edge are 0.
+    pairs: Vec<u16>,
+    /// How many real pairs have each contrast.
+    histogram: Vec<u64>,
+}
+
+impl Contrast {
+    fn of(picture: &RgbaImage) -> Contrast {
+        let (w, h) = (picture.width() as usize, picture.height() as usize);
+        let ranked = ranks(picture);
+        let difference = |a: usize, b: usize| -> u16 {
+            (0..3)
+                .map(|c| u16::from(ranked[3 * a + c].abs_diff(ranked[3 * b + c])))
+                .sum()
+        };
+        let mut pairs = vec![0_u16; 2 * w * h];
+        let mut histogram = vec![0_u64; LEVELS];
+        for row in 0..h {
+            for col in 0..w {
+                let p = row * w + col;
+                if col + 1 < w {
+                    let g = difference(p, p + 1);
+                    pairs[2 * p] = g;
+                    histogram[usize::from(g)] += 1;
+                }
+                if row + 1 < h {
+                    let g = difference(p, p + w);
+                    pairs[2 * p + 1] = g;
+                    histogram[usize::from(g)] += 1;
+                }
+            }
+        }
+        Contrast { pairs, histogram }
+    }
+
+    /// The chance that a pair of `boundary` has more contrast than one off it (ties
+    /// count half); for no boundary, the share of pairs with no contrast.
+    fn agreement(&self, boundary: &[u32]) -> f64 {
+        let total: u64 = self.histogram.iter().sum();
+        if boundary.is_empty() || total == 0 {
+            return if total == 0 {
+                1.0
+            } else {
+                count(self.histogram[0]) / count(total)
+            };
+        }
+        let mut on = vec![0_u64; LEVELS];
+        for &pair in boundary {
+            on[usize::from(self.pairs[pair as usize])] += 1;
+        }
+        let on_total = boundary.len() as u64;
+        let off_total = total - on_total;
+        if off_total == 0 {
+            return 1.0;
+        }
+        // Sum over levels: boundary pairs at this level beat the inner pairs below it
+        // and tie with those at it.
+        let mut below = 0_u64;
+        let mut wins = 0.0;
+        for (level, &n_on) in on.iter().enumerate() {
+            let n_off = self.histogram[level] - n_on;
+            wins += count(n_on) * (count(below) + 0.5 * count(n_off));
+            below += n_off;
+        }
+        wins / (count(on_total) * count(off_total))
+    }
+}
+
+/// A count as a float (exact below 2^53).
+#[allow(clippy::cast_precision_loss)]
+fn count(n: u64) -> f64 {
+    n as f64
+}
+
+/// Each channel of each pixel replaced by its rank in the picture, 0..=255: the middle
+/// of its share of darker-or-equal values. Any increasing change of a channel (gamma,
+/// brightness, contrast) leaves the ranks as they are.
+fn ranks(picture: &RgbaImage) -> Vec<u8> {
+    let n = (picture.width() as usize * picture.height() as usize).max(1);
+    let mut histograms = [[0_usize; 256]; 3];
+    for pixel in picture.pixels() {
+        for c in 0..3 {
+            histograms[c][usize::from(pixel[c])] += 1;
+        }
+    }
+    let tables: Vec<[u8; 256]> = histograms
+        .iter()
+        .map(|histogram| {
+            let mut table = [0_u8; 256];
+            let mut below = 0;
+            for (value, &here) in histogram.iter().enumerate() {
+                // (below + here / 2) / n, scaled to 0..=255 and rounded.
+                let rank = (510 * below + 255 * here + n) / (2 * n);
+                table[value] = u8::try_from(rank.min(255)).unwrap_or(255);
+                below += here;
+            }
+            table
+        })
+        .collect();
+    let mut ranked = Vec::with_capacity(3 * n);
+    for pixel in picture.pixels() {
+        for c in 0..3 {
+            ranked.push(tables[c][usize::from(pixel[c])]);
+        }
+    }
+    ranked
+}
+
+#[cfg(test)]
+mod tests {
+    use image::Rgba;
+
+    use super::*;
+
+    /// How a test picture colours the pixel (x, y), inside the square or not.
+    type Shade = dyn Fn(u32, u32, bool) -> [u8; 3];
+
+    /// A picture of a `size x size` square at (x0, y0) on a background, each region
+    /// filled by `shade(x, y, inside)`.
+    fn picture(
+        (w, h): (u32, u32),
+        (x0, y0, size): (u32, u32, u32),
+        shade: impl Fn(u32, u32, bool) -> [u8; 3],
+    ) -> RgbaImage {
+        RgbaImage::from_fn(w, h, |x, y| {
+            let inside = (x0..x0 + size).contains(&x) && (y0..y0 + size).contains(&y);
+            let [r, g, b] = shade(x, y, inside);
+            Rgba([r, g, b, 255])
+        })
+    }
+
+    fn labels((w, h): (u32, u32), (x0, y0, size): (u32, u32, u32)) -> LabelMap {
+        let labels = (0..h)
+            .flat_map(|y| {
+                (0..w).map(move |x| {
+                    u32::from((x0..x0 + size).contains(&x) && (y0..y0 + size).contains(&y))
+                })
+            })
+            .collect();
+        LabelMap::new(w, h, labels).unwrap()
+    }
+
+    #[test]
+    fn the_right_map_wins_whatever_the_shading() {
+        let size = (40, 30);
+        let square = (10, 8, 12);
+        let right = labels(size, square);
+        let moved = labels(size, (13, 8, 12));
+        let candidates = CameraCandidates::new(&right, vec![("moved".to_owned(), moved)]).unwrap();
+        // Flat colours, a gradient inside and out, and a dark gamma: the same edges.
+        let shadings: [Box<Shade>; 3] = [
+            Box::new(|_, _, inside| if inside { [200, 40, 40] } else { [20, 20, 60] }),
+            Box::new(|x, y, inside| {
+                let g = u8::try_from(x + y).unwrap();
+                if inside {
+                    [150 + g, 60, 40]
+                } else {
+                    [g, g, 90]
+                }
+            }),
+            Box::new(|_, _, inside| if inside { [90, 3, 3] } else { [1, 1, 9] }),
+        ];
+        for shade in shadings {
+            let judged = candidates.judge(&picture(size, square, shade)).unwrap();
+            assert_eq!(judged.verdict, GeometryVerdict::Right, "{judged:?}");
+            assert!(judged.right > 0.99, "{judged:?}");
+            assert!(judged.candidates[0] < judged.right - 0.1, "{judged:?}");
+        }
+    }
+
+    #[test]
+    fn a_candidate_that_explains_better_is_named_with_its_ties() {
+        let size = (40, 30);
+        let right = labels(size, (10, 8, 12));
+        let moved = labels(size, (13, 8, 12));
+        let again = moved.clone();
+        let candidates = CameraCandidates::new(
+            &right,
+            vec![
+                ("moved".to_owned(), moved),
+                ("same".to_owned(), again),
+                ("elsewhere".to_owned(), labels(size, (25, 15, 5))),
+            ],
+        )
+        .unwrap();
+        let student = picture(size, (13, 8, 12), |_, _, inside| {
+            if inside { [255, 255, 0] } else { [0, 0, 0] }
+        });
+        let judged = candidates.judge(&student).unwrap();
+        assert_eq!(judged.verdict, GeometryVerdict::Candidate(vec![0, 1]));
+        assert_eq!(candidates.names()[0], "moved");
+    }
+
+    #[test]
+    fn nothing_explains_a_picture_of_other_edges() {
+        let size = (40, 30);
+        let right = labels(size, (10, 8, 12));
+        let candidates =
+            CameraCandidates::new(&right, vec![("small".to_owned(), labels(size, (2, 2, 3)))])
+                .unwrap();
+        let student = picture(size, (24, 14, 9), |_, _, inside| {
+            if inside { [255, 255, 255] } else { [0, 0, 0] }
+        });
+        let judged = candidates.judge(&student).unwrap();
+        assert_eq!(judged.verdict, GeometryVerdict::Unexplained, "{judged:?}");
+    }
+
+    #[test]
+    fn a_flat_picture_is_explained_by_a_map_without_boundaries() {
+        let size = (20, 10);
+        let right = labels(size, (5, 2, 4));
+        let flat = LabelMap::new(20, 10, vec![7; 200]).unwrap();
+        let candidates = CameraCandidates::new(&right, vec![("flat".to_owned(), flat)]).unwrap();
+        let student = picture(size, (0, 0, 0), |_, _, _| [12, 34, 56]);
+        let judged = candidates.judge(&student).unwrap();
+        assert_eq!(judged.candidates, vec![1.0]);
+        assert!((judged.right - 0.5).abs() < 1e-12, "{judged:?}");
+        assert_eq!(judged.verdict, GeometryVerdict::Candidate(vec![0]));
+    }
+
+    #[test]
+    fn sizes_must_agree() {
+        let right = labels((10, 10), (2, 2, 3));
+        assert_eq!(
+            CameraCandidates::new(
+                &right,
+                vec![("wide".to_owned(), labels((11, 10), (2, 2, 3)))]
+            )
+            .unwrap_err(),
+            "wide"
+        );
+        let candidates = CameraCandidates::new(&right, Vec::new()).unwrap();
+        assert_eq!(candidates.judge(&RgbaImage::new(10, 9)), None);
+        assert_eq!(LabelMap::new(3, 3, vec![0; 8]), None);
+    }
+
+    #[test]
+    fn ranks_ignore_any_increasing_change() {
+        // Levels far enough apart that a gamma of 2.2 keeps them apart in 8 bits.
+        let level = |k: u32| u8::try_from(20 + 25 * (k % 10)).unwrap();
+        let base = picture((16, 16), (4, 4, 6), |x, y, inside| {
+            if inside {
+                [level(x), level(y + 3), 30]
+            } else {
+                [level(x + y), 10, 200]
+            }
+        });
+        let gamma = RgbaImage::from_fn(16, 16, |x, y| {
+            let p = base.get_pixel(x, y);
+            let f = |c: u8| {
+                let encoded = (255.0 * (f64::from(c) / 255.0).powf(2.2)).round();
+                u8::try_from(encoded as i64).unwrap()
+            };
+            Rgba([f(p[0]), f(p[1]), f(p[2]), 255])
+        });
+        assert_ne!(base, gamma);
+        assert_eq!(ranks(&base), ranks(&gamma));
+        // Ranks span the range: the darkest value is near 0, the brightest near 255.
+        let ranked = ranks(&base);
+        assert!(ranked.iter().copied().min().unwrap() < 20);
+        assert!(ranked.iter().copied().max().unwrap() > 235);
+    }
+}
