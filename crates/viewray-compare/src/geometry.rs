@@ -16,7 +16,11 @@
 //! - a label map splits the pairs into boundary pairs (labels differ) and inner pairs;
 //!   its **agreement** is the chance that a boundary pair has more contrast than an
 //!   inner pair (the area under the ROC curve: 1 when every edge of the picture is on a
-//!   boundary, 1/2 when the boundaries are no better than anywhere else).
+//!   boundary, 1/2 when the boundaries are no better than anywhere else);
+//! - its **coverage** is the share of the picture's strong edges (pairs of contrast
+//!   [`STRONG_EDGE`] or more) that lie on or next to one of its boundaries: a map that
+//!   explains only some of the picture (a horizon, where the picture also shows objects)
+//!   has a high agreement but a low coverage, and is no explanation.
 //!
 //! Shading edges (shadows, highlights, creases) lower every candidate's agreement alike;
 //! a camera that puts the boundaries elsewhere lowers its own. A map with no boundary at
@@ -49,7 +53,7 @@ impl LabelMap {
         (self.width, self.height)
     }
 
-    /// The pairs whose labels differ, as [`pair indices`](pairs_of).
+    /// The pairs whose labels differ (see [`pair_index`]).
     fn boundaries(&self) -> Vec<u32> {
         let (w, h) = (self.width as usize, self.height as usize);
         let mut pairs = Vec::new();
@@ -91,20 +95,105 @@ fn pair_index(pixel: usize, direction: Direction) -> u32 {
 pub struct CameraCandidates {
     width: u32,
     height: u32,
-    right: Vec<u32>,
+    right: Boundary,
     names: Vec<String>,
-    candidates: Vec<Vec<u32>>,
+    candidates: Vec<Boundary>,
+}
+
+/// A label map's boundary: its boundary pairs, and the pixels on or next to them.
+#[derive(Clone, Debug)]
+struct Boundary {
+    pairs: Vec<u32>,
+    near: Vec<bool>,
+}
+
+impl Boundary {
+    fn of(map: &LabelMap) -> Boundary {
+        let pairs = map.boundaries();
+        let (w, h) = (map.width as usize, map.height as usize);
+        let mut on = vec![false; w * h];
+        for &pair in &pairs {
+            let (p, q) = pair_pixels(pair as usize, w);
+            on[p] = true;
+            on[q] = true;
+        }
+        // On a boundary, or one of its four neighbours is.
+        let near = (0..w * h)
+            .map(|p| {
+                let (row, col) = (p / w, p % w);
+                on[p]
+                    || (col > 0 && on[p - 1])
+                    || (col + 1 < w && on[p + 1])
+                    || (row > 0 && on[p - w])
+                    || (row + 1 < h && on[p + w])
+            })
+            .collect();
+        Boundary { pairs, near }
+    }
+}
+
+/// The two pixels of pair `pair` (see [`pair_index`]) in an image `width` wide.
+fn pair_pixels(pair: usize, width: usize) -> (usize, usize) {
+    let p = pair / 2;
+    (
+        p,
+        if pair.is_multiple_of(2) {
+            p + 1
+        } else {
+            p + width
+        },
+    )
 }
 
 /// How a picture's geometry was judged.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeometryJudgement {
-    /// The right camera's agreement with the picture.
-    pub right: f64,
-    /// Each candidate's agreement, in the order given.
-    pub candidates: Vec<f64>,
+    /// How well the right camera's map explains the picture.
+    pub right: Fit,
+    /// How well each candidate's map does, in the order given.
+    pub candidates: Vec<Fit>,
     /// The verdict those numbers give.
     pub verdict: GeometryVerdict,
+}
+
+/// How well a label map explains a picture.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    /// The chance that a boundary pair has more contrast than an inner pair.
+    pub agreement: f64,
+    /// The share of the picture's strong edges on or next to a boundary (1 when the
+    /// picture has none).
+    pub coverage: f64,
+    /// The two together, what the maps are ranked by: the harmonic mean of the
+    /// agreement and the coverage relative to the best coverage of any map given (1
+    /// when the map's boundaries are all on edges and it covers as much as any map);
+    /// 0 for a map that does not explain the picture at all (see [`Fit::explains`]).
+    pub score: f64,
+}
+
+impl Fit {
+    /// Whether the map explains the picture at all: its boundaries are where the
+    /// contrast is ([`AGREEMENT_NEEDED`]), and it covers at least [`COVERAGE_NEEDED`] of
+    /// what the best-covering map covers (the rest of a picture's edges may be shadows,
+    /// highlights and creases, which no map holds).
+    pub fn explains(&self) -> bool {
+        self.score > 0.0
+    }
+
+    fn new(agreement: f64, coverage: f64, most: f64) -> Fit {
+        let relative = if most > 0.0 { coverage / most } else { 1.0 };
+        let explains = agreement >= AGREEMENT_NEEDED && relative >= COVERAGE_NEEDED;
+        let score = if explains {
+            2.0 * agreement * relative / (agreement + relative)
+        } else {
+            0.0
+        };
+        Fit {
+            agreement,
+            coverage,
+            score,
+        }
+    }
 }
 
 /// The verdict of [`CameraCandidates::judge`].
@@ -122,10 +211,15 @@ pub enum GeometryVerdict {
 /// The agreement the explanation of a picture must reach: below it, the picture's
 /// edges are not where any camera given puts them.
 pub const AGREEMENT_NEEDED: f64 = 0.80;
-/// How much better than the right camera a candidate must explain a picture to be named
-/// (agreements tied within this are the right camera's).
-pub const CANDIDATE_MARGIN: f64 = 0.02;
-/// Candidates whose agreements lie within this of the best are named together.
+/// The coverage the explanation of a picture must reach, as a share of the best
+/// coverage of any map given (see [`Fit::explains`]).
+pub const COVERAGE_NEEDED: f64 = 0.5;
+/// The contrast (of 765: three channels of ranks) from which a pair is a strong edge.
+pub const STRONG_EDGE: u16 = 96;
+/// How much better (in [`Fit::score`]) than the right camera a candidate must explain a
+/// picture to be named; scores tied within this are the right camera's.
+pub const CANDIDATE_MARGIN: f64 = 0.01;
+/// Candidates whose scores lie within this of the best are named together.
 const TIE: f64 = 1e-3;
 
 impl CameraCandidates {
@@ -142,9 +236,9 @@ impl CameraCandidates {
         Ok(CameraCandidates {
             width: right.width,
             height: right.height,
-            right: right.boundaries(),
+            right: Boundary::of(right),
             names,
-            candidates: maps.iter().map(LabelMap::boundaries).collect(),
+            candidates: maps.iter().map(Boundary::of).collect(),
         })
     }
 
@@ -165,20 +259,24 @@ impl CameraCandidates {
             return None;
         }
         let contrast = Contrast::of(picture);
-        let right = contrast.agreement(&self.right);
-        let candidates: Vec<f64> = self
-            .candidates
-            .iter()
-            .map(|pairs| contrast.agreement(pairs))
+        let measured: Vec<(f64, f64)> = std::iter::once(&self.right)
+            .chain(&self.candidates)
+            .map(|boundary| contrast.measure(boundary))
             .collect();
-        let best = candidates.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let verdict = if best > right + CANDIDATE_MARGIN && best >= AGREEMENT_NEEDED {
+        let most = measured.iter().map(|m| m.1).fold(0.0, f64::max);
+        let mut fits = measured
+            .iter()
+            .map(|&(agreement, coverage)| Fit::new(agreement, coverage, most));
+        let right = fits.next().expect("the right map is measured first");
+        let candidates: Vec<Fit> = fits.collect();
+        let best = candidates.iter().map(|fit| fit.score).fold(0.0, f64::max);
+        let verdict = if best > 0.0 && best > right.score + CANDIDATE_MARGIN {
             GeometryVerdict::Candidate(
                 (0..candidates.len())
-                    .filter(|&k| candidates[k] >= best - TIE)
+                    .filter(|&k| candidates[k].score >= best - TIE)
                     .collect(),
             )
-        } else if right >= AGREEMENT_NEEDED && right + CANDIDATE_MARGIN >= best {
+        } else if right.explains() {
             GeometryVerdict::Right
         } else {
             GeometryVerdict::Unexplained
@@ -196,10 +294,13 @@ const LEVELS: usize = 3 * 255 + 1;
 
 /// A picture's neighbour contrasts, blind to its shading level.
 struct Contrast {
+    width: usize,
     /// Each pair's contrast (see [`pair_index`]); pairs off the image's edge are 0.
     pairs: Vec<u16>,
     /// How many real pairs have each contrast.
     histogram: Vec<u64>,
+    /// The pairs of contrast [`STRONG_EDGE`] or more.
+    strong: Vec<u32>,
 }
 
 impl Contrast {
@@ -213,22 +314,57 @@ impl Contrast {
         };
         let mut pairs = vec![0_u16; 2 * w * h];
         let mut histogram = vec![0_u64; LEVELS];
+        let mut strong = Vec::new();
         for row in 0..h {
             for col in 0..w {
                 let p = row * w + col;
-                if col + 1 < w {
-                    let g = difference(p, p + 1);
-                    pairs[2 * p] = g;
+                for (direction, q, real) in [
+                    (Direction::Right, p + 1, col + 1 < w),
+                    (Direction::Down, p + w, row + 1 < h),
+                ] {
+                    if !real {
+                        continue;
+                    }
+                    let g = difference(p, q);
+                    let pair = pair_index(p, direction);
+                    pairs[pair as usize] = g;
                     histogram[usize::from(g)] += 1;
-                }
-                if row + 1 < h {
-                    let g = difference(p, p + w);
-                    pairs[2 * p + 1] = g;
-                    histogram[usize::from(g)] += 1;
+                    if g >= STRONG_EDGE {
+                        strong.push(pair);
+                    }
                 }
             }
         }
-        Contrast { pairs, histogram }
+        Contrast {
+            width: w,
+            pairs,
+            histogram,
+            strong,
+        }
+    }
+
+    /// A map's agreement and coverage with the picture.
+    fn measure(&self, boundary: &Boundary) -> (f64, f64) {
+        (
+            self.agreement(&boundary.pairs),
+            self.coverage(&boundary.near),
+        )
+    }
+
+    /// The share of the strong edges with a pixel on or next to the boundary.
+    fn coverage(&self, near: &[bool]) -> f64 {
+        if self.strong.is_empty() {
+            return 1.0;
+        }
+        let covered = self
+            .strong
+            .iter()
+            .filter(|&&pair| {
+                let (p, q) = pair_pixels(pair as usize, self.width);
+                near[p] || near[q]
+            })
+            .count();
+        count(covered as u64) / count(self.strong.len() as u64)
     }
 
     /// The chance that a pair of `boundary` has more contrast than one off it (ties
@@ -361,8 +497,12 @@ mod tests {
         for shade in shadings {
             let judged = candidates.judge(&picture(size, square, shade)).unwrap();
             assert_eq!(judged.verdict, GeometryVerdict::Right, "{judged:?}");
-            assert!(judged.right > 0.99, "{judged:?}");
-            assert!(judged.candidates[0] < judged.right - 0.1, "{judged:?}");
+            assert!(judged.right.agreement > 0.99, "{judged:?}");
+            assert!(judged.right.coverage > 0.99, "{judged:?}");
+            assert!(
+                judged.candidates[0].agreement < judged.right.agreement - 0.1,
+                "{judged:?}"
+            );
         }
     }
 
@@ -411,8 +551,15 @@ mod tests {
         let candidates = CameraCandidates::new(&right, vec![("flat".to_owned(), flat)]).unwrap();
         let student = picture(size, (0, 0, 0), |_, _, _| [12, 34, 56]);
         let judged = candidates.judge(&student).unwrap();
-        assert_eq!(judged.candidates, vec![1.0]);
-        assert!((judged.right - 0.5).abs() < 1e-12, "{judged:?}");
+        assert_eq!(
+            judged.candidates,
+            vec![Fit {
+                agreement: 1.0,
+                coverage: 1.0,
+                score: 1.0
+            }]
+        );
+        assert!((judged.right.agreement - 0.5).abs() < 1e-12, "{judged:?}");
         assert_eq!(judged.verdict, GeometryVerdict::Candidate(vec![0]));
     }
 

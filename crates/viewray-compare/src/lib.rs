@@ -69,8 +69,8 @@ pub use image::{RgbImage, RgbaImage};
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use geometry::{
-    AGREEMENT_NEEDED, CANDIDATE_MARGIN, CameraCandidates, GeometryJudgement, GeometryVerdict,
-    LabelMap,
+    AGREEMENT_NEEDED, CANDIDATE_MARGIN, COVERAGE_NEEDED, CameraCandidates, Fit, GeometryJudgement,
+    GeometryVerdict, LabelMap, STRONG_EDGE,
 };
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};

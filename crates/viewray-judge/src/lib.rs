@@ -1,0 +1,21 @@
+//! A student's camera, judged against the lecture's catalogue of mistakes.
+//!
+//! Students write their own ray tracers (in Julia, Python, C++), so their shading, gamma,
+//! lights and sample counts differ from viewray's; what the lecture asks of them is the
+//! camera. This crate judges it with the scene the reference was rendered from:
+//!
+//! - [`PictureJudge`]: where a picture's objects meet. The scene is labelled (what each
+//!   pixel's centre ray meets, [`viewray_render::object_labels`]) through the right
+//!   camera and through the camera of every catalogue entry that fits it
+//!   ([`viewray_camera::Mistake`]), once per scene; each picture is then measured
+//!   against those maps by viewray-compare's shading-blind geometry judge, and the entry
+//!   whose map explains it best is named (with the entries that make the same picture).
+//!
+//! Where to start reading: [`PictureJudge::new`] and [`PictureJudge::judge`].
+//!
+//! **Invariant:** judge does no I/O and knows no command line: it takes a loaded scene
+//! and decoded pixels, and its words are the catalogue's.
+
+mod picture;
+
+pub use picture::{CameraVerdict, Explanation, PictureJudge};
