@@ -21,8 +21,9 @@
 //!
 //! # Where to read
 //!
-//! [`export`] (`export.rs`) writes a scene, [`import`] (`import.rs`) reads one by walking
-//! the default scene's nodes; `glb.rs` is the binary container both go through.
+//! [`export`](fn@export) (`export.rs`) writes a scene, [`import`](fn@import) (`import.rs`)
+//! reads one by walking the default scene's nodes; `glb.rs` is the binary container both go
+//! through.
 
 mod export;
 mod glb;

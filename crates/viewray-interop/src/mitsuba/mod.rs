@@ -32,9 +32,10 @@
 //!
 //! # Where to read
 //!
-//! [`export`] (`export.rs`) writes the XML and the meshes' OBJ files; [`import`]
-//! (`import.rs`) reads a scene's sensor, emitters, materials and shapes through a
-//! `Reader` whose XML values (properties, `$name` defaults, transforms) are in `xml.rs`.
+//! [`export`](fn@export) (`export.rs`) writes the XML and the meshes' OBJ files;
+//! [`import`](fn@import) (`import.rs`) reads a scene's sensor, emitters, materials and
+//! shapes through a `Reader` whose XML values (properties, `$name` defaults, transforms)
+//! are in `xml.rs`.
 
 mod export;
 mod import;

@@ -33,10 +33,10 @@
 //!
 //! # Where to read
 //!
-//! [`export`] (`export.rs`) writes a scene. [`import`] (`import.rs`) reads one with an
-//! `Importer` that keeps pbrt's graphics state and has one method per directive (the
-//! camera's in `import/camera.rs`, the world's in `import/world.rs`); the tokens and
-//! `"type name" value` parameters it reads come from `parse.rs`.
+//! [`export`](fn@export) (`export.rs`) writes a scene. [`import`](fn@import) (`import.rs`)
+//! reads one with an `Importer` that keeps pbrt's graphics state and has one method per
+//! directive (the camera's in `import/camera.rs`, the world's in `import/world.rs`); the
+//! tokens and `"type name" value` parameters it reads come from `parse.rs`.
 
 mod export;
 mod import;

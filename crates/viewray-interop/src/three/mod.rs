@@ -28,8 +28,9 @@
 //!
 //! # Where to read
 //!
-//! [`export`] (`export.rs`) writes a scene as one `Scene` object; [`import`]
-//! (`import.rs`) walks an object's children and reads its first camera.
+//! [`export`](fn@export) (`export.rs`) writes a scene as one `Scene` object;
+//! [`import`](fn@import) (`import.rs`) walks an object's children and reads its first
+//! camera.
 
 mod export;
 mod import;
