@@ -1,11 +1,11 @@
 //! `cargo xtask icosphere`: the geometry benchmark's mesh and camera as a scene file, so
 //! that `viewray render --stats` measures the renderer on exactly the benchmark's rays.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use viewray_geometry::MeshData;
+use viewray_scene::obj_text;
 
 /// The benchmark's subdivision level: 20 * 4^8 = 1,310,720 triangles.
 const SUBDIVISIONS: u32 = 8;
@@ -49,7 +49,8 @@ pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
     };
     let mesh = MeshData::icosphere(SUBDIVISIONS, 1.0);
     let obj = out.join("icosphere.obj");
-    crate::write_atomically(&obj, obj_text(&mesh).as_bytes())?;
+    let comment = format!("icosphere: {} triangles", mesh.triangles.len());
+    crate::write_atomically(&obj, obj_text(&mesh, &comment).as_bytes())?;
     let scene = out.join("icosphere.ron");
     crate::write_atomically(&scene, SCENE.as_bytes())?;
     eprintln!(
@@ -64,31 +65,22 @@ pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
     Ok(())
 }
 
-/// `mesh` as a Wavefront OBJ: `v` lines, then `f` lines with 1-based indices.
-fn obj_text(mesh: &MeshData) -> String {
-    let mut text = format!("# icosphere: {} triangles\n", mesh.triangles.len());
-    // Writing to a String cannot fail.
-    for p in &mesh.positions {
-        let _ = writeln!(text, "v {} {} {}", p.x, p.y, p.z);
-    }
-    for [a, b, c] in &mesh.triangles {
-        let _ = writeln!(text, "f {} {} {}", a + 1, b + 1, c + 1);
-    }
-    text
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use viewray_scene::Scene;
 
-    /// The scene and an OBJ written by `obj_text` load back: the same triangles, the
+    /// The scene and the mesh as `obj_text` writes it load back: the same triangles, the
     /// benchmark's camera.
     #[test]
     fn the_scene_and_its_mesh_load_back() {
         let dir = tempfile::tempdir().expect("a temporary folder");
         let mesh = MeshData::icosphere(2, 1.0);
-        std::fs::write(dir.path().join("icosphere.obj"), obj_text(&mesh)).expect("an OBJ");
+        std::fs::write(
+            dir.path().join("icosphere.obj"),
+            obj_text(&mesh, "icosphere"),
+        )
+        .expect("an OBJ");
         std::fs::write(dir.path().join("icosphere.ron"), SCENE).expect("a scene");
         let scene = Scene::load(&dir.path().join("icosphere.ron")).expect("a valid scene");
         assert_eq!(scene.world().triangle_count(), 320);

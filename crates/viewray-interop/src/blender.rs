@@ -35,9 +35,9 @@ use std::fmt::Write as _;
 
 use glam::{DVec2, Vec3};
 use viewray_camera::Projection;
-use viewray_scene::{Light, Shading};
+use viewray_scene::Shading;
 
-use crate::common::{Parts, Shape, TriangleMesh, material_name, num, num32};
+use crate::common::{Parts, Shape, ToolLight, TriangleMesh, num, num32};
 use crate::{ExportError, Format};
 
 /// Blender's default sensor width, mm.
@@ -196,12 +196,12 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         num32(parts.background.z)
     );
     out += "\nmaterials = []\n";
-    for (index, material) in parts.materials.iter().enumerate() {
+    for material in parts.materials() {
         let c = material.color;
         let _ = writeln!(
             out,
             "m = bpy.data.materials.new('{}')\nm.diffuse_color = ({}, {}, {}, 1.0)\nm.use_nodes = True\nbsdf = m.node_tree.nodes.get('Principled BSDF')\nif bsdf is not None:\n    bsdf.inputs['Base Color'].default_value = ({}, {}, {}, 1.0)\n    bsdf.inputs['Roughness'].default_value = 1.0\nmaterials.append(m)",
-            material_name(index),
+            material.name,
             num32(c.x),
             num32(c.y),
             num32(c.z),
@@ -217,78 +217,66 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
             obj = bpy.data.objects.new(name, mesh)\n    \
             scene.collection.objects.link(obj)\n\n";
     for (index, shape) in parts.shapes.iter().enumerate() {
+        let triangulated;
         let mesh = match shape {
             Shape::Sphere {
                 center,
                 radius,
                 material,
-            } => TriangleMesh::sphere(*center, *radius, *material),
-            Shape::Box { min, max, material } => TriangleMesh::cuboid(*min, *max, *material),
+            } => {
+                triangulated = TriangleMesh::sphere(*center, *radius, *material);
+                &triangulated
+            }
+            Shape::Box { min, max, material } => {
+                triangulated = TriangleMesh::cuboid(*min, *max, *material);
+                &triangulated
+            }
             Shape::Plane {
                 point,
                 normal,
                 material,
-            } => TriangleMesh::plane(*point, *normal, *material),
-            Shape::Mesh(mesh) => TriangleMesh {
-                positions: mesh.positions.clone(),
-                triangles: mesh.triangles.clone(),
-                material: mesh.material,
-            },
+            } => {
+                triangulated = TriangleMesh::plane(*point, *normal, *material);
+                &triangulated
+            }
+            Shape::Mesh(mesh) => mesh,
         };
         let _ = write!(out, "add_mesh('object_{index}', [");
-        for p in &mesh.positions {
+        for p in &mesh.data.positions {
             let _ = write!(out, "{}, ", v3(*p));
         }
         out += "], [";
-        for t in &mesh.triangles {
+        for t in &mesh.data.triangles {
             let _ = write!(out, "({}, {}, {}), ", t[0], t[1], t[2]);
         }
         let _ = writeln!(out, "], {})", mesh.material);
     }
     let pi = std::f32::consts::PI;
-    for (index, light) in parts.lights.iter().enumerate() {
-        match *light {
-            Light::Point {
-                position,
-                intensity,
-            } => {
-                let peak = intensity.max_element();
-                let color = if peak > 0.0 {
-                    intensity / peak
-                } else {
-                    Vec3::ONE
-                };
+    for (index, light) in parts.lights().enumerate() {
+        match light {
+            ToolLight::Point { position, power } => {
                 let _ = writeln!(
                     out,
                     "light = bpy.data.lights.new('light_{index}', 'POINT')\nlight.energy = {}\nlight.color = {}\nlight.shadow_soft_size = 0.0\nobj = bpy.data.objects.new('light_{index}', light)\nobj.location = {}\nscene.collection.objects.link(obj)",
-                    num32(4.0 * pi * pi * peak),
-                    v3(color),
+                    num32(4.0 * pi * pi * power.peak()),
+                    v3(power.color().unwrap_or(Vec3::ONE)),
                     v3(position)
                 );
             }
-            Light::Directional {
-                direction,
-                intensity,
-            } => {
-                let peak = intensity.max_element();
-                let color = if peak > 0.0 {
-                    intensity / peak
-                } else {
-                    Vec3::ONE
-                };
+            ToolLight::Directional { direction, power } => {
                 let _ = writeln!(
                     out,
                     "light = bpy.data.lights.new('light_{index}', 'SUN')\nlight.energy = {}\nlight.color = {}\nlight.angle = 0.0\nobj = bpy.data.objects.new('light_{index}', light)\nobj.rotation_mode = 'QUATERNION'\nobj.rotation_quaternion = Vector((0.0, 0.0, -1.0)).rotation_difference(Vector({}))\nscene.collection.objects.link(obj)",
-                    num32(pi * peak),
-                    v3(color),
+                    num32(power.strength()),
+                    v3(power.color().unwrap_or(Vec3::ONE)),
                     v3(direction)
                 );
             }
-            Light::Ambient { intensity } => {
+            ToolLight::Ambient { power } => {
                 let _ = writeln!(
                     out,
                     "# viewray's ambient light {} has no Blender counterpart.",
-                    v3(intensity)
+                    v3(power.viewray())
                 );
             }
         }

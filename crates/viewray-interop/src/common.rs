@@ -5,7 +5,8 @@ use std::f32::consts::PI as PI32;
 
 use glam::{DMat4, DVec2, DVec3, Vec3};
 use viewray_camera::{Camera, Frame};
-use viewray_geometry::{Object, Triangle};
+use viewray_geometry::{Aabb, MeshData, Object, Triangle};
+use viewray_output::{linear_to_srgb8, srgb_to_linear};
 use viewray_scene::{
     CameraDocument, Light, Material, ObjectMaterial, ProjectionDocument, Scene, Shading,
 };
@@ -13,6 +14,11 @@ use viewray_scene::{
 /// How far an infinite plane reaches when a tool has only finite surfaces: a square
 /// 2 x 10^4 scene units across, centred on the plane's point.
 pub(crate) const PLANE_HALF_SIZE: f32 = 1.0e4;
+
+/// The order in which a box's faces are written, as indices into [`MeshData::cuboid`]'s
+/// (-z, +z, -y, +y, -x, +x): -z, +z, -x, +x, -y, +y, the order exported files (and
+/// imported boxes' triangles) have always had, so that they stay byte for byte the same.
+const EXPORTED_FACE_ORDER: [usize; 6] = [0, 1, 4, 5, 2, 3];
 
 /// Segments around and rings from pole to pole when a sphere becomes triangles (glTF,
 /// Blender).
@@ -25,8 +31,8 @@ pub(crate) struct Parts<'a> {
     pub(crate) samples: u32,
     pub(crate) background: Vec3,
     pub(crate) shading: Shading,
-    pub(crate) materials: &'a [Material],
-    pub(crate) lights: &'a [Light],
+    materials: &'a [Material],
+    lights: &'a [Light],
     pub(crate) shapes: Vec<Shape>,
 }
 
@@ -54,8 +60,8 @@ pub(crate) enum Shape {
 
 /// Triangles in world space with one material.
 pub(crate) struct TriangleMesh {
-    pub(crate) positions: Vec<Vec3>,
-    pub(crate) triangles: Vec<[u32; 3]>,
+    /// The positions and triangles (no normals, no texture coordinates).
+    pub(crate) data: MeshData,
     pub(crate) material: u32,
 }
 
@@ -85,8 +91,7 @@ impl<'a> Parts<'a> {
                     material: one,
                 }),
                 Object::Triangle(Triangle { a, b, c }) => shapes.push(Shape::Mesh(TriangleMesh {
-                    positions: vec![*a, *b, *c],
-                    triangles: vec![[0, 1, 2]],
+                    data: MeshData::new(vec![*a, *b, *c], vec![[0, 1, 2]]),
                     material: one,
                 })),
                 Object::Instance(instance) => {
@@ -137,16 +142,125 @@ impl<'a> Parts<'a> {
     pub(crate) fn size(&self) -> (u32, u32) {
         (self.camera.width(), self.camera.height())
     }
+
+    /// The scene's lights in the order of its list, as every exporter writes them.
+    pub(crate) fn lights(&self) -> impl Iterator<Item = ToolLight> + '_ {
+        self.lights.iter().map(|light| match *light {
+            Light::Point {
+                position,
+                intensity,
+            } => ToolLight::Point {
+                position,
+                power: LightPower(intensity),
+            },
+            Light::Directional {
+                direction,
+                intensity,
+            } => ToolLight::Directional {
+                direction,
+                power: LightPower(intensity),
+            },
+            Light::Ambient { intensity } => ToolLight::Ambient {
+                power: LightPower(intensity),
+            },
+        })
+    }
+
+    /// The scene's materials in the order of its list, as every exporter writes them.
+    pub(crate) fn materials(&self) -> impl Iterator<Item = ToolMaterial> + '_ {
+        self.materials
+            .iter()
+            .enumerate()
+            .map(|(index, material)| ToolMaterial {
+                index,
+                name: material_name(index),
+                color: material.color,
+            })
+    }
+}
+
+/// A light of the scene in the exporters' shared terms. Where it has a counterpart in
+/// the tool, its strength is [`LightPower`]'s.
+#[derive(Clone, Copy)]
+pub(crate) enum ToolLight {
+    /// A point light at `position`.
+    Point { position: Vec3, power: LightPower },
+    /// A light from infinitely far away, shining along `direction`.
+    Directional { direction: Vec3, power: LightPower },
+    /// viewray's ambient light: only three.js has one (the other formats name it in a
+    /// comment, or leave it out).
+    Ambient { power: LightPower },
+}
+
+/// A light's strength: viewray's RGB intensity, and the tools' terms for it.
+///
+/// The tools' diffuse surfaces reflect `albedo / pi` of the light where viewray's Lit
+/// shading reflects `albedo`, so a tool's light is pi times viewray's:
+///
+/// ```text
+/// tool intensity = pi I,   tool strength = pi max(I_r, I_g, I_b)
+/// ```
+#[derive(Clone, Copy)]
+pub(crate) struct LightPower(pub(crate) Vec3);
+
+impl LightPower {
+    /// viewray's RGB intensity, as a comment names it.
+    pub(crate) fn viewray(self) -> Vec3 {
+        self.0
+    }
+
+    /// The tools' RGB intensity, `pi I`: pbrt's `I` and `L`, Mitsuba's `intensity` and
+    /// `irradiance`.
+    pub(crate) fn rgb(self) -> Vec3 {
+        self.0 * PI32
+    }
+
+    /// The largest channel of viewray's intensity, for the tools that take a light as a
+    /// colour times one number.
+    pub(crate) fn peak(self) -> f32 {
+        self.0.max_element()
+    }
+
+    /// The tools' strength of a colour-times-number light, `pi` times [`Self::peak`].
+    pub(crate) fn strength(self) -> f32 {
+        self.peak() * PI32
+    }
+
+    /// The light's colour, its intensity over [`Self::peak`]; `None` for a black light.
+    pub(crate) fn color(self) -> Option<Vec3> {
+        let peak = self.peak();
+        (peak > 0.0).then(|| self.0 / peak)
+    }
+}
+
+/// viewray's RGB intensity of a tool's light of RGB intensity `tool`: the inverse of
+/// [`LightPower::rgb`], `tool / pi`.
+pub(crate) fn viewray_intensity(tool: Vec3) -> Vec3 {
+    tool / PI32
+}
+
+/// A material of the scene in the exporters' shared terms.
+pub(crate) struct ToolMaterial {
+    /// Its place in the scene's list, which [`Shape`]s refer to.
+    pub(crate) index: usize,
+    /// Its name in the exported file ([`material_name`]).
+    pub(crate) name: String,
+    /// The diffuse colour, linear, as the scene gives it.
+    pub(crate) color: Vec3,
+}
+
+impl ToolMaterial {
+    /// The diffuse colour as a reflectance a physically based renderer accepts: each
+    /// channel in `[0, 1]`.
+    pub(crate) fn reflectance(&self) -> Vec3 {
+        self.color.clamp(Vec3::ZERO, Vec3::ONE)
+    }
 }
 
 /// The vertices `faces` use, renumbered from 0.
 fn compact(positions: &[Vec3], faces: &[[u32; 3]], material: u32) -> TriangleMesh {
     let mut map = vec![u32::MAX; positions.len()];
-    let mut out = TriangleMesh {
-        positions: Vec::new(),
-        triangles: Vec::with_capacity(faces.len()),
-        material,
-    };
+    let mut out = MeshData::new(Vec::new(), Vec::with_capacity(faces.len()));
     for face in faces {
         let mut t = [0; 3];
         for (k, &i) in face.iter().enumerate() {
@@ -159,39 +273,23 @@ fn compact(positions: &[Vec3], faces: &[[u32; 3]], material: u32) -> TriangleMes
         }
         out.triangles.push(t);
     }
-    out
+    TriangleMesh {
+        data: out,
+        material,
+    }
 }
 
 impl TriangleMesh {
-    /// A box's 8 corners and 12 triangles, facing out.
+    /// A box as [`MeshData::cuboid`] makes it: its 8 corners ([`Aabb::corners`]) and 12
+    /// triangles, facing out, two a face, the faces in [`EXPORTED_FACE_ORDER`].
     pub(crate) fn cuboid(min: Vec3, max: Vec3, material: u32) -> Self {
-        let corner = |i: u32| {
-            Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            )
-        };
-        let positions = (0..8).map(corner).collect();
-        let triangles = vec![
-            [0, 2, 3],
-            [0, 3, 1], // -z
-            [4, 5, 7],
-            [4, 7, 6], // +z
-            [0, 4, 6],
-            [0, 6, 2], // -x
-            [1, 3, 7],
-            [1, 7, 5], // +x
-            [0, 1, 5],
-            [0, 5, 4], // -y
-            [2, 6, 7],
-            [2, 7, 3], // +y
-        ];
-        Self {
-            positions,
-            triangles,
-            material,
-        }
+        let mut data = MeshData::cuboid(Aabb::new(min, max));
+        let pairs = data.triangles.chunks_exact(2).collect::<Vec<_>>();
+        data.triangles = EXPORTED_FACE_ORDER
+            .iter()
+            .flat_map(|&face| pairs[face].iter().copied())
+            .collect();
+        Self { data, material }
     }
 
     /// An infinite plane as a square [`PLANE_HALF_SIZE`] on each side of its point, facing
@@ -206,8 +304,7 @@ impl TriangleMesh {
             point - s * t1 + s * t2,
         ];
         Self {
-            positions,
-            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            data: MeshData::new(positions, vec![[0, 1, 2], [0, 2, 3]]),
             material,
         }
     }
@@ -243,8 +340,7 @@ impl TriangleMesh {
             triangles.push([at(SPHERE_RINGS - 1, s), south, at(SPHERE_RINGS - 1, s + 1)]);
         }
         Self {
-            positions,
-            triangles,
+            data: MeshData::new(positions, triangles),
             material,
         }
     }
@@ -339,45 +435,19 @@ pub(crate) fn matrix_from_column_major(m: &[f64]) -> Option<DMat4> {
     matrix.is_finite().then_some(matrix)
 }
 
-/// Linear RGB in [0, 1] to an sRGB-encoded byte (three.js's hex colours).
-pub(crate) fn linear_to_srgb_byte(x: f32) -> u32 {
-    let x = x.clamp(0.0, 1.0);
-    let encoded = if x <= 0.003_130_8 {
-        12.92 * x
-    } else {
-        1.055 * x.powf(1.0 / 2.4) - 0.055
-    };
-    // In range 0..=255 after the clamp.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let byte = (encoded * 255.0).round() as u32;
-    byte
-}
-
-/// An sRGB-encoded byte to linear RGB.
-pub(crate) fn srgb_byte_to_linear(byte: u32) -> f32 {
-    #[allow(clippy::cast_precision_loss)]
-    let x = (byte & 0xff) as f32 / 255.0;
-    if x <= 0.040_45 {
-        x / 12.92
-    } else {
-        ((x + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 /// A linear colour as three.js's `0xRRGGBB` (sRGB-encoded).
 pub(crate) fn hex_color(color: Vec3) -> u32 {
-    (linear_to_srgb_byte(color.x) << 16)
-        | (linear_to_srgb_byte(color.y) << 8)
-        | linear_to_srgb_byte(color.z)
+    let [r, g, b] = color.to_array().map(|x| u32::from(linear_to_srgb8(x)));
+    (r << 16) | (g << 8) | b
 }
 
 /// three.js's `0xRRGGBB` as a linear colour.
 pub(crate) fn color_from_hex(hex: u32) -> Vec3 {
-    Vec3::new(
-        srgb_byte_to_linear(hex >> 16),
-        srgb_byte_to_linear(hex >> 8),
-        srgb_byte_to_linear(hex),
-    )
+    let channel = |shift: u32| {
+        let code = u8::try_from((hex >> shift) & 0xff).expect("masked to 8 bits");
+        srgb_to_linear(f32::from(code) / 255.0)
+    };
+    Vec3::new(channel(16), channel(8), channel(0))
 }
 
 /// The name a scene document gives material `index`.
@@ -389,4 +459,15 @@ pub(crate) fn material_name(index: usize) -> String {
 /// `target = e - W`, `up = V`.
 pub(crate) fn look_at(frame: &Frame) -> (DVec3, DVec3, DVec3) {
     (frame.e(), frame.e() - frame.w(), frame.v())
+}
+
+/// A number of pixels, at least 1 and at most viewray's largest side: the image size of
+/// an imported camera whose file gives only an aspect ratio.
+pub(crate) fn pixels(x: f64) -> u32 {
+    // Clamped into u32's range first.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let n = x
+        .round()
+        .clamp(1.0, f64::from(viewray_scene::MAX_IMAGE_SIDE)) as u32;
+    n
 }

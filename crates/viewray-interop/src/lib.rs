@@ -18,6 +18,17 @@
 //!
 //! The conventions of every tool are in `docs/cameras-in-other-tools.md`, each backed by
 //! a test.
+//!
+//! # Where to start reading
+//!
+//! [`export`] and [`import`] below pick the format. Each format's `mod.rs` states its
+//! conventions and re-exports its pair; `export.rs` and `import.rs` are the two
+//! directions (Blender, export only, is one file). What every exporter shares is in
+//! `common.rs`: the scene as shapes in world space (`Parts`), its lights and materials
+//! in the tools' terms (`Parts::lights`, `Parts::materials`, with the one rule for units
+//! of light), box, plane and sphere meshes, the camera frame as a matrix. Meshes that
+//! Mitsuba loads from files are written by `viewray_scene::obj_text`, colours encoded by
+//! `viewray_output`'s sRGB transfer.
 
 pub mod blender;
 mod common;

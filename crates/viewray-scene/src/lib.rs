@@ -29,6 +29,7 @@ mod document;
 mod error;
 mod load;
 mod mesh;
+mod obj;
 mod scene;
 mod schema;
 
@@ -42,6 +43,7 @@ pub use document::{
 };
 pub use error::{Position, SceneError};
 pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+pub use obj::obj_text;
 pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
 
 /// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of

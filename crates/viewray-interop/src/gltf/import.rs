@@ -1,333 +1,22 @@
-//! glTF 2.0: `.gltf` (JSON, buffers embedded as base64) and `.glb` (binary).
-//!
-//! # Conventions
-//!
-//! - **Axes.** Right-handed, `+y` up, metres. A camera looks down its node's local `-z`
-//!   with `+x` right and `+y` up: viewray's `U`, `V`, `W`, so the node's `matrix`
-//!   (column-major) has the columns `U`, `V`, `W`, `e`.
-//! - **Field of view.** `perspective.yfov` is *vertical*, in radians: `vh = 2 d tan(yfov
-//!   / 2)`. `aspectRatio = vw / vh` when given; without it the renderer's viewport
-//!   decides (an imported camera then gets a 640 x 480 image and `fov_y`).
-//! - **Orthographic.** `xmag` and `ymag` are *half* the viewport: `vw = 2 xmag`,
-//!   `vh = 2 ymag`. viewray writes `znear = 0`, `zfar = 10^6`.
-//! - **Image size** is not part of glTF: viewray keeps it in the camera's `extras`
-//!   (`{"viewray": {"width", "height", "samples"}}`) and reads it back from there.
-//! - **Geometry.** glTF has only triangle meshes: spheres become 64 x 32 UV spheres,
-//!   infinite planes squares 2 x 10^4 across. Colours are linear `baseColorFactor`s;
-//!   lights use `KHR_lights_punctual` (intensities times pi, as for three.js); the
-//!   background and ambient light have no glTF counterpart.
-//! - **Cannot be expressed**: a shift (glTF's frustum is symmetric), a lens, oblique and
-//!   panoramic cameras.
+//! Reading glTF 2.0 (the conventions are in the module's `mod.rs`): the default scene's
+//! nodes walked from its roots, with their transforms.
 
 use std::path::Path;
 
 use base64::Engine as _;
 use glam::{DMat4, DQuat, DVec2, DVec3, Vec3};
-use serde_json::{Value, json};
-use viewray_camera::{FovAxis, Projection};
+use serde_json::Value;
+use viewray_camera::FovAxis;
 use viewray_scene::{
     Light, Material, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument, Shading,
 };
 
+use super::glb;
+use crate::ImportError;
 use crate::common::{
-    Parts, Shape, TriangleMesh, camera_document, material_name, matrix_from_column_major,
-    world_from_camera,
+    camera_document, material_name, matrix_from_column_major, pixels, square_pixels,
+    viewray_intensity,
 };
-use crate::{ExportError, Format, ImportError};
-
-const GLB_MAGIC: &[u8; 4] = b"glTF";
-const CHUNK_JSON: u32 = 0x4E4F_534A;
-const CHUNK_BIN: u32 = 0x004E_4942;
-
-fn lacks(what: impl Into<String>) -> ExportError {
-    ExportError::new(Format::Gltf, what)
-}
-
-/// Whether JSON `bytes` look like glTF (an `"asset"` with a `"version"`).
-pub(crate) fn looks_like_gltf(bytes: &[u8]) -> bool {
-    if bytes.starts_with(GLB_MAGIC) {
-        return true;
-    }
-    serde_json::from_slice::<Value>(bytes)
-        .ok()
-        .is_some_and(|v| v.pointer("/asset/version").is_some())
-}
-
-/// Writes `scene` as glTF 2.0: `.gltf` JSON with the buffer embedded, or `.glb`.
-///
-/// # Errors
-/// An [`ExportError`] for a camera glTF cannot express.
-pub fn export(scene: &viewray_scene::Scene, binary: bool) -> Result<Vec<u8>, ExportError> {
-    let parts = Parts::of(scene);
-    let (width, height) = parts.size();
-    let camera = parts.camera;
-    let extras =
-        json!({ "viewray": { "width": width, "height": height, "samples": parts.samples } });
-    let camera_json = match camera.projection() {
-        Projection::Perspective(p) => {
-            if p.shift != DVec2::ZERO {
-                return Err(lacks(
-                    "has no shift: its perspective camera's frustum is symmetric (yfov and \
-                     aspectRatio only)",
-                ));
-            }
-            json!({
-                "type": "perspective",
-                "perspective": {
-                    "yfov": 2.0 * (p.viewport.y / (2.0 * p.distance)).atan(),
-                    "aspectRatio": p.viewport.x / p.viewport.y,
-                    "znear": 0.001,
-                },
-                "extras": extras,
-            })
-        }
-        Projection::Orthographic(o) => {
-            if o.lens.is_some() {
-                return Err(lacks("has no lens: its cameras are pinholes"));
-            }
-            json!({
-                "type": "orthographic",
-                "orthographic": {
-                    "xmag": o.viewport.x / 2.0, "ymag": o.viewport.y / 2.0,
-                    "znear": 0.0, "zfar": 1.0e6,
-                },
-                "extras": extras,
-            })
-        }
-        Projection::ThinLens(_) => {
-            return Err(lacks(
-                "has no lens: its cameras are pinholes (no aperture, no focus)",
-            ));
-        }
-        Projection::Oblique(_) => {
-            return Err(lacks(
-                "has no oblique camera: its cameras are perspective and orthographic",
-            ));
-        }
-        Projection::Equirectangular | Projection::Fisheye(_) => {
-            return Err(lacks(
-                "has no panoramic camera: its cameras are perspective and orthographic",
-            ));
-        }
-    };
-    let mut nodes = vec![json!({
-        "name": "viewray camera",
-        "camera": 0,
-        "matrix": world_from_camera(camera.frame()).to_cols_array(),
-    })];
-    let mut buffer: Vec<u8> = Vec::new();
-    let mut views = Vec::new();
-    let mut accessors = Vec::new();
-    let mut meshes = Vec::new();
-    for shape in &parts.shapes {
-        let mesh = match shape {
-            Shape::Sphere {
-                center,
-                radius,
-                material,
-            } => TriangleMesh::sphere(*center, *radius, *material),
-            Shape::Box { min, max, material } => TriangleMesh::cuboid(*min, *max, *material),
-            Shape::Plane {
-                point,
-                normal,
-                material,
-            } => TriangleMesh::plane(*point, *normal, *material),
-            Shape::Mesh(mesh) => TriangleMesh {
-                positions: mesh.positions.clone(),
-                triangles: mesh.triangles.clone(),
-                material: mesh.material,
-            },
-        };
-        let (min, max) = mesh.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
-        let positions_at = buffer.len();
-        for p in &mesh.positions {
-            for x in p.to_array() {
-                buffer.extend_from_slice(&x.to_le_bytes());
-            }
-        }
-        let indices_at = buffer.len();
-        for t in &mesh.triangles {
-            for i in t {
-                buffer.extend_from_slice(&i.to_le_bytes());
-            }
-        }
-        views.push(json!({ "buffer": 0, "byteOffset": positions_at, "byteLength": indices_at - positions_at, "target": 34962 }));
-        views.push(json!({ "buffer": 0, "byteOffset": indices_at, "byteLength": buffer.len() - indices_at, "target": 34963 }));
-        let view = views.len() - 2;
-        accessors.push(json!({
-            "bufferView": view, "componentType": 5126, "count": mesh.positions.len(), "type": "VEC3",
-            "min": min.to_array(), "max": max.to_array(),
-        }));
-        accessors.push(json!({
-            "bufferView": view + 1, "componentType": 5125, "count": mesh.triangles.len() * 3, "type": "SCALAR",
-        }));
-        let accessor = accessors.len() - 2;
-        meshes.push(json!({
-            "primitives": [{
-                "attributes": { "POSITION": accessor },
-                "indices": accessor + 1,
-                "material": mesh.material,
-                "mode": 4,
-            }],
-        }));
-        nodes.push(json!({ "mesh": meshes.len() - 1 }));
-    }
-    let materials: Vec<Value> = parts
-        .materials
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
-            json!({
-                "name": material_name(i),
-                "pbrMetallicRoughness": {
-                    "baseColorFactor": [m.color.x, m.color.y, m.color.z, 1.0],
-                    "metallicFactor": 0.0, "roughnessFactor": 1.0,
-                },
-                "doubleSided": true,
-            })
-        })
-        .collect();
-    let pi = std::f32::consts::PI;
-    let mut lights = Vec::new();
-    for light in parts.lights {
-        let (kind, intensity, node) = match *light {
-            Light::Point {
-                position,
-                intensity,
-            } => (
-                "point",
-                intensity,
-                json!({ "translation": position.to_array() }),
-            ),
-            Light::Directional {
-                direction,
-                intensity,
-            } => {
-                let rotation = DQuat::from_rotation_arc(DVec3::NEG_Z, direction.as_dvec3());
-                (
-                    "directional",
-                    intensity,
-                    json!({ "rotation": rotation.to_array() }),
-                )
-            }
-            Light::Ambient { .. } => continue,
-        };
-        let peak = intensity.max_element();
-        let color = if peak > 0.0 {
-            intensity / peak
-        } else {
-            Vec3::ZERO
-        };
-        let mut node = node;
-        node["extensions"] = json!({ "KHR_lights_punctual": { "light": lights.len() } });
-        nodes.push(node);
-        lights.push(json!({ "type": kind, "color": color.to_array(), "intensity": peak * pi }));
-    }
-    while !buffer.len().is_multiple_of(4) {
-        buffer.push(0);
-    }
-    let mut document = json!({
-        "asset": { "version": "2.0", "generator": "viewray export" },
-        "scene": 0,
-        "scenes": [{ "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
-        "nodes": nodes,
-        "cameras": [camera_json],
-        "materials": materials,
-    });
-    if !meshes.is_empty() {
-        document["meshes"] = json!(meshes);
-        document["accessors"] = json!(accessors);
-        document["bufferViews"] = json!(views);
-        let mut buffer_json = json!({ "byteLength": buffer.len() });
-        if !binary {
-            buffer_json["uri"] = json!(format!(
-                "data:application/octet-stream;base64,{}",
-                base64::engine::general_purpose::STANDARD.encode(&buffer)
-            ));
-        }
-        document["buffers"] = json!([buffer_json]);
-    }
-    if !lights.is_empty() {
-        document["extensionsUsed"] = json!(["KHR_lights_punctual"]);
-        document["extensions"] = json!({ "KHR_lights_punctual": { "lights": lights } });
-    }
-    if binary {
-        let mut json_bytes = serde_json::to_vec(&document).expect("JSON values serialize");
-        while !json_bytes.len().is_multiple_of(4) {
-            json_bytes.push(b' ');
-        }
-        let has_bin = !meshes.is_empty();
-        let total = 12 + 8 + json_bytes.len() + if has_bin { 8 + buffer.len() } else { 0 };
-        let mut out = Vec::with_capacity(total);
-        out.extend_from_slice(GLB_MAGIC);
-        out.extend_from_slice(&2u32.to_le_bytes());
-        out.extend_from_slice(&u32::try_from(total).unwrap_or(u32::MAX).to_le_bytes());
-        out.extend_from_slice(
-            &u32::try_from(json_bytes.len())
-                .unwrap_or(u32::MAX)
-                .to_le_bytes(),
-        );
-        out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-        out.extend_from_slice(&json_bytes);
-        if has_bin {
-            out.extend_from_slice(
-                &u32::try_from(buffer.len())
-                    .unwrap_or(u32::MAX)
-                    .to_le_bytes(),
-            );
-            out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-            out.extend_from_slice(&buffer);
-        }
-        Ok(out)
-    } else {
-        let mut text = serde_json::to_string_pretty(&document).expect("JSON values serialize");
-        text.push('\n');
-        Ok(text.into_bytes())
-    }
-}
-
-// ---------------------------------------------------------------------------------------
-// Import
-// ---------------------------------------------------------------------------------------
-
-/// The JSON and the binary chunk of a `.glb`, or the JSON of a `.gltf`.
-fn split_glb<'a>(
-    bytes: &'a [u8],
-    path: &Path,
-) -> Result<(&'a [u8], Option<&'a [u8]>), ImportError> {
-    if !bytes.starts_with(GLB_MAGIC) {
-        return Ok((bytes, None));
-    }
-    let error = |m: &str| ImportError::new(path, None, format!("not a valid .glb: {m}"));
-    let word = |at: usize| -> Option<u32> {
-        bytes
-            .get(at..at + 4)
-            .map(|b| u32::from_le_bytes(b.try_into().expect("4 bytes")))
-    };
-    if word(4) != Some(2) {
-        return Err(error("only glTF 2 binaries are read"));
-    }
-    let mut at = 12;
-    let mut json = None;
-    let mut bin = None;
-    while at + 8 <= bytes.len() {
-        let length = word(at).ok_or_else(|| error("truncated chunk header"))? as usize;
-        let kind = word(at + 4).ok_or_else(|| error("truncated chunk header"))?;
-        let data = bytes
-            .get(at + 8..at + 8 + length)
-            .ok_or_else(|| error("a chunk runs past the end of the file"))?;
-        match kind {
-            CHUNK_JSON if json.is_none() => json = Some(data),
-            CHUNK_BIN if bin.is_none() => bin = Some(data),
-            _ => {}
-        }
-        at += 8 + length;
-    }
-    Ok((json.ok_or_else(|| error("no JSON chunk"))?, bin))
-}
 
 struct Importer<'a> {
     path: &'a Path,
@@ -437,12 +126,13 @@ impl<'a> Importer<'a> {
                     .map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32))
             })
             .unwrap_or(Vec3::ONE);
-        let intensity = light
-            .get("intensity")
-            .and_then(Value::as_f64)
-            .unwrap_or(1.0) as f32
-            * color
-            / std::f32::consts::PI;
+        let intensity = viewray_intensity(
+            light
+                .get("intensity")
+                .and_then(Value::as_f64)
+                .unwrap_or(1.0) as f32
+                * color,
+        );
         match light.get("type").and_then(Value::as_str) {
             Some("point") => self.lights.push(Light::Point {
                 position: matrix.w_axis.truncate().as_vec3(),
@@ -677,7 +367,7 @@ impl<'a> Importer<'a> {
 /// # Errors
 /// An [`ImportError`] for malformed JSON or GLB, no camera, or values of the wrong form.
 pub fn import(bytes: &[u8], path: &Path) -> Result<SceneDocument, ImportError> {
-    let (json, bin) = split_glb(bytes, path)?;
+    let (json, bin) = glb::split(bytes, path)?;
     let root: Value = serde_json::from_slice(json).map_err(|e| {
         ImportError::new(
             path,
@@ -762,9 +452,7 @@ pub fn import(bytes: &[u8], path: &Path) -> Result<SceneDocument, ImportError> {
             };
             let vh = 2.0 * (yfov / 2.0).tan();
             let size = match aspect {
-                Some(a)
-                    if !crate::common::square_pixels(DVec2::new(a * vh, vh), (width, height)) =>
-                {
+                Some(a) if !square_pixels(DVec2::new(a * vh, vh), (width, height)) => {
                     PerspectiveSize::Viewport {
                         distance: 1.0,
                         viewport: DVec2::new(a * vh, vh),
@@ -826,13 +514,4 @@ pub fn import(bytes: &[u8], path: &Path) -> Result<SceneDocument, ImportError> {
         lights: importer.lights,
         objects: importer.objects,
     })
-}
-
-fn pixels(x: f64) -> u32 {
-    // Clamped into u32's range first.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let n = x
-        .round()
-        .clamp(1.0, f64::from(viewray_scene::MAX_IMAGE_SIDE)) as u32;
-    n
 }

@@ -1,291 +1,24 @@
-//! three.js JSON objects (`THREE.ObjectLoader().parse`, `object.toJSON()`).
-//!
-//! # Conventions
-//!
-//! - **Axes.** Right-handed, `+y` up; a camera looks down its local `-z` with `+x` right
-//!   and `+y` up, exactly viewray's `U`, `V`, `W`: the camera's `matrix` (column-major,
-//!   16 numbers) has the columns `U`, `V`, `W`, `e`.
-//! - **Field of view.** `PerspectiveCamera.fov` is *vertical*, in degrees, divided by
-//!   `zoom`: `vh = 2 d tan(fov / 2) / zoom`, `vw = aspect vh`. `aspect` is a number of
-//!   its own, not the canvas's: viewray writes `aspect = vw / vh`.
-//! - **Shift.** `setViewOffset(fullWidth, fullHeight, x, y, width, height)` (the JSON's
-//!   `view`) moves the window by `x` pixels right and `y` pixels *down* of a
-//!   `fullWidth x fullHeight` image: `sx = x vw / fullWidth`, `sy = -y vh / fullHeight`.
-//!   `filmOffset` (mm on a `filmGauge` of 35 mm across the smaller side) shifts
-//!   horizontally too: `sx = d filmOffset / (filmGauge min(aspect, 1))` at zoom 1.
-//!   viewray always writes a `view` of the image's own size, so the image size comes
-//!   back on import; without a `view` an imported camera gets a 480-row image of its
-//!   aspect ratio.
-//! - **Orthographic.** `left`, `right`, `top`, `bottom` (divided by `zoom` about their
-//!   centre) are the viewport in scene units; viewray writes `±vw/2`, `±vh/2` with
-//!   `near = 0`. On import an off-centre window or a `near` plane moves the eye (viewray's
-//!   parallel rays start on the image plane).
-//! - **Colours** are sRGB-encoded `0xRRGGBB` integers (three.js's colour management);
-//!   lights are `intensity` times a colour, and three.js's Lambert BRDF has the `1 / pi`
-//!   viewray's shading lacks, so intensities are written times pi.
-//! - **Cannot be expressed**: a lens (three.js cameras are pinholes; `focus` is for
-//!   stereo), oblique and panoramic cameras.
+//! Reading a three.js JSON object (the conventions are in the module's `mod.rs`): its
+//! object tree walked from the root, with each object's matrix.
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
 use glam::{DMat4, DQuat, DVec2, DVec3, Vec3};
-use serde_json::{Map, Value, json};
-use viewray_camera::Projection;
+use serde_json::Value;
 use viewray_scene::{
     Light, Material, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument, Shading,
 };
 
+use crate::ImportError;
 use crate::common::{
-    self, Parts, Shape, camera_document, color_from_hex, hex_color, material_name,
-    matrix_from_column_major, world_from_camera,
+    TriangleMesh, camera_document, color_from_hex, matrix_from_column_major, pixels, square_pixels,
+    viewray_intensity,
 };
-use crate::{ExportError, Format, ImportError};
 
 /// The image height an imported camera without a `view` gets.
 const DEFAULT_ROWS: u32 = 480;
-
-fn lacks(what: impl Into<String>) -> ExportError {
-    ExportError::new(Format::Three, what)
-}
-
-/// A deterministic UUID-shaped identifier (three.js only needs them unique).
-fn uuid(n: usize) -> String {
-    format!("00000000-0000-4000-8000-{n:012x}")
-}
-
-fn matrix_json(m: DMat4) -> Value {
-    json!(m.to_cols_array())
-}
-
-/// The camera object of `parts`: a `PerspectiveCamera` or `OrthographicCamera`.
-fn camera_json(parts: &Parts<'_>, id: String) -> Result<Value, ExportError> {
-    let camera = parts.camera;
-    let (width, height) = parts.size();
-    let (w, h) = (f64::from(width), f64::from(height));
-    let matrix = matrix_json(world_from_camera(camera.frame()));
-    let view = |offset: DVec2| {
-        json!({
-            "enabled": true,
-            "fullWidth": w, "fullHeight": h,
-            "offsetX": offset.x, "offsetY": offset.y,
-            "width": w, "height": h,
-        })
-    };
-    match camera.projection() {
-        Projection::Perspective(p) => {
-            let fov = (2.0 * (p.viewport.y / (2.0 * p.distance)).atan()).to_degrees();
-            let offset = DVec2::new(p.shift.x / p.viewport.x * w, -p.shift.y / p.viewport.y * h);
-            Ok(json!({
-                "uuid": id, "type": "PerspectiveCamera", "name": "viewray camera",
-                "layers": 1, "matrix": matrix, "up": [0.0, 1.0, 0.0],
-                "fov": fov, "zoom": 1.0, "near": 0.001, "far": 1.0e6, "focus": 10.0,
-                "aspect": p.viewport.x / p.viewport.y,
-                "view": view(offset),
-                "filmGauge": 35.0, "filmOffset": 0.0,
-            }))
-        }
-        Projection::Orthographic(o) => {
-            if o.lens.is_some() {
-                return Err(lacks("has no lens: its orthographic camera is a pinhole"));
-            }
-            let (x, y) = (o.viewport.x / 2.0, o.viewport.y / 2.0);
-            Ok(json!({
-                "uuid": id, "type": "OrthographicCamera", "name": "viewray camera",
-                "layers": 1, "matrix": matrix, "up": [0.0, 1.0, 0.0],
-                "zoom": 1.0, "left": -x, "right": x, "top": y, "bottom": -y,
-                "near": 0.0, "far": 1.0e6,
-                "view": view(DVec2::ZERO),
-            }))
-        }
-        Projection::ThinLens(_) => Err(lacks(
-            "has no lens: its cameras are pinholes (PerspectiveCamera.focus is for stereo)",
-        )),
-        Projection::Oblique(_) => Err(lacks(
-            "has no oblique camera: its cameras are perspective and orthographic",
-        )),
-        Projection::Equirectangular | Projection::Fisheye(_) => Err(lacks(
-            "has no panoramic camera: its cameras are perspective and orthographic",
-        )),
-    }
-}
-
-/// Writes `scene` as a three.js JSON object (a `Scene` holding the camera, lights and
-/// meshes), loadable with `THREE.ObjectLoader().parse`.
-///
-/// # Errors
-/// An [`ExportError`] for a camera three.js cannot express.
-pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
-    let parts = Parts::of(scene);
-    let mut ids = 0;
-    let mut next = || {
-        ids += 1;
-        uuid(ids)
-    };
-    let mut children = vec![camera_json(&parts, next())?];
-    let pi = std::f32::consts::PI;
-    let light_color = |intensity: Vec3| {
-        let peak = intensity.max_element();
-        if peak > 0.0 {
-            (hex_color(intensity / peak), f64::from(peak * pi))
-        } else {
-            (0, 0.0)
-        }
-    };
-    for light in parts.lights {
-        let value = match *light {
-            Light::Point {
-                position,
-                intensity,
-            } => {
-                let (color, intensity) = light_color(intensity);
-                json!({
-                    "uuid": next(), "type": "PointLight", "layers": 1,
-                    "matrix": matrix_json(DMat4::from_translation(position.as_dvec3())),
-                    "color": color, "intensity": intensity, "distance": 0.0, "decay": 2.0,
-                })
-            }
-            Light::Directional {
-                direction,
-                intensity,
-            } => {
-                let (color, intensity) = light_color(intensity);
-                json!({
-                    "uuid": next(), "type": "DirectionalLight", "layers": 1,
-                    "matrix": matrix_json(DMat4::from_translation(-direction.as_dvec3())),
-                    "color": color, "intensity": intensity,
-                })
-            }
-            Light::Ambient { intensity } => {
-                let (color, intensity) = light_color(intensity);
-                json!({
-                    "uuid": next(), "type": "AmbientLight", "layers": 1,
-                    "matrix": matrix_json(DMat4::IDENTITY),
-                    "color": color, "intensity": intensity,
-                })
-            }
-        };
-        children.push(value);
-    }
-    let materials: Vec<Value> = parts
-        .materials
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
-            json!({
-                "uuid": uuid(1_000_000 + i), "type": "MeshLambertMaterial",
-                "name": material_name(i), "color": hex_color(m.color), "side": 2,
-            })
-        })
-        .collect();
-    let mut geometries = Vec::new();
-    for shape in &parts.shapes {
-        let geometry_id = next();
-        let (geometry, matrix, material) = match shape {
-            Shape::Sphere {
-                center,
-                radius,
-                material,
-            } => (
-                json!({
-                    "uuid": geometry_id, "type": "SphereGeometry", "radius": radius,
-                    "widthSegments": common::SPHERE_SEGMENTS, "heightSegments": common::SPHERE_RINGS,
-                    "phiStart": 0.0, "phiLength": 2.0 * PI, "thetaStart": 0.0, "thetaLength": PI,
-                }),
-                DMat4::from_translation(center.as_dvec3()),
-                *material,
-            ),
-            Shape::Box { min, max, material } => {
-                let size = *max - *min;
-                (
-                    json!({
-                        "uuid": geometry_id, "type": "BoxGeometry",
-                        "width": size.x, "height": size.y, "depth": size.z,
-                        "widthSegments": 1, "heightSegments": 1, "depthSegments": 1,
-                    }),
-                    DMat4::from_translation(((*min + *max) / 2.0).as_dvec3()),
-                    *material,
-                )
-            }
-            Shape::Plane {
-                point,
-                normal,
-                material,
-            } => {
-                let (t1, t2) = common::tangents(*normal);
-                let size = 2.0 * common::PLANE_HALF_SIZE;
-                (
-                    json!({
-                        "uuid": geometry_id, "type": "PlaneGeometry",
-                        "width": size, "height": size, "widthSegments": 1, "heightSegments": 1,
-                    }),
-                    DMat4::from_cols(
-                        t1.as_dvec3().extend(0.0),
-                        t2.as_dvec3().extend(0.0),
-                        normal.as_dvec3().extend(0.0),
-                        point.as_dvec3().extend(1.0),
-                    ),
-                    *material,
-                )
-            }
-            Shape::Mesh(mesh) => {
-                let positions: Vec<f32> =
-                    mesh.positions.iter().flat_map(|p| p.to_array()).collect();
-                let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-                (
-                    json!({
-                        "uuid": geometry_id, "type": "BufferGeometry",
-                        "data": {
-                            "attributes": {
-                                "position": {
-                                    "itemSize": 3, "type": "Float32Array",
-                                    "array": positions, "normalized": false,
-                                },
-                            },
-                            "index": { "type": "Uint32Array", "array": indices },
-                        },
-                    }),
-                    DMat4::IDENTITY,
-                    mesh.material,
-                )
-            }
-        };
-        children.push(json!({
-            "uuid": next(), "type": "Mesh", "layers": 1, "matrix": matrix_json(matrix),
-            "geometry": geometry["uuid"].clone(),
-            "material": uuid(1_000_000 + material as usize),
-        }));
-        geometries.push(geometry);
-    }
-    let mut object = json!({
-        "uuid": next(), "type": "Scene", "name": "viewray scene", "layers": 1,
-        "matrix": matrix_json(DMat4::IDENTITY), "up": [0.0, 1.0, 0.0],
-        "children": children,
-    });
-    if parts.background != Vec3::ZERO {
-        object["background"] = json!(hex_color(parts.background));
-    }
-    let mut samples = Map::new();
-    samples.insert("samples".to_owned(), json!(parts.samples));
-    if parts.shading != Shading::Lit {
-        samples.insert("shading".to_owned(), json!(format!("{:?}", parts.shading)));
-    }
-    object["userData"] = json!({ "viewray": samples });
-    let document = json!({
-        "metadata": { "version": 4.6, "type": "Object", "generator": "viewray export" },
-        "geometries": geometries,
-        "materials": materials,
-        "object": object,
-    });
-    let mut text = serde_json::to_string_pretty(&document).expect("JSON values serialize");
-    text.push('\n');
-    Ok(text.into_bytes())
-}
-
-// ---------------------------------------------------------------------------------------
-// Import
-// ---------------------------------------------------------------------------------------
 
 struct Importer<'a> {
     path: &'a Path,
@@ -393,7 +126,7 @@ impl<'a> Importer<'a> {
             .and_then(Value::as_u64)
             .map_or(Vec3::ONE, |c| color_from_hex(c as u32));
         let intensity =
-            number(object, "intensity").unwrap_or(1.0) as f32 * color / std::f32::consts::PI;
+            viewray_intensity(number(object, "intensity").unwrap_or(1.0) as f32 * color);
         let position = matrix.w_axis.truncate();
         match kind {
             "PointLight" => self.lights.push(Light::Point {
@@ -450,11 +183,7 @@ impl<'a> Importer<'a> {
                     number(geometry, "height").unwrap_or(1.0),
                     number(geometry, "depth").unwrap_or(1.0),
                 ) / 2.0;
-                let cube = common::TriangleMesh::cuboid(
-                    (-size).as_vec3(),
-                    size.as_vec3(),
-                    0,
-                );
+                let cube = TriangleMesh::cuboid((-size).as_vec3(), size.as_vec3(), 0).data;
                 let corners: Vec<DVec3> = cube.positions.iter().map(|p| p.as_dvec3()).collect();
                 self.triangles(&corners, &cube.triangles, matrix, &material);
             }
@@ -730,7 +459,7 @@ fn projection(
     let viewport = DVec2::new(width, height);
     let centre = DVec2::new(left + width / 2.0, top - height / 2.0);
     if perspective {
-        let square = common::square_pixels(viewport, (image_width, image_height));
+        let square = square_pixels(viewport, (image_width, image_height));
         let size = if square && centre == DVec2::ZERO && zoom == 1.0 && view_numbers.is_none() {
             PerspectiveSize::Fov {
                 axis: viewray_camera::FovAxis::Y,
@@ -764,14 +493,4 @@ fn projection(
             DVec3::new(centre.x, centre.y, -near),
         ))
     }
-}
-
-/// A number of pixels, at least 1 and at most viewray's largest side.
-fn pixels(x: f64) -> u32 {
-    // Clamped into u32's range first.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let n = x
-        .round()
-        .clamp(1.0, f64::from(viewray_scene::MAX_IMAGE_SIDE)) as u32;
-    n
 }
