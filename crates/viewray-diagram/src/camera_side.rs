@@ -6,12 +6,13 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, Projection};
 use viewray_draw::{Anchor, Baseline, Color, Item, Label, Mapping, Rect, Stroke};
 use viewray_geometry::{Aabb, DRay, Object};
+use viewray_output::number;
 use viewray_scene::Scene;
 
 use crate::Diagram;
 use crate::pictures::srgb;
 use crate::side::{draw_image_plane, draw_side_frame, viewport_edges};
-use crate::sketch::{LINE_SPACING, Sketch, number};
+use crate::sketch::{LINE_SPACING, Sketch};
 use crate::style;
 use crate::view::{FigureView, SideView};
 
@@ -454,8 +455,14 @@ fn draw_caption(sketch: &mut Sketch, camera: &Camera, canvas: SideViewCanvas, at
 /// ends, or farther out around its middle where the eye's labels crowd it.
 fn draw_image_plane_label(sketch: &mut Sketch, camera: &Camera, top: Vec2, bottom: Vec2) {
     let label = match camera.projection() {
-        Projection::Perspective(p) => format!("image plane, $d$ = {}", parameter(p.distance)),
-        Projection::ThinLens(p) => format!("image plane, $d$ = {}", parameter(p.distance)),
+        Projection::Perspective(p) => format!(
+            "image plane, $d$ = {}",
+            number::label_significant(p.distance)
+        ),
+        Projection::ThinLens(p) => format!(
+            "image plane, $d$ = {}",
+            number::label_significant(p.distance)
+        ),
         _ => "image plane".to_owned(),
     };
     let (lower, upper) = if top.y > bottom.y {
@@ -847,7 +854,7 @@ fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus
     };
     place_label(
         sketch,
-        &format!("focus plane, $f$ = {}", parameter(focus)),
+        &format!("focus plane, $f$ = {}", number::label_significant(focus)),
         &[
             beside(upper, 0.0, -10.0),
             beside(lower, 0.0, 10.0),
@@ -966,26 +973,36 @@ fn place_label(
 /// lens (empty without one), and the image size.
 fn caption(camera: &Camera) -> (String, String, String) {
     let size = format!("image {} × {}", camera.width(), camera.height());
-    let viewport = |v: DVec2| format!("$vw$ × $vh$ = {} × {}", parameter(v.x), parameter(v.y));
+    let viewport = |v: DVec2| {
+        format!(
+            "$vw$ × $vh$ = {} × {}",
+            number::label_significant(v.x),
+            number::label_significant(v.y)
+        )
+    };
     let shift = |s: DVec2| {
         if s == DVec2::ZERO {
             String::new()
         } else {
-            format!(",  shift ({}, {})", parameter(s.x), parameter(s.y))
+            format!(
+                ",  shift ({}, {})",
+                number::label_significant(s.x),
+                number::label_significant(s.y)
+            )
         }
     };
     let lens = |aperture: f64, focus: f64| {
         format!(
             "aperture $r$ = {},  focus $f$ = {}",
-            parameter(aperture),
-            parameter(focus)
+            number::label_significant(aperture),
+            number::label_significant(focus)
         )
     };
     let (parameters, lens) = match camera.projection() {
         Projection::Perspective(p) => (
             format!(
                 "perspective:  $d$ = {},  {}{}",
-                parameter(p.distance),
+                number::label_significant(p.distance),
                 viewport(p.viewport),
                 shift(p.shift)
             ),
@@ -994,7 +1011,7 @@ fn caption(camera: &Camera) -> (String, String, String) {
         Projection::ThinLens(p) => (
             format!(
                 "thin lens:  $d$ = {},  {}{}",
-                parameter(p.distance),
+                number::label_significant(p.distance),
                 viewport(p.viewport),
                 shift(p.shift)
             ),
@@ -1008,56 +1025,19 @@ fn caption(camera: &Camera) -> (String, String, String) {
             format!(
                 "oblique:  {},  $L$ = {},  $φ$ = {}°",
                 viewport(o.viewport),
-                parameter(o.ratio),
-                number(o.angle.to_degrees())
+                number::label_significant(o.ratio),
+                number::label(o.angle.to_degrees())
             ),
             String::new(),
         ),
         Projection::Equirectangular => ("equirectangular: 360° × 180°".to_owned(), String::new()),
         Projection::Fisheye(f) => (
-            format!("fisheye: field of view {}°", number(f.fov.to_degrees())),
+            format!(
+                "fisheye: field of view {}°",
+                number::label(f.fov.to_degrees())
+            ),
             String::new(),
         ),
     };
     (parameters, lens, size)
-}
-
-/// A camera parameter for a label: as [`number`] writes it, but to three significant
-/// digits below 0.1, so that a viewport of 0.0009 does not read 0.001.
-fn parameter(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || x.abs() >= 0.1 {
-        return number(x);
-    }
-    // Three significant digits: 0.0123 has two zeros after the point.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let decimals = (2.0 - x.abs().log10().floor()).clamp(3.0, 15.0) as usize;
-    let text = format!("{:.*}", decimals, x.abs());
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if x < 0.0 {
-        format!("\u{2212}{text}")
-    } else {
-        text.to_owned()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::parameter;
-
-    #[test]
-    fn small_parameters_keep_three_significant_digits() {
-        for (x, text) in [
-            (1.994_3, "1.994"),
-            (0.45, "0.45"),
-            (0.1, "0.1"),
-            (0.05, "0.05"),
-            (0.001_6, "0.0016"),
-            (0.000_9, "0.0009"),
-            (0.000_123_45, "0.000123"),
-            (-0.012_34, "\u{2212}0.0123"),
-            (0.0, "0"),
-        ] {
-            assert_eq!(parameter(x), text, "{x}");
-        }
-    }
 }

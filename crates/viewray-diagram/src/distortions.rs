@@ -7,10 +7,11 @@ use viewray_camera::{Camera, Frame, Perspective, Projection};
 use crate::Diagram;
 use crate::pictures::{Paint, PictureScene, Pictures, Shape, draw_picture, srgb};
 use crate::side::{draw_frustum_edges, draw_image_plane, draw_side_frame};
-use crate::sketch::{Sketch, number};
+use crate::sketch::Sketch;
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Color, Item, Rect, Stroke};
+use viewray_output::number;
 
 /// Draws the objects of `scene` in a side view: boxes as rectangles, spheres as discs,
 /// on a ground line.
@@ -156,9 +157,9 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
         lines.push((
             format!(
                 "depth {}:  image height {}  ({} px)",
-                number(*depth),
-                number(height),
-                number(pixels.round())
+                number::label(*depth),
+                number::label(height),
+                number::label(pixels.round())
             ),
             *color,
             style::SMALL_LABEL_SIZE,

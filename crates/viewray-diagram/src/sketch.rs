@@ -3,6 +3,7 @@
 
 use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample};
+use viewray_output::number;
 
 use crate::style;
 use crate::view::FigureView;
@@ -358,21 +359,14 @@ pub(crate) fn pixel_and_offset(camera: &Camera, image: DVec2) -> (u32, u32, DVec
     (row, col, image - cell)
 }
 
-/// `x` for a label: at most three decimals, no trailing zeros, and a true minus sign.
-pub(crate) fn number(x: f64) -> String {
-    let rounded = (x * 1000.0).round() / 1000.0;
-    let text = format!("{:.3}", rounded.abs());
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if rounded < 0.0 {
-        format!("\u{2212}{text}")
-    } else {
-        text.to_owned()
-    }
-}
-
-/// `(x, y, z)` for a label, each coordinate as [`number`] writes it.
+/// `(x, y, z)` for a label, each coordinate a [`number::label`].
 pub(crate) fn vector(v: DVec3) -> String {
-    format!("({}, {}, {})", number(v.x), number(v.y), number(v.z))
+    format!(
+        "({}, {}, {})",
+        number::label(v.x),
+        number::label(v.y),
+        number::label(v.z)
+    )
 }
 
 #[cfg(test)]
@@ -380,16 +374,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn numbers_are_short_and_use_a_minus_sign() {
-        assert_eq!(number(0.2), "0.2");
-        assert_eq!(number(0.199_999_999), "0.2");
-        assert_eq!(number(-1.0), "\u{2212}1");
-        assert_eq!(number(-0.0001), "0");
-        assert_eq!(number(1.23456), "1.235");
+    fn vectors_are_three_label_numbers() {
         assert_eq!(
             vector(DVec3::new(0.2, -0.2, -1.0)),
             "(0.2, \u{2212}0.2, \u{2212}1)"
         );
+        assert_eq!(vector(DVec3::new(1.23456, -0.0001, 0.0)), "(1.235, 0, 0)");
     }
 
     #[test]
