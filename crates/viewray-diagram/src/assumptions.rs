@@ -6,7 +6,7 @@ use viewray_camera::{Camera, CameraSample, Frame, Perspective, Projection};
 
 use crate::Diagram;
 use crate::side::{draw_column_rays, draw_frustum_edges, draw_image_plane, draw_side_frame};
-use crate::sketch::Sketch;
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Item, Mapping, Rect, Stroke};
@@ -480,10 +480,12 @@ pub(crate) fn assumption_basis() -> Diagram {
     for pixel in pixels() {
         sketch.camera_ray(
             &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (1.0, far),
+            CameraRay {
+                camera: &camera,
+                pixel,
+                sample: CameraSample::CENTER,
+                t: (1.0, far),
+            },
             ray_stroke.clone(),
             true,
         );

@@ -4,7 +4,7 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, pixel_to_image_plane};
 
 use crate::Diagram;
-use crate::sketch::{Canvas, Sketch, vector};
+use crate::sketch::{CameraRay, Canvas, Sketch, vector};
 use crate::style;
 use crate::view::{CameraView, FigureView};
 use viewray_draw::{Anchor, Baseline, Item, Rect, Stroke};
@@ -83,10 +83,12 @@ fn canonical_camera_on(canvas: Canvas) -> Diagram {
         };
         sketch.camera_ray(
             &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (1.0, end),
+            CameraRay {
+                camera: &camera,
+                pixel,
+                sample: CameraSample::CENTER,
+                t: (1.0, end),
+            },
             stroke,
             true,
         );

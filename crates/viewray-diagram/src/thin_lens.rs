@@ -7,7 +7,7 @@ use crate::Diagram;
 use crate::distortions::draw_side_scene;
 use crate::pictures::{PictureScene, Pictures, draw_picture};
 use crate::side::draw_image_plane;
-use crate::sketch::Sketch;
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Item, Rect, Stroke};
@@ -88,7 +88,17 @@ pub(crate) fn thin_lens(pictures: &dyn Pictures) -> Diagram {
             p_lens: lens_sample(ly),
         };
         let stroke = Stroke::new(style::RAY, style::LINE_REGULAR);
-        sketch.camera_ray(&fv, &camera, CONE_PIXEL, sample, (0.0, far), stroke, true);
+        sketch.camera_ray(
+            &fv,
+            CameraRay {
+                camera: &camera,
+                pixel: CONE_PIXEL,
+                sample,
+                t: (0.0, far),
+            },
+            stroke,
+            true,
+        );
     }
     let focus_point = camera
         .generate_ray(CONE_PIXEL.0, CONE_PIXEL.1, CameraSample::CENTER)

@@ -8,7 +8,7 @@ use viewray_geometry::DRay;
 use viewray_scene::Scene;
 
 use super::labels::{beside, label_anchor, place_label};
-use crate::sketch::Sketch;
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{FigureView, SideView};
 use viewray_output::number;
@@ -95,10 +95,12 @@ pub(super) fn draw_traced_ray(
     }
     let drawn = sketch.camera_ray(
         &FigureView::Side(*view),
-        camera,
-        (row, col),
-        CameraSample::CENTER,
-        (t0, t1),
+        CameraRay {
+            camera,
+            pixel: (row, col),
+            sample: CameraSample::CENTER,
+            t: (t0, t1),
+        },
         stroke.clone(),
         false,
     );

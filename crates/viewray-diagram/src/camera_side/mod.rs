@@ -31,7 +31,7 @@ use self::objects::draw_objects;
 pub use self::window::SideWindow;
 use crate::Diagram;
 use crate::side::{draw_image_plane, draw_side_frame, viewport_edges};
-use crate::sketch::Sketch;
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::FigureView;
 
@@ -81,12 +81,9 @@ pub(crate) fn side_view(
                 && let Some(t) = view.clip_ray(&ray, (0.0, f64::INFINITY))
                 && t.1.is_finite()
             {
-                sketch.camera_ray_through(
+                sketch.camera_ray(
                     &figure_view,
-                    camera,
-                    image,
-                    DVec2::splat(0.5),
-                    t,
+                    CameraRay::through(camera, image, DVec2::splat(0.5), t),
                     stroke.clone(),
                     false,
                 );
