@@ -1,11 +1,9 @@
 //! Writing a figure as an SVG 1.1 document.
 //!
 //! The geometry is the PNG painter's: arrowheads and glyph outlines from the same
-//! functions, ellipses as `<ellipse>` with the same rotation.
-//! Coordinates are written with at most two decimals
-//! ([`SvgNumber`](viewray_output::number::SvgNumber)), so the document is compact and
-//! deterministic. The XML is written by quick-xml, which escapes every attribute value
-//! and text node.
+//! functions, ellipses as `<ellipse>` with the same rotation. Coordinates are written with
+//! at most two decimals ([`SvgNumber`]), so the document is compact and deterministic.
+//! The XML is written by quick-xml, which escapes every attribute value and text node.
 //!
 //! ```
 //! use glam::Vec2;

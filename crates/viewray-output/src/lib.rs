@@ -15,7 +15,7 @@
 //!   text, no gamma): the same pixels always give the same bytes.
 //! - [`animation`]: looping GIF and animated PNG, written frame by frame, with the same
 //!   promise: the same frames always give the same bytes.
-//! - [`file`]: every file viewray writes goes through [`write_atomically`] or
+//! - [`file`](mod@file): every file viewray writes goes through [`write_atomically`] or
 //!   [`AtomicFile`]: written to a temporary file beside the target, flushed to disk, and
 //!   renamed over the target only when complete, so a reader sees the old file or the new
 //!   one, never a part; a failure leaves the target as it was and no stray file behind.

@@ -21,7 +21,8 @@ use super::Shader;
 /// ```
 ///
 /// `near` and `far` come from a pre-pass of one centre ray per pixel (see
-/// [`DepthMap::range_of`]), so the rule is the same whatever the threads and tiles.
+/// [`Shader::depth_probe`] and [`DepthMap::with_range`]), so the rule is the same
+/// whatever the threads and tiles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct DepthMap {
     eye: Vec3,

@@ -7,9 +7,9 @@
 //!   ([`Shader::trace_primary`]) and shaded together ([`Shader::shade_primaries`]):
 //!   Flat, Normals and Depth sample by sample, Lit as one batch.
 //! - [`lit`]: Lit shading of a batch, four samples at a time: the surface details of
-//!   each group of four, then [`lit::lights`] (the headlight, ambient, point and
+//!   each group of four, then `lit::lights` (the headlight, ambient, point and
 //!   directional lights, their shadow rays traced together, Blinn-Phong in lanes), then
-//!   [`lit::mirrors`] (the reflected rays traced together and shaded as a batch one
+//!   `lit::mirrors` (the reflected rays traced together and shaded as a batch one
 //!   bounce deeper).
 //! - [`grid`]: a material's colour with its grid lines, box-filtered over the sample's
 //!   [`footprint`] on the surface, which the pixel's ray differentials give.
