@@ -15,14 +15,17 @@
 //! - a [`Movie`] holds a scene and every frame's cameras; [`Movie::render_frame`]
 //!   renders one frame (`viewray-render`, its tiles in parallel), with a caption of the
 //!   camera's numbers over each picture and, when asked, the side view of the camera
-//!   beside it (`viewray-diagram`).
-//!
+//!   beside it (`viewray-diagram`);
 //! - [`write_gif`], [`write_apng`] and [`write_frames`] render a movie's frames in order
 //!   and hand them to `viewray-output`'s encoders (or to the caller, for numbered PNGs),
 //!   timing the rendering and the encoding apart; where the bytes go is the caller's.
 //!
 //! A frame's pixels depend only on the scene and its number: its cameras are fixed when
 //! the movie is made, renders are deterministic, and the side views share one window.
+//!
+//! Where to start reading: `timing` (frame to time to camera), `demos` (each demo's
+//! path, a function of time), `movie` (a frame rendered, captioned and laid out), then
+//! `encode` (the frames in order into an encoder).
 //!
 //! ```no_run
 //! use viewray_animation::{Movie, MovieSettings, demo_by_name};

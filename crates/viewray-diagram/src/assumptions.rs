@@ -6,10 +6,11 @@ use viewray_camera::{Camera, CameraSample, Frame, Perspective, Projection};
 
 use crate::Diagram;
 use crate::side::{draw_column_rays, draw_frustum_edges, draw_image_plane, draw_side_frame};
-use crate::sketch::{Sketch, number};
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Item, Mapping, Rect, Stroke};
+use viewray_output::number;
 
 /// The left edge of the text panel on every assumption slide.
 const PANEL_X: f32 = 1040.0;
@@ -243,7 +244,7 @@ pub(crate) fn assumption_viewport() -> Diagram {
             viewray_camera::pixel_to_image_plane(h - 1, col, DVec2::splat(0.5), size, viewport);
         let x = plane(h - 1, col, DVec2::splat(0.5), size, viewport).x;
         sketch.label_at(
-            &number(uv.x),
+            &number::label(uv.x),
             Vec2::new(x, outline[2].y + 12.0),
             (Anchor::Middle, Baseline::Top),
             style::U_AXIS,
@@ -254,7 +255,7 @@ pub(crate) fn assumption_viewport() -> Diagram {
         let uv = viewray_camera::pixel_to_image_plane(row, 0, DVec2::splat(0.5), size, viewport);
         let y = plane(row, 0, DVec2::splat(0.5), size, viewport).y;
         sketch.label_at(
-            &number(uv.y),
+            &number::label(uv.y),
             Vec2::new(outline[0].x - 14.0, y),
             (Anchor::End, Baseline::Middle),
             style::V_AXIS,
@@ -290,7 +291,7 @@ pub(crate) fn assumption_viewport() -> Diagram {
         Vec2::new(outline[1].x, below),
     );
     sketch.label_at(
-        &format!("$vw$ = {}", number(viewport.x)),
+        &format!("$vw$ = {}", number::label(viewport.x)),
         Vec2::new(origin.x, below + 12.0),
         (Anchor::Middle, Baseline::Top),
         style::TEXT,
@@ -302,7 +303,7 @@ pub(crate) fn assumption_viewport() -> Diagram {
         Vec2::new(right, outline[2].y),
     );
     sketch.label_at(
-        &format!("$vh$ = {}", number(viewport.y)),
+        &format!("$vh$ = {}", number::label(viewport.y)),
         Vec2::new(right + 16.0, (origin.y + outline[2].y) / 2.0),
         (Anchor::Start, Baseline::Middle),
         style::TEXT,
@@ -380,7 +381,11 @@ pub(crate) fn assumption_eye() -> Diagram {
     draw_side_frame(&mut sketch, &view, camera.frame(), 0.5, true);
     let to_e = (e - o).normalize_or_zero();
     sketch.label_at(
-        &format!("*e* = (0, {}, {})", number(eye.y), number(eye.z)),
+        &format!(
+            "*e* = (0, {}, {})",
+            number::label(eye.y),
+            number::label(eye.z)
+        ),
         (o + e) / 2.0 + to_e.perp() * 14.0 + Vec2::new(-6.0, 0.0),
         (Anchor::End, Baseline::Bottom),
         style::EYE,
@@ -472,10 +477,12 @@ pub(crate) fn assumption_basis() -> Diagram {
     for pixel in pixels() {
         sketch.camera_ray(
             &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (1.0, far),
+            CameraRay {
+                camera: &camera,
+                pixel,
+                sample: CameraSample::CENTER,
+                t: (1.0, far),
+            },
             ray_stroke.clone(),
             true,
         );

@@ -4,10 +4,11 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, pixel_to_image_plane};
 
 use crate::Diagram;
-use crate::sketch::{Canvas, Sketch, number, vector};
+use crate::sketch::{CameraRay, Canvas, Sketch, vector};
 use crate::style;
 use crate::view::{CameraView, FigureView};
 use viewray_draw::{Anchor, Baseline, Item, Rect, Stroke};
+use viewray_output::number;
 
 /// The image of the canonical figure: `W x H` pixels.
 const SIZE: (u32, u32) = (5, 5);
@@ -82,10 +83,12 @@ fn canonical_camera_on(canvas: Canvas) -> Diagram {
         };
         sketch.camera_ray(
             &fv,
-            &camera,
-            pixel,
-            CameraSample::CENTER,
-            (1.0, end),
+            CameraRay {
+                camera: &camera,
+                pixel,
+                sample: CameraSample::CENTER,
+                t: (1.0, end),
+            },
             stroke,
             true,
         );
@@ -208,7 +211,11 @@ fn canonical_camera_on(canvas: Canvas) -> Diagram {
     let (i, j) = (EXAMPLE.0 + 1, EXAMPLE.1 + 1);
     let uv = pixel_to_image_plane(EXAMPLE.0, EXAMPLE.1, DVec2::splat(0.5), SIZE, viewport);
     let example_title = format!("Pixel $(i, j)$ = ({i}, {j}):");
-    let example_uv = format!("$u$ = {},  $v$ = {}", number(uv.x), number(uv.y));
+    let example_uv = format!(
+        "$u$ = {},  $v$ = {}",
+        number::label(uv.x),
+        number::label(uv.y)
+    );
     let example_ray = format!("direction {}", vector(ray.direction));
     let size = format!("$W × H$ = {} × {} pixels", SIZE.0, SIZE.1);
     let (l, s) = (style::LABEL_SIZE, style::SMALL_LABEL_SIZE);

@@ -7,10 +7,11 @@ use viewray_camera::{Camera, Frame, Perspective, Projection};
 use crate::Diagram;
 use crate::pictures::{Paint, PictureScene, Pictures, Shape, draw_picture, srgb};
 use crate::side::{draw_frustum_edges, draw_image_plane, draw_side_frame};
-use crate::sketch::{Sketch, number};
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Color, Item, Rect, Stroke};
+use viewray_output::number;
 
 /// Draws the objects of `scene` in a side view: boxes as rectangles, spheres as discs,
 /// on a ground line.
@@ -107,12 +108,14 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
                 .expect("the posts are in front of the camera");
             // The ray's direction has -d w, so it reaches depth D at t = D / d.
             let depth = -(p - frame.e()).dot(frame.w());
-            sketch.camera_ray_through(
+            sketch.camera_ray(
                 &fv,
-                &camera,
-                image,
-                DVec2::splat(0.5),
-                (0.0, depth / perspective.distance),
+                CameraRay::through(
+                    &camera,
+                    image,
+                    DVec2::splat(0.5),
+                    (0.0, depth / perspective.distance),
+                ),
                 Stroke::new(color, style::LINE_REGULAR),
                 false,
             );
@@ -156,9 +159,9 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
         lines.push((
             format!(
                 "depth {}:  image height {}  ({} px)",
-                number(*depth),
-                number(height),
-                number(pixels.round())
+                number::label(*depth),
+                number::label(height),
+                number::label(pixels.round())
             ),
             *color,
             style::SMALL_LABEL_SIZE,

@@ -3,9 +3,10 @@
 use glam::{DVec2, Vec2};
 
 use crate::Diagram;
-use crate::sketch::{Sketch, number};
+use crate::sketch::Sketch;
 use crate::style;
 use viewray_draw::{Anchor, Baseline, Item, Label, Mapping, Rect, Stroke};
+use viewray_output::number;
 
 /// The image: `W x H` pixels.
 const SIZE: (u32, u32) = (4, 3);
@@ -165,7 +166,7 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
         VIEWPORT,
     );
     sketch.label_at(
-        &format!("({}, {})", number(uv.x), number(uv.y)),
+        &format!("({}, {})", number::label(uv.x), number::label(uv.y)),
         example + Vec2::new(14.0, 12.0),
         (Anchor::Start, Baseline::Top),
         style::HIGHLIGHT,
@@ -179,7 +180,7 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
         Vec2::new(bottom_right.x, below),
     );
     sketch.label_at(
-        &format!("$vw$ = {}", number(VIEWPORT.x)),
+        &format!("$vw$ = {}", number::label(VIEWPORT.x)),
         Vec2::new(origin.x, below + 12.0),
         (Anchor::Middle, Baseline::Top),
         style::TEXT,
@@ -189,7 +190,7 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
     sketch.dimension(Vec2::new(left, top_left.y), Vec2::new(left, bottom_right.y));
     sketch.push(
         Label::new(
-            format!("$vh$ = {}", number(VIEWPORT.y)),
+            format!("$vh$ = {}", number::label(VIEWPORT.y)),
             Vec2::new(left - 14.0, origin.y),
         )
         .with_size(style::LABEL_SIZE)
@@ -203,18 +204,18 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
     let example_title = format!("Pixel $(i, j)$ = ({i}, {j}):");
     let example_u = format!(
         "$u$ = (({j} − ½)/{w} − ½) · {} = {}",
-        number(VIEWPORT.x),
-        number(uv.x)
+        number::label(VIEWPORT.x),
+        number::label(uv.x)
     );
     let example_v = format!(
         "$v$ = −(({i} − ½)/{h} − ½) · {} = {}",
-        number(VIEWPORT.y),
-        number(uv.y)
+        number::label(VIEWPORT.y),
+        number::label(uv.y)
     );
     let size_line = format!(
         "{w} × {h} pixels, viewport {} × {}",
-        number(VIEWPORT.x),
-        number(VIEWPORT.y)
+        number::label(VIEWPORT.x),
+        number::label(VIEWPORT.y)
     );
     let (l, s) = (style::LABEL_SIZE, style::SMALL_LABEL_SIZE);
     sketch.text_lines(

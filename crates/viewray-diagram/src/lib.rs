@@ -19,8 +19,19 @@
 //!
 //! [`all_figures`] lists the figures by name for `viewray figure NAME`, `cargo xtask
 //! figures` and the golden check (`golden/figures/<name>.png`); [`figure_by_name`] finds
-//! one. This crate knows no file format and does no I/O: writing a figure is
+//! one. [`side_view`] draws the side view of any camera over any scene, in a
+//! [`SideWindow`] on a [`SideViewCanvas`], for `viewray diagram`, the live playground and
+//! animations. This crate knows no file format and does no I/O: writing a figure is
 //! `viewray-draw`'s.
+//!
+//! Where to start reading: `sketch` (the figure builder: the display list, and the record
+//! of every camera ray drawn) and `view` (how a figure places world points), then one
+//! module per figure (`canonical`, `image_plane`, `assumptions`, `frame`,
+//! `viewing_rays`, `taxonomy`, `distortions`, `thin_lens`), `side` (the pieces the
+//! side-view figures share) and `camera_side` (the side view of any camera; its module
+//! doc is the map). `pictures` and `rendered` make the pictures inside figures, `clip`
+//! keeps them inside their image, and `style` is the visual language. Numbers in labels
+//! are written by [`viewray_output::number::label`] (and `label_significant`).
 //!
 //! ```no_run
 //! use viewray_diagram::figure_by_name;

@@ -5,7 +5,7 @@ use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample, Frame, Projection};
 
 use crate::DrawnRay;
-use crate::sketch::Sketch;
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{FigureView, SideView};
 use viewray_draw::{Color, Item, Stroke};
@@ -75,10 +75,12 @@ pub(crate) fn draw_column_rays(
             let clipped = view.clip_ray(&ray, t)?;
             Some(sketch.camera_ray(
                 &fv,
-                camera,
-                (row, col),
-                CameraSample::CENTER,
-                clipped,
+                CameraRay {
+                    camera,
+                    pixel: (row, col),
+                    sample: CameraSample::CENTER,
+                    t: clipped,
+                },
                 stroke.clone(),
                 true,
             ))
@@ -162,12 +164,9 @@ pub(crate) fn draw_frustum_edges(
             let image = DVec2::new(x, y);
             let ray = camera.generate_ray_through(image, DVec2::splat(0.5))?;
             let clipped = view.clip_ray(&ray, t)?;
-            Some(sketch.camera_ray_through(
+            Some(sketch.camera_ray(
                 &fv,
-                camera,
-                image,
-                DVec2::splat(0.5),
-                clipped,
+                CameraRay::through(camera, image, DVec2::splat(0.5), clipped),
                 stroke.clone(),
                 false,
             ))

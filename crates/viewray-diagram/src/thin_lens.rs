@@ -7,10 +7,11 @@ use crate::Diagram;
 use crate::distortions::draw_side_scene;
 use crate::pictures::{PictureScene, Pictures, draw_picture};
 use crate::side::draw_image_plane;
-use crate::sketch::{Sketch, number};
+use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
 use viewray_draw::{Anchor, Baseline, Item, Rect, Stroke};
+use viewray_output::number;
 
 /// The eye of the thin-lens figure: 0.6 above the ground, looking down `-z`.
 const EYE: DVec3 = DVec3::new(0.0, 0.6, 0.0);
@@ -72,7 +73,7 @@ pub(crate) fn thin_lens(pictures: &dyn Pictures) -> Diagram {
         Stroke::new(style::HIGHLIGHT, style::LINE_REGULAR).dashed(&style::DASH),
     );
     sketch.label_at(
-        &format!("focus plane, $f$ = {}", number(FOCUS)),
+        &format!("focus plane, $f$ = {}", number::label(FOCUS)),
         focus_top + Vec2::new(0.0, -10.0),
         (Anchor::Middle, Baseline::Bottom),
         style::HIGHLIGHT,
@@ -87,7 +88,17 @@ pub(crate) fn thin_lens(pictures: &dyn Pictures) -> Diagram {
             p_lens: lens_sample(ly),
         };
         let stroke = Stroke::new(style::RAY, style::LINE_REGULAR);
-        sketch.camera_ray(&fv, &camera, CONE_PIXEL, sample, (0.0, far), stroke, true);
+        sketch.camera_ray(
+            &fv,
+            CameraRay {
+                camera: &camera,
+                pixel: CONE_PIXEL,
+                sample,
+                t: (0.0, far),
+            },
+            stroke,
+            true,
+        );
     }
     let focus_point = camera
         .generate_ray(CONE_PIXEL.0, CONE_PIXEL.1, CameraSample::CENTER)
@@ -121,7 +132,7 @@ pub(crate) fn thin_lens(pictures: &dyn Pictures) -> Diagram {
     sketch.dot(e, style::DOT_RADIUS * 0.7, style::EYE);
     let lens_top = e + Vec2::new(0.0, -lens_half);
     sketch.label_at(
-        &format!("lens, radius $r$ = {}", number(APERTURE)),
+        &format!("lens, radius $r$ = {}", number::label(APERTURE)),
         lens_top + Vec2::new(-16.0, -22.0),
         (Anchor::Start, Baseline::Bottom),
         style::TEXT,
@@ -145,7 +156,7 @@ pub(crate) fn thin_lens(pictures: &dyn Pictures) -> Diagram {
         );
         draw_picture(&mut sketch, &picture, PictureScene::DepthOfField, pictures);
         sketch.label_at(
-            &format!("$r$ = {}", number(*aperture)),
+            &format!("$r$ = {}", number::label(*aperture)),
             Vec2::new(picture.rect.center().x, picture.rect.min.y - 10.0),
             (Anchor::Middle, Baseline::Bottom),
             style::TEXT,

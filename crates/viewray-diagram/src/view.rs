@@ -132,7 +132,7 @@ impl CameraView {
 /// A side view: a vertical plane of the world seen face-on, `right` pointing right and
 /// `up` up on the figure. The lecture's figures look at the y-z plane from `+x`, so `-z`
 /// points right and `y` up (a camera looking down `-z` looks right); a camera's own side
-/// view ([`SideView::of_camera`]) uses the plane through its **v** and **w**. The third
+/// view ([`SideWindow::fit`](crate::SideWindow::fit)) uses the plane through its **v** and **w**. The third
 /// coordinate, along `right x up` (towards the viewer), is dropped: a point is drawn
 /// where its orthographic projection onto the plane falls.
 ///

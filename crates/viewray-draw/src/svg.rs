@@ -1,10 +1,9 @@
 //! Writing a figure as an SVG 1.1 document.
 //!
 //! The geometry is the PNG painter's: arrowheads and glyph outlines from the same
-//! functions, ellipses as `<ellipse>` with the same rotation.
-//! Coordinates are written with at most two decimals, so the document is compact and
-//! deterministic. The XML is written by quick-xml, which escapes every attribute value
-//! and text node.
+//! functions, ellipses as `<ellipse>` with the same rotation. Coordinates are written with
+//! at most two decimals ([`SvgNumber`]), so the document is compact and deterministic.
+//! The XML is written by quick-xml, which escapes every attribute value and text node.
 //!
 //! ```
 //! use glam::Vec2;
@@ -23,6 +22,7 @@ use glam::Vec2;
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
 use tiny_skia::{Path, PathSegment};
+use viewray_output::number::SvgNumber;
 use viewray_output::{Compression, encode_png};
 
 use crate::shape::{arrow_shape, label_outline};
@@ -133,9 +133,9 @@ fn write_item(svg: &mut Svg, item: &Item, text: SvgText) {
         } => svg.empty(
             "circle",
             Attributes::new()
-                .with("cx", Num(center.x))
-                .with("cy", Num(center.y))
-                .with("r", Num(*radius))
+                .with("cx", SvgNumber(center.x))
+                .with("cy", SvgNumber(center.y))
+                .with("r", SvgNumber(*radius))
                 .fill(*color),
         ),
         Item::Polygon {
@@ -162,10 +162,10 @@ fn write_item(svg: &mut Svg, item: &Item, text: SvgText) {
             stroke,
         } => {
             let mut attributes = Attributes::new()
-                .with("cx", Num(center.x))
-                .with("cy", Num(center.y))
-                .with("rx", Num(radii.x))
-                .with("ry", Num(radii.y));
+                .with("cx", SvgNumber(center.x))
+                .with("cy", SvgNumber(center.y))
+                .with("rx", SvgNumber(radii.x))
+                .with("ry", SvgNumber(radii.y));
             if *rotation != 0.0 {
                 attributes = attributes.with("transform", Rotate(*rotation, *center));
             }
@@ -220,11 +220,11 @@ fn write_label_text(svg: &mut Svg, label: &Label) {
         .transform_point2(Vec2::new(anchor_fraction * layout.extent.width, 0.0));
     let (font_style, font_weight) = style_and_weight(label.face);
     let mut attributes = Attributes::new()
-        .with("x", Num(at.x))
-        .with("y", Num(at.y))
+        .with("x", SvgNumber(at.x))
+        .with("y", SvgNumber(at.y))
         .with("text-anchor", text_anchor)
         .with("font-family", FONT_FAMILY)
-        .with("font-size", Num(label.size))
+        .with("font-size", SvgNumber(label.size))
         .with("font-style", font_style)
         .with("font-weight", font_weight);
     if label.rotation != 0.0 {
@@ -235,9 +235,9 @@ fn write_label_text(svg: &mut Svg, label: &Label) {
     for span in &layout.spans {
         let dy = span.shift - shift;
         shift = span.shift;
-        let mut attributes = Attributes::new().with("font-size", Num(span.size));
+        let mut attributes = Attributes::new().with("font-size", SvgNumber(span.size));
         if dy != 0.0 {
-            attributes = attributes.with("dy", Num(dy));
+            attributes = attributes.with("dy", SvgNumber(dy));
         }
         if span.face != label.face {
             let (style, weight) = style_and_weight(span.face);
@@ -277,10 +277,10 @@ fn write_image(svg: &mut Svg, pixels: &image::RgbaImage, rect: Rect, sampling: S
         return;
     };
     let mut attributes = Attributes::new()
-        .with("x", Num(rect.min.x))
-        .with("y", Num(rect.min.y))
-        .with("width", Num(rect.width()))
-        .with("height", Num(rect.height()))
+        .with("x", SvgNumber(rect.min.x))
+        .with("y", SvgNumber(rect.min.y))
+        .with("width", SvgNumber(rect.width()))
+        .with("height", SvgNumber(rect.height()))
         .with("preserveAspectRatio", "none");
     attributes = match sampling {
         Sampling::Nearest => attributes
@@ -323,10 +323,10 @@ fn enlarge_for(pixels: &image::RgbaImage, rect: Rect) -> image::RgbaImage {
 /// `x1`, `y1`, `x2`, `y2` and no fill: a line element's geometry.
 fn line_attributes(from: Vec2, to: Vec2) -> Attributes {
     Attributes::new()
-        .with("x1", Num(from.x))
-        .with("y1", Num(from.y))
-        .with("x2", Num(to.x))
-        .with("y2", Num(to.y))
+        .with("x1", SvgNumber(from.x))
+        .with("y1", SvgNumber(from.y))
+        .with("x2", SvgNumber(to.x))
+        .with("y2", SvgNumber(to.y))
         .with("fill", "none")
 }
 
@@ -337,14 +337,14 @@ fn stroke_attributes(stroke: &Stroke) -> Option<Attributes> {
     }
     let mut attributes = Attributes::new()
         .with("stroke", Hex(stroke.color))
-        .with("stroke-width", Num(stroke.width))
+        .with("stroke-width", SvgNumber(stroke.width))
         .with("stroke-linejoin", "round");
     if let Some(opacity) = opacity(stroke.color) {
         attributes = attributes.with("stroke-opacity", opacity);
     }
     Some(match stroke.dash_pattern() {
         Some(pattern) => {
-            let pattern: Vec<String> = pattern.iter().map(|d| Num(*d).to_string()).collect();
+            let pattern: Vec<String> = pattern.iter().map(|d| SvgNumber(*d).to_string()).collect();
             attributes
                 .with("stroke-linecap", "butt")
                 .with("stroke-dasharray", pattern.join(" "))
@@ -452,20 +452,6 @@ impl Svg {
     }
 }
 
-/// A coordinate with at most two decimals and no trailing zeros (`12.5`, `3`, `-0.25`).
-struct Num(f32);
-
-impl Display for Num {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let rounded = (self.0 * 100.0).round() / 100.0;
-        if rounded == 0.0 {
-            f.write_str("0")
-        } else {
-            write!(f, "{rounded}")
-        }
-    }
-}
-
 /// `#rrggbb`, a colour without its alpha.
 struct Hex(Color);
 
@@ -483,7 +469,7 @@ impl Display for Points<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         for (i, p) in self.0.iter().enumerate() {
             let separator = if i == 0 { "" } else { " " };
-            write!(f, "{separator}{},{}", Num(p.x), Num(p.y))?;
+            write!(f, "{separator}{},{}", SvgNumber(p.x), SvgNumber(p.y))?;
         }
         Ok(())
     }
@@ -499,9 +485,9 @@ impl Display for Rotate {
         write!(
             f,
             "rotate({} {} {})",
-            Num(-radians.to_degrees()),
-            Num(about.x),
-            Num(about.y)
+            SvgNumber(-radians.to_degrees()),
+            SvgNumber(about.x),
+            SvgNumber(about.y)
         )
     }
 }
@@ -513,20 +499,25 @@ impl Display for PathData<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         for segment in self.0.segments() {
             match segment {
-                PathSegment::MoveTo(p) => write!(f, "M{} {}", Num(p.x), Num(p.y))?,
-                PathSegment::LineTo(p) => write!(f, "L{} {}", Num(p.x), Num(p.y))?,
-                PathSegment::QuadTo(c, p) => {
-                    write!(f, "Q{} {} {} {}", Num(c.x), Num(c.y), Num(p.x), Num(p.y))?
-                }
+                PathSegment::MoveTo(p) => write!(f, "M{} {}", SvgNumber(p.x), SvgNumber(p.y))?,
+                PathSegment::LineTo(p) => write!(f, "L{} {}", SvgNumber(p.x), SvgNumber(p.y))?,
+                PathSegment::QuadTo(c, p) => write!(
+                    f,
+                    "Q{} {} {} {}",
+                    SvgNumber(c.x),
+                    SvgNumber(c.y),
+                    SvgNumber(p.x),
+                    SvgNumber(p.y)
+                )?,
                 PathSegment::CubicTo(c1, c2, p) => write!(
                     f,
                     "C{} {} {} {} {} {}",
-                    Num(c1.x),
-                    Num(c1.y),
-                    Num(c2.x),
-                    Num(c2.y),
-                    Num(p.x),
-                    Num(p.y)
+                    SvgNumber(c1.x),
+                    SvgNumber(c1.y),
+                    SvgNumber(c2.x),
+                    SvgNumber(c2.y),
+                    SvgNumber(p.x),
+                    SvgNumber(p.y)
                 )?,
                 PathSegment::Close => f.write_str("Z")?,
             }
@@ -538,21 +529,6 @@ impl Display for PathData<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_are_short() {
-        let cases = [
-            (3.0, "3"),
-            (12.5, "12.5"),
-            (-0.25, "-0.25"),
-            (1.23456, "1.23"),
-            (-0.001, "0"),
-            (1599.999, "1600"),
-        ];
-        for (x, expected) in cases {
-            assert_eq!(Num(x).to_string(), expected, "Num({x})");
-        }
-    }
 
     #[test]
     fn colours_are_hex_and_opacity() {

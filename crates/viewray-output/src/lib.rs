@@ -1,18 +1,21 @@
-//! What viewray writes, written one way: colour encodings, PNG files and atomic file
-//! writes, shared by every crate that produces an image or a file.
+//! What viewray writes, written one way: colour encodings, numbers as text, PNG files,
+//! animations and atomic file writes, shared by every crate that produces an image, a
+//! text or a file.
 //!
 //! This crate is a leaf: it depends on no other viewray crate, so the renderer, the
 //! figures, the image comparison (which knows no other viewray crate) and the automation
-//! can all use it. It owns four things:
+//! can all use it. It owns five things:
 //!
 //! - [`color`]: the sRGB transfer function, once, and the types that say which encoding a
 //!   colour is in: [`LinearRgb`] (linear light, as scene files, the renderer and EXR hold
 //!   it) and [`Srgb8`] (8-bit sRGB, as PNG files and figures store it).
+//! - [`number`]: numbers as text, one rule per kind of reader (labels people read, SVG
+//!   coordinates, values other programs read back), none of them ever writing minus zero.
 //! - [`png`]: the one PNG encoder. Fixed settings and no ancillary chunks (no time, no
 //!   text, no gamma): the same pixels always give the same bytes.
 //! - [`animation`]: looping GIF and animated PNG, written frame by frame, with the same
 //!   promise: the same frames always give the same bytes.
-//! - [`file`]: every file viewray writes goes through [`write_atomically`] or
+//! - [`file`](mod@file): every file viewray writes goes through [`write_atomically`] or
 //!   [`AtomicFile`]: written to a temporary file beside the target, flushed to disk, and
 //!   renamed over the target only when complete, so a reader sees the old file or the new
 //!   one, never a part; a failure leaves the target as it was and no stray file behind.
@@ -32,6 +35,7 @@
 pub mod animation;
 pub mod color;
 pub mod file;
+pub mod number;
 pub mod png;
 
 pub use animation::{ApngWriter, GifPalette, GifWriter, MAX_GIF_SIDE};

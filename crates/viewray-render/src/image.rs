@@ -129,7 +129,7 @@ impl Image {
 
     /// Every pixel as 8-bit sRGB, `[r, g, b]` row by row, whatever the [`PixelKind`]:
     /// each channel clamped to `[0, 1]` and encoded by
-    /// [`linear_to_srgb8`](viewray_output::linear_to_srgb8).
+    /// [`linear_to_srgb8`].
     pub fn to_srgb8(&self) -> Vec<u8> {
         self.to_bytes(linear_to_srgb8)
     }

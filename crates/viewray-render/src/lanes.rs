@@ -183,6 +183,12 @@ pub(crate) fn mask(bits: u32) -> BVec4A {
     MASKS[(bits & 0xf) as usize]
 }
 
+/// The set bits of `mask`, lowest first: the lanes it holds.
+#[inline]
+pub(crate) fn lanes_of(mask: u32) -> impl Iterator<Item = usize> {
+    (0..4).filter(move |j| mask & (1 << j) != 0)
+}
+
 /// [`mask`] of each four bits, looked up rather than built lane by lane.
 const MASKS: [BVec4A; 16] = {
     let mut masks = [BVec4A::new(false, false, false, false); 16];

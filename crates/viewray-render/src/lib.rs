@@ -7,6 +7,13 @@
 //! takes a loaded [`Scene`](viewray_scene::Scene) and knows no file format but image
 //! output: no RON, no OBJ, no command line.
 //!
+//! Where to start reading: module `render` ([`render()`], [`render_view`]) splits the image
+//! into tiles and traces each tile block by block; `sampling` says where each sample
+//! falls; `shade` is what a ray sees (its module doc is the map: the block driver, Lit
+//! batches with their lights and mirrors, grid lines, depth); `lanes` holds four
+//! samples' vectors side by side for the lighting; `image` is the [`Image`] and its
+//! encoders.
+//!
 //! # Shading
 //!
 //! Colours are linear RGB throughout; see the camera crate's

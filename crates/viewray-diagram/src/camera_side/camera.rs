@@ -1,0 +1,145 @@
+//! The camera's marks in a side view: its lens and focus plane, the viewing rays traced
+//! to what they hit, and an arrow toward an eye beyond the window.
+
+use glam::{DVec2, DVec3, Vec2};
+use viewray_camera::{Camera, CameraSample, Projection};
+use viewray_draw::{Color, Stroke};
+use viewray_geometry::DRay;
+use viewray_scene::Scene;
+
+use super::labels::{beside, label_anchor, place_label};
+use crate::sketch::{CameraRay, Sketch};
+use crate::style;
+use crate::view::{FigureView, SideView};
+use viewray_output::number;
+
+/// The aperture and focus distance of a camera with a lens.
+pub(super) fn lens(camera: &Camera) -> Option<(f64, f64)> {
+    match camera.projection() {
+        Projection::ThinLens(p) => Some((p.aperture, p.focus)),
+        Projection::Orthographic(o) => o.lens.map(|l| (l.aperture, l.focus)),
+        _ => None,
+    }
+}
+
+/// The angle (radians, counter-clockwise on the figure) of the world direction `d` from
+/// the figure's up.
+pub(super) fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
+    let p = view.plane_point(d);
+    (-p.x).atan2(p.y) as f32
+}
+
+/// Draws the focus plane of a camera with a lens: a dashed segment across the frustum at
+/// distance `focus` along `-w`, labelled.
+pub(super) fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus: f64) {
+    let frame = camera.frame();
+    let centre = frame.e() - frame.w() * focus;
+    let half = match camera.projection() {
+        Projection::ThinLens(p) => p.viewport.y / 2.0 * focus / p.distance,
+        _ => camera.projection().viewport().map_or(1.0, |v| v.y / 2.0),
+    };
+    // The segment across the frustum, a little longer, clipped to the view.
+    let across = DRay {
+        origin: centre - frame.v() * half * 1.15,
+        direction: frame.v() * half * 2.3,
+    };
+    let Some((t0, t1)) = view.clip_ray(&across, (0.0, 1.0)) else {
+        return;
+    };
+    let (bottom, top) = (view.to_figure(across.at(t0)), view.to_figure(across.at(t1)));
+    sketch.line(
+        top,
+        bottom,
+        Stroke::new(style::HIGHLIGHT, style::LINE_REGULAR).dashed(&style::DASH),
+    );
+    let (upper, lower) = if top.y < bottom.y {
+        (top, bottom)
+    } else {
+        (bottom, top)
+    };
+    place_label(
+        sketch,
+        &format!("focus plane, $f$ = {}", number::label_significant(focus)),
+        &[
+            beside(upper, 0.0, -10.0),
+            beside(lower, 0.0, 10.0),
+            beside(upper, 12.0, 12.0),
+            beside(lower, 12.0, -12.0),
+            beside(upper, -12.0, 12.0),
+        ],
+        style::HIGHLIGHT,
+        style::SMALL_LABEL_SIZE,
+    );
+}
+
+/// Draws the centre ray of `pixel` from its origin to the first thing it hits in the
+/// scene (or to the edge of the view), recording it; marks the hit with a dot and
+/// returns where it is drawn, if the ray hits something inside the view.
+pub(super) fn draw_traced_ray(
+    sketch: &mut Sketch,
+    view: &SideView,
+    scene: &Scene,
+    camera: &Camera,
+    (row, col): (u32, u32),
+    stroke: &Stroke,
+    dot: Color,
+) -> Option<Vec2> {
+    let ray: DRay = camera.generate_ray(row, col, CameraSample::CENTER)?;
+    let hit = scene
+        .world()
+        .closest_hit(&ray.as_ray(), f32::MIN_POSITIVE..f32::INFINITY)
+        .map(|hit| f64::from(hit.t));
+    let (t0, t1) = view.clip_ray(&ray, (0.0, hit.unwrap_or(f64::INFINITY)))?;
+    if !t1.is_finite() {
+        return None;
+    }
+    let drawn = sketch.camera_ray(
+        &FigureView::Side(*view),
+        CameraRay {
+            camera,
+            pixel: (row, col),
+            sample: CameraSample::CENTER,
+            t: (t0, t1),
+        },
+        stroke.clone(),
+        false,
+    );
+    let hit_inside = hit.is_some_and(|t| t <= t1);
+    if hit_inside {
+        sketch.dot(drawn.to_px, style::DOT_RADIUS, dot);
+        Some(drawn.to_px)
+    } else {
+        None
+    }
+}
+
+/// Draws an arrow at the edge of the view pointing at the eye `e`, which lies beyond it,
+/// labelled with how far away the eye is (world units from the view's centre).
+pub(super) fn draw_eye_beyond(sketch: &mut Sketch, view: &SideView, e: DVec3) {
+    let (min, max) = (view.bounds.min.as_dvec2(), view.bounds.max.as_dvec2());
+    let centre = (min + max) / 2.0;
+    let eye = view.plane_point(e);
+    let Some(towards) = (eye - centre).try_normalize() else {
+        return;
+    };
+    // Where the line from the centre to the eye leaves the view.
+    let reach = ((max - min) / 2.0 / towards.abs()).min_element();
+    let to_canvas = |p: DVec2| view.mapping.to_canvas(p.as_vec2());
+    let tip = to_canvas(centre + towards * reach * 0.96);
+    let tail = to_canvas(centre + towards * reach * 0.72);
+    sketch.arrow(tail, tip, Stroke::new(style::EYE, style::LINE_REGULAR));
+    let text = format!("*e*, {:.0} away", (eye - centre).length());
+    let along = (tip - tail).normalize_or_zero();
+    let side = along.perp() * 18.0;
+    place_label(
+        sketch,
+        &text,
+        &[
+            (tail - along * 14.0, label_anchor(-along)),
+            (tail + side, label_anchor(side)),
+            (tail - side, label_anchor(-side)),
+        ],
+        style::EYE,
+        style::SMALL_LABEL_SIZE,
+    );
+}

@@ -1,0 +1,125 @@
+//! The block driver: a block's viewing rays traced together and shaded by the view's
+//! mode, Flat, Normals and Depth sample by sample, Lit as one batch.
+
+use glam::Vec3;
+use viewray_geometry::{ObjectHit, Ray};
+use viewray_scene::{Material, Shading};
+
+use super::Shader;
+use super::footprint::FilmPoint;
+use super::grid::surface_color;
+use super::lit::{LitBatch, LitScratch, push_hit};
+
+/// Where primary rays start their search: `t > 0`, as the camera contract says.
+pub(super) const T_MIN: f32 = f32::MIN_POSITIVE;
+
+impl Shader<'_> {
+    /// Whether [`Shader::shade_primaries`] may ask for film points: Lit shading always,
+    /// Flat shading where a material has grid lines, the data images never.
+    pub(crate) fn uses_film_points(&self) -> bool {
+        match self.shading {
+            Shading::Lit => true,
+            Shading::Flat => self.scene.materials().iter().any(|m| m.grid.is_some()),
+            Shading::Normals | Shading::Depth => false,
+        }
+    }
+
+    /// The value stored where a ray hits nothing (or where a camera has no ray).
+    #[inline]
+    pub(crate) fn background(&self) -> Vec3 {
+        self.background
+    }
+
+    /// The closest hits of viewing rays, traced together: `hits[i]` for `rays[i]`.
+    #[inline]
+    pub(crate) fn trace_primary(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
+        self.scene
+            .world()
+            .closest_objects(rays, T_MIN..f32::INFINITY, hits);
+    }
+
+    /// The values of what the viewing rays `rays` see, given their closest hits (from
+    /// [`Shader::trace_primary`]): `emit(i, value)` once for each ray, in no particular
+    /// order (straight into the caller's sums: a buffer of colours in between was
+    /// written and read back once per ray); `film(i)` is the film point of
+    /// `rays[i]`, asked for only where a grid is filtered over the sample's footprint.
+    /// Lit shading traces the batch's shadow rays toward each light together, and its
+    /// reflected rays together, as packets (see [`Shader::lit_batch`]).
+    pub(crate) fn shade_primaries<'f>(
+        &self,
+        rays: &[Ray],
+        hits: &[Option<ObjectHit>],
+        film: impl Fn(usize) -> FilmPoint<'f>,
+        scratch: &mut LitScratch,
+        mut emit: impl FnMut(usize, Vec3),
+        count: &mut u64,
+    ) {
+        *count += rays.len() as u64;
+        let world = &self.scene.world();
+        if self.shading == Shading::Lit {
+            // Shade the hits together; the misses see the background.
+            let LitScratch {
+                rays: hit_rays,
+                surfaces,
+                samples,
+                colors: lit,
+                buffers,
+            } = scratch;
+            hit_rays.clear();
+            surfaces.clear();
+            samples.clear();
+            for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
+                match hit {
+                    Some(hit) => {
+                        push_hit(world, ray, hit, hit_rays, surfaces);
+                        samples.push(i);
+                    }
+                    None => emit(i, self.background),
+                }
+            }
+            lit.clear();
+            lit.resize(hit_rays.len(), Vec3::ZERO);
+            let film_of = |k: usize| film(samples[k]);
+            let batch = LitBatch {
+                rays: hit_rays,
+                hits: surfaces,
+                film: Some(&film_of),
+                depth: 0,
+            };
+            self.lit_batch(batch, buffers, lit, count);
+            for (&i, &color) in samples.iter().zip(lit.iter()) {
+                emit(i, color);
+            }
+            return;
+        }
+        for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
+            let Some(object_hit) = hit else {
+                emit(i, self.background);
+                continue;
+            };
+            let color = match self.shading {
+                Shading::Flat => {
+                    // A plain colour needs no surface details.
+                    let material = self.material(object_hit.object, object_hit.primitive);
+                    if material.grid.is_none() {
+                        material.color
+                    } else {
+                        let hit = world.surface(ray, object_hit);
+                        surface_color(material, &hit, || self.footprint(&film(i), ray, &hit))
+                    }
+                }
+                Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
+                // Every shape's hit point is `ray.at(t)`, as in the depth pre-pass.
+                Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
+                Shading::Lit => unreachable!("lit samples are shaded in a batch above"),
+            };
+            emit(i, color);
+        }
+    }
+
+    /// The material of face `primitive` of object `object`.
+    #[inline]
+    fn material(&self, object: u32, primitive: u32) -> &Material {
+        self.scene.material_of(object, primitive)
+    }
+}
