@@ -109,7 +109,20 @@ impl Aabb {
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
     }
 
-    /// The box's eight corners, `min` first and `max` last.
+    /// The box's eight corners, `min` first and `max` last: corner `i` takes `max` on
+    /// the axes whose bit is set in `i` (bit 0 x, bit 1 y, bit 2 z) and `min` on the
+    /// others, so corners `i` and `i ^ 1` differ only in x.
+    ///
+    /// ```text
+    /// 0 (min.x, min.y, min.z)   1 (max.x, min.y, min.z)   2 (min.x, max.y, min.z)
+    /// 3 (max.x, max.y, min.z)   4 (min.x, min.y, max.z)   5 (max.x, min.y, max.z)
+    /// 6 (min.x, max.y, max.z)   7 (max.x, max.y, max.z)
+    /// ```
+    ///
+    /// This is the one place that spells out a box's corners: [`MeshData::cuboid`]
+    /// indexes its faces by this order, and code that draws or exports a box asks here.
+    ///
+    /// [`MeshData::cuboid`]: crate::MeshData::cuboid
     pub fn corners(&self) -> [Vec3; 8] {
         std::array::from_fn(|i| {
             Vec3::new(
@@ -254,6 +267,26 @@ mod tests {
         assert_eq!(Aabb::EMPTY.surface_area(), 0.0);
         assert_eq!(b.surface_area(), 2.0 * (2.0 * 3.0 + 3.0 * 2.0 + 2.0 * 2.0));
         assert_eq!(Aabb::from_points(b.corners()), b);
+    }
+
+    /// The corners come in the documented order: bit 0 of the index picks x's side, bit
+    /// 1 y's, bit 2 z's (the box's extents differ on each axis, so no two coincide).
+    #[test]
+    fn corners_take_max_on_the_axes_of_their_index_bits() {
+        let b = Aabb::new(Vec3::new(-1.0, 0.0, 2.0), Vec3::new(1.0, 3.0, 4.0));
+        assert_eq!(
+            b.corners(),
+            [
+                Vec3::new(-1.0, 0.0, 2.0),
+                Vec3::new(1.0, 0.0, 2.0),
+                Vec3::new(-1.0, 3.0, 2.0),
+                Vec3::new(1.0, 3.0, 2.0),
+                Vec3::new(-1.0, 0.0, 4.0),
+                Vec3::new(1.0, 0.0, 4.0),
+                Vec3::new(-1.0, 3.0, 4.0),
+                Vec3::new(1.0, 3.0, 4.0),
+            ]
+        );
     }
 
     #[test]
