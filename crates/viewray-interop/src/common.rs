@@ -359,18 +359,9 @@ pub(crate) fn tangents(normal: Vec3) -> (Vec3, Vec3) {
     (t1, t2)
 }
 
-/// The shortest decimal that reads back as the same `f64`.
-pub(crate) fn num(x: f64) -> String {
-    let s = format!("{x:?}");
-    // `-0.0` reads back as zero in every tool; write it without the sign.
-    if s == "-0.0" { "0.0".to_owned() } else { s }
-}
-
-/// The shortest decimal that reads back as the same `f32`.
-pub(crate) fn num32(x: f32) -> String {
-    let s = format!("{x:?}");
-    if s == "-0.0" { "0.0".to_owned() } else { s }
-}
+/// Numbers other tools read back: the shortest text that reads back as the same value,
+/// minus zero written `0.0` (viewray-output's one rule for them).
+pub(crate) use viewray_output::number::{round_trip as num, round_trip_f32 as num32};
 
 /// The matrix taking camera coordinates `(a, b, c)` to the world point
 /// `e + a U + b V + c W`: columns `U`, `V`, `W`, `e`.

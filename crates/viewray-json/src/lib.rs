@@ -21,9 +21,10 @@ use glam::{DVec2, DVec3};
 use serde_json::{Map, Value, json};
 use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
 
-/// A number for printing: `-0` becomes `0` (a student's answer never says minus zero).
+/// A number for printing: `-0` becomes `0` (a student's answer never says minus zero),
+/// by viewray-output's one rule for it.
 pub fn number(x: f64) -> Value {
-    json!(x + 0.0)
+    json!(viewray_output::number::without_minus_zero(x))
 }
 
 /// A vector as a JSON array `[x, y, z]`.

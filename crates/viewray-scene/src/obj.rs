@@ -37,10 +37,10 @@ pub fn obj_text(mesh: &MeshData, comment: &str) -> String {
     text
 }
 
-/// The shortest decimal that reads back as `x`; adding zero turns a negative zero into
-/// a positive one (IEEE 754), which every reader takes as the same zero.
+/// The shortest decimal that reads back as `x`, minus zero written `0.0`: the rule of
+/// every number other programs read (viewray-output's).
 fn coordinate(x: f32) -> String {
-    format!("{:?}", x + 0.0)
+    viewray_output::number::round_trip_f32(x)
 }
 
 #[cfg(test)]
