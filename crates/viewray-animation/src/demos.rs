@@ -358,6 +358,9 @@ fn thin_lens(aperture: f64, focus: f64, width: u32, height: u32) -> Camera {
         shift: DVec2::ZERO,
         aperture,
         focus,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     camera(
         looking(DVec3::new(0.0, 0.6, 0.0), DVec3::NEG_Z),

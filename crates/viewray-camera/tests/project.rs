@@ -51,6 +51,9 @@ fn planar_projection() -> impl Strategy<Value = Projection> {
                     shift,
                     aperture,
                     focus,
+                    tilt: 0.0,
+                    swing: 0.0,
+                    iris: viewray_camera::Iris::ROUND,
                 })
             }
         ),
@@ -245,7 +248,10 @@ fn invalid_parameters_are_errors() {
             viewport: DVec2::ONE,
             shift: DVec2::ZERO,
             aperture: 0.1,
-            focus: 0.0
+            focus: 0.0,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         })),
         Err(NotPositive { name: "focus", .. })
     ));

@@ -278,6 +278,10 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
                 aperture: a0,
                 f_number: n0,
                 focus: f0,
+                lens_tilt: t0,
+                lens_swing: w0,
+                blades: b0,
+                blade_rotation: r0,
             },
             P::ThinLens {
                 distance: d1,
@@ -294,6 +298,10 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
                 aperture: a1,
                 f_number: n1,
                 focus: f1,
+                lens_tilt: t1,
+                lens_swing: w1,
+                blades: b1,
+                blade_rotation: r1,
             },
         ) => P::ThinLens {
             distance: mix_option("distance", *d0, *d1, s)?,
@@ -310,6 +318,10 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
             aperture: mix_option("aperture", *a0, *a1, s)?,
             f_number: mix_option("f_number", *n0, *n1, s)?,
             focus: f0.mix(f1, s),
+            lens_tilt: t0.mix(t1, s),
+            lens_swing: w0.mix(w1, s),
+            blades: same("blades", Some(*b0), Some(*b1))?.unwrap_or(*b0),
+            blade_rotation: r0.mix(r1, s),
         },
         (
             P::Orthographic {

@@ -10,8 +10,8 @@ use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
 use ron::value::RawValue;
 use viewray_camera::{
-    Camera, Fisheye, FovAxis, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection,
-    SensorFit, ThinLens, aperture_from_f_number,
+    Camera, Fisheye, FovAxis, Frame, Iris, Lens, Oblique, Orthographic, Perspective, Preset,
+    Projection, SensorFit, ThinLens, aperture_from_f_number,
 };
 
 use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
@@ -874,6 +874,10 @@ fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
             aperture,
             f_number,
             focus,
+            lens_tilt,
+            lens_swing,
+            blades,
+            blade_rotation,
         } => {
             let extent = PerspectiveExtent {
                 distance,
@@ -907,12 +911,19 @@ fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
                         .to_owned());
                 }
             };
+            if (lens_tilt != 0.0 || lens_swing != 0.0) && focal_length.is_none() {
+                return Err(
+                    "`lens_tilt` and `lens_swing` tilt the lens of a physical camera: \
+                            give `focal_length` (mm) with them (the plane of focus turns \
+                            about the hinge line, focal_length / sin(tilt) from the lens)"
+                        .to_owned(),
+                );
+            }
             Projection::ThinLens(ThinLens {
-                distance: pinhole.distance,
-                viewport: pinhole.viewport,
-                shift: pinhole.shift,
-                aperture,
-                focus,
+                tilt: lens_tilt.to_radians(),
+                swing: lens_swing.to_radians(),
+                iris: Iris::from_degrees(blades, blade_rotation).map_err(|e| e.to_string())?,
+                ..ThinLens::new(pinhole, aperture, focus)
             })
         }
         ProjectionDef::Orthographic {

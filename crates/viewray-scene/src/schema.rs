@@ -303,6 +303,18 @@ pub(crate) enum ProjectionDef {
         #[serde(default)]
         f_number: Option<f64>,
         focus: f64,
+        /// Degrees, about `u`; a physical camera's only.
+        #[serde(default)]
+        lens_tilt: f64,
+        /// Degrees, about `v`; a physical camera's only.
+        #[serde(default)]
+        lens_swing: f64,
+        /// 0 (round) or 3 to 64.
+        #[serde(default)]
+        blades: u32,
+        /// Degrees, any angle (wrapped).
+        #[serde(default)]
+        blade_rotation: f64,
     },
     Orthographic {
         #[serde(default)]

@@ -62,6 +62,9 @@ fn thin_lens(eye: DVec3, view: DVec3, d: f64, shift: DVec2, aperture: f64, focus
         shift,
         aperture,
         focus,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     Camera::new(frame, projection, 64, 48).unwrap()
 }

@@ -92,6 +92,9 @@ fn a_thin_lens_takes_an_f_number() {
             shift: DVec2::ZERO,
             aperture: viewray_camera::aperture_from_f_number(50.0, 2.8).unwrap(),
             focus: 5.0,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         })
     );
 }
