@@ -77,12 +77,20 @@ pub(crate) enum Command {
     /// its camera, presets included. Prints one JSON line:
     ///
     ///     {"e":[..],"u":[..],"v":[..],"w":[..]}
+    ///
+    /// A scene's camera with a lens adds its plane of sharp focus (its point nearest
+    /// the lens centre and its unit normal toward the lens), and a tilted lens its
+    /// hinge line (the point nearest the lens centre, the direction w x n):
+    ///
+    ///     "focus_plane":{"point":[..],"normal":[..]}
+    ///     "hinge_line":{"point":[..],"direction":[..]}
     #[command(verbatim_doc_comment)]
     Frame(FrameArgs),
     /// Print the viewing rays of pixels, with their image-plane points u, v
     ///
     /// Each ray goes through a point of its pixel, the centre unless --sample says
-    /// otherwise, and through the lens centre. The pixel's image-plane point is
+    /// otherwise, and through the lens centre unless --lens says otherwise. The pixel's
+    /// image-plane point is
     ///
     ///     u =  ((col + 1/2)/W - 1/2) vw  =  ((j - 1/2)/W - 1/2) vw
     ///     v = -((row + 1/2)/H - 1/2) vh  = -((i - 1/2)/H - 1/2) vh
@@ -90,7 +98,9 @@ pub(crate) enum Command {
     /// with the 0-based (row, col) or the lecture's 1-based (i, j). A perspective
     /// camera's ray is then origin e, direction (u + sx) U + (v + sy) V - d W, with
     /// (sx, sy) the lens shift (zero unless the scene sets one); directions are not
-    /// normalized.
+    /// normalized. A thin lens's ray starts at the lens point e + r (LX U + LY V) and
+    /// goes through the point where the pixel's centre ray meets the plane of focus
+    /// (reached at t = 1; `viewray frame SCENE` prints the plane).
     ///
     /// Prints one JSON line per pixel,
     ///
@@ -377,6 +387,11 @@ pub(crate) struct RaysArgs {
     /// corner; 0.5,0.5 is the centre, the lecture's ray.
     #[arg(long, value_name = "OX,OY", value_parser = parse_offset, default_value = "0.5,0.5")]
     pub(crate) sample: DVec2,
+    /// The point on the lens as LX,LY in unit-disk coordinates (the ray starts at
+    /// e + r (LX U + LY V)), instead of the lens centre; for a camera with a lens, the
+    /// point on its aperture (the unit disk, or the polygon of its blades).
+    #[arg(long, value_name = "LX,LY", value_parser = parse_lens_point, allow_hyphen_values = true)]
+    pub(crate) lens: Option<DVec2>,
 }
 
 #[derive(Args, Debug)]
@@ -456,6 +471,12 @@ fn parse_offset(text: &str) -> Result<DVec2, String> {
         ));
     }
     Ok(offset)
+}
+
+/// Parses a lens point: two numbers (whether it lies on the aperture depends on the
+/// scene's camera, checked once it is loaded).
+fn parse_lens_point(text: &str) -> Result<DVec2, String> {
+    parse_numbers::<2>(text, "0.5,-0.5").map(DVec2::from)
 }
 
 pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
@@ -579,7 +600,7 @@ pub(crate) fn expand_repeated_values(args: impl IntoIterator<Item = OsString>) -
 
 /// The options whose value is several numbers joined by commas, the format each takes
 /// and how many numbers that is.
-const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
+const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 8] = [
     ("--eye", "X,Y,Z", 3),
     ("--view", "X,Y,Z", 3),
     ("--look-at", "X,Y,Z", 3),
@@ -587,6 +608,7 @@ const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
     ("--point", "X,Y,Z", 3),
     ("--pixel", "ROW,COL", 2),
     ("--sample", "OX,OY", 2),
+    ("--lens", "LX,LY", 2),
 ];
 
 /// The options of `viewray frame` that describe a camera by hand.

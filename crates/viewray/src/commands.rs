@@ -3,10 +3,11 @@
 
 use std::io::{BufWriter, IsTerminal, Write};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::CommandFactory;
-use viewray_camera::{CameraSample, Frame};
-use viewray_json::{PixelIndices, project_line, ray_line};
+use glam::DVec2;
+use viewray_camera::{Camera, CameraSample, Frame};
+use viewray_json::{PixelIndices, lens_ray_line, project_line, ray_line};
 
 use crate::cli::{Cli, CompletionsArgs, FrameArgs, ManArgs, ProjectArgs, RaysArgs, SceneArgs};
 use crate::input::{DEFAULT_SCENE, load_scene_file};
@@ -14,12 +15,13 @@ use crate::style;
 
 /// `viewray frame`: the camera frame of a scene, or from eye, view (or look-at) and up.
 pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
-    let frame = match &args.scene {
-        Some(scene) => *load_scene_file(scene)?.camera().frame(),
-        None => frame_from_options(args)?,
+    let line = match &args.scene {
+        // A scene's camera adds its plane of focus (and hinge line) where it has a lens.
+        Some(scene) => viewray_json::camera_frame_line(load_scene_file(scene)?.camera()),
+        None => viewray_json::frame_line(&frame_from_options(args)?),
     };
     let mut out = std::io::stdout().lock();
-    viewray_json::write_line(&mut out, &viewray_json::frame_line(&frame))?;
+    viewray_json::write_line(&mut out, &line)?;
     Ok(())
 }
 
@@ -80,13 +82,20 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
                 .map_err(anyhow::Error::msg)
         })
         .collect::<Result<Vec<(u32, u32)>>>()?;
+    if let Some(lens) = args.lens {
+        check_lens_point(&camera, lens)?;
+    }
     note_pixel_convention(args.one_based);
     let sample = CameraSample {
         p_film: args.sample,
         ..CameraSample::CENTER
     };
     let write = |out: &mut BufWriter<_>, row, col| {
-        viewray_json::write_line(out, &ray_line(&camera, (row, col), sample, indices))
+        let line = match args.lens {
+            Some(lens) => lens_ray_line(&camera, (row, col), args.sample, lens, indices),
+            None => ray_line(&camera, (row, col), sample, indices),
+        };
+        viewray_json::write_line(out, &line)
     };
     let mut out = BufWriter::new(std::io::stdout().lock());
     if pixels.is_empty() {
@@ -104,6 +113,40 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
     }
     out.flush()?;
     Ok(())
+}
+
+/// `--lens LX,LY` needs a camera with a lens, and a point on its aperture: the unit disk,
+/// or the polygon of its blades.
+fn check_lens_point(camera: &Camera, lens: DVec2) -> Result<()> {
+    let Some(iris) = camera.projection().iris() else {
+        bail!(
+            "--lens picks a point on the lens, but this {} camera has none: give a ThinLens \
+             (or an Orthographic camera with an aperture)",
+            camera.projection().family_name()
+        );
+    };
+    if iris.contains(lens) {
+        return Ok(());
+    }
+    if iris.is_round() {
+        bail!(
+            "--lens {},{} lies outside the lens: LX, LY are unit-disk coordinates, \
+             LX^2 + LY^2 <= 1",
+            lens.x,
+            lens.y
+        );
+    }
+    bail!(
+        "--lens {},{} lies outside the aperture: its {} blades make a polygon inside the \
+         unit disk, corners on the circle at {} degrees and every 360/{} after",
+        lens.x,
+        lens.y,
+        iris.blades,
+        viewray_output::number::label(
+            (iris.rotation + std::f64::consts::PI / f64::from(iris.blades)).to_degrees()
+        ),
+        iris.blades
+    )
 }
 
 /// `viewray project`: where points appear in the image.
