@@ -30,8 +30,13 @@ pub(super) fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
 }
 
 /// Draws the focus plane of a camera with a lens: a dashed segment across the frustum at
-/// distance `focus` along `-w`, labelled.
+/// distance `focus` along `-w`, labelled; for a tilted lens, the tilted plane of focus
+/// from its hinge line on.
 pub(super) fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus: f64) {
+    if let (Some(tilted), Some(plane)) = (camera.tilted_focus(), camera.focus_plane()) {
+        draw_tilted_focus_plane(sketch, view, camera, tilted.hinge_line.point, plane.normal);
+        return;
+    }
     let frame = camera.frame();
     let centre = frame.e() - frame.w() * focus;
     let half = match camera.projection() {
@@ -66,6 +71,53 @@ pub(super) fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Ca
             beside(upper, 12.0, 12.0),
             beside(lower, 12.0, -12.0),
             beside(upper, -12.0, 12.0),
+        ],
+        style::HIGHLIGHT,
+        style::SMALL_LABEL_SIZE,
+    );
+}
+
+/// Draws a tilted lens's plane of focus (unit normal `normal`) where it crosses the
+/// view's plane, from the hinge line's point `hinge` ahead of the camera to the edge of
+/// the view, with a dot at the hinge line; labelled.
+fn draw_tilted_focus_plane(
+    sketch: &mut Sketch,
+    view: &SideView,
+    camera: &Camera,
+    hinge: DVec3,
+    normal: DVec3,
+) {
+    let across = normal.cross(view.towards_viewer());
+    let ahead = if across.dot(camera.frame().w()) > 0.0 {
+        -across
+    } else {
+        across
+    };
+    let trace = DRay {
+        origin: hinge,
+        direction: ahead.normalize(),
+    };
+    let Some((t0, t1)) = view.clip_ray(&trace, (0.0, 1e6)) else {
+        return;
+    };
+    let (near, far) = (view.to_figure(trace.at(t0)), view.to_figure(trace.at(t1)));
+    sketch.line(
+        near,
+        far,
+        Stroke::new(style::HIGHLIGHT, style::LINE_REGULAR).dashed(&style::DASH),
+    );
+    if t0 == 0.0 {
+        sketch.dot(near, style::DOT_RADIUS * 0.7, style::HIGHLIGHT);
+    }
+    let middle = view.to_figure(trace.at(t0 + 0.6 * (t1 - t0)));
+    place_label(
+        sketch,
+        "plane of focus (tilted lens)",
+        &[
+            beside(middle, 14.0, 14.0),
+            beside(middle, -14.0, -14.0),
+            beside(far, -12.0, 14.0),
+            beside(near, 12.0, -12.0),
         ],
         style::HIGHLIGHT,
         style::SMALL_LABEL_SIZE,

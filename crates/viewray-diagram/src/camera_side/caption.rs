@@ -21,17 +21,21 @@ pub(super) fn draw_caption(sketch: &mut Sketch, camera: &Camera, canvas: SideVie
     } else {
         format!("{lens};  {size}")
     };
+    // A slide's one line holds about 90 characters; a longer caption (a shifted or
+    // tilted lens) takes two, as on a panel.
+    let one_line = format!("{parameters};  {more}");
+    let slide_fits = one_line.chars().count() <= 90;
     match canvas {
-        SideViewCanvas::Slide => sketch.text_lines(
-            at,
-            &[(
-                &format!("{parameters};  {more}"),
-                style::TEXT,
-                style::SMALL_LABEL_SIZE,
-            )],
-        ),
-        SideViewCanvas::Panel => sketch.text_lines(
-            at,
+        SideViewCanvas::Slide if slide_fits => {
+            sketch.text_lines(at, &[(&one_line, style::TEXT, style::SMALL_LABEL_SIZE)])
+        }
+        SideViewCanvas::Slide | SideViewCanvas::Panel => sketch.text_lines(
+            // On a slide the second line takes the first's place, the first goes above.
+            if canvas == SideViewCanvas::Slide {
+                at - Vec2::new(0.0, LINE_SPACING * style::SMALL_LABEL_SIZE)
+            } else {
+                at
+            },
             &[
                 (&parameters, style::TEXT, style::SMALL_LABEL_SIZE),
                 (&more, style::TEXT, style::SMALL_LABEL_SIZE),
@@ -97,15 +101,27 @@ fn caption(camera: &Camera) -> (String, String, String) {
             ),
             String::new(),
         ),
-        Projection::ThinLens(p) => (
-            format!(
-                "thin lens:  $d$ = {},  {}{}",
-                number::label_significant(p.distance),
-                viewport(p.viewport),
-                shift(p.shift)
-            ),
-            lens(p.aperture, p.focus),
-        ),
+        Projection::ThinLens(p) => {
+            let mut lens = lens(p.aperture, p.focus);
+            if p.tilt != 0.0 {
+                lens += &format!(",  tilt {}°", number::label(p.tilt.to_degrees()));
+            }
+            if p.swing != 0.0 {
+                lens += &format!(",  swing {}°", number::label(p.swing.to_degrees()));
+            }
+            if !p.iris.is_round() {
+                lens += &format!(",  {} blades", p.iris.blades);
+            }
+            (
+                format!(
+                    "thin lens:  $d$ = {},  {}{}",
+                    number::label_significant(p.distance),
+                    viewport(p.viewport),
+                    shift(p.shift)
+                ),
+                lens,
+            )
+        }
         Projection::Orthographic(o) => (
             format!("orthographic:  {}", viewport(o.viewport)),
             o.lens.map_or(String::new(), |l| lens(l.aperture, l.focus)),
