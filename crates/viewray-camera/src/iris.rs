@@ -50,7 +50,7 @@ impl Iris {
         check_rotation(rotation, rotation.to_degrees())?;
         let iris = Iris {
             blades,
-            rotation: (rotation + PI).rem_euclid(TAU) - PI,
+            rotation: rotation - TAU * ((rotation + PI) / TAU).floor(),
         };
         iris.validate()?;
         Ok(iris)
@@ -64,7 +64,8 @@ impl Iris {
     /// As [`Iris::validate`].
     pub fn from_degrees(blades: u32, degrees: f64) -> Result<Iris, CameraError> {
         check_rotation(degrees, degrees)?;
-        let wrapped = (degrees + 180.0).rem_euclid(360.0) - 180.0;
+        // Whole turns off: exact for the angles people write.
+        let wrapped = degrees - 360.0 * ((degrees + 180.0) / 360.0).floor();
         let iris = Iris {
             blades,
             rotation: wrapped.to_radians(),
@@ -125,12 +126,13 @@ impl Iris {
         if self.is_round() {
             return point.length() <= 1.0 + SLACK;
         }
-        let apothem = (PI / f64::from(self.blades)).cos();
-        (0..self.blades).all(|k| {
-            let (sin, cos) =
-                (self.rotation + f64::from(k) * TAU / f64::from(self.blades)).sin_cos();
-            point.dot(DVec2::new(cos, sin)) <= apothem + SLACK
-        })
+        // The edge the point faces: its outward normal is the nearest of those at the
+        // angles rotation + k 2 pi / N; inside that edge is inside them all.
+        let corners = f64::from(self.blades);
+        let wedge = TAU / corners;
+        let k = ((point.y.atan2(point.x) - self.rotation) / wedge).round();
+        let (sin, cos) = (self.rotation + k * wedge).sin_cos();
+        point.dot(DVec2::new(cos, sin)) <= (PI / corners).cos() + SLACK
     }
 
     /// The polygon's corners, in unit-disk coordinates, counter-clockwise from the

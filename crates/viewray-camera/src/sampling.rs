@@ -17,30 +17,21 @@ use glam::DVec2;
 ///
 /// The square's centre `(0.5, 0.5)` maps to the disk's centre.
 pub fn sample_unit_disk_concentric(p: DVec2) -> DVec2 {
-    let (r, theta) = concentric_polar(p);
-    if r == 0.0 {
-        return DVec2::ZERO;
-    }
-    let (sin, cos) = theta.sin_cos();
-    r * DVec2::new(cos, sin)
-}
-
-/// The concentric mapping's signed radius `r` and angle `theta` (see
-/// [`sample_unit_disk_concentric`]); `(0, 0)` at the square's centre.
-fn concentric_polar(p: DVec2) -> (f64, f64) {
     let offset = 2.0 * p - DVec2::ONE;
     if offset == DVec2::ZERO {
-        return (0.0, 0.0);
+        return DVec2::ZERO;
     }
     // On the diagonals (|a| = |b|) both rules give the same point.
-    if offset.x.abs() >= offset.y.abs() {
+    let (r, theta) = if offset.x.abs() >= offset.y.abs() {
         (offset.x, FRAC_PI_4 * (offset.y / offset.x))
     } else {
         (
             offset.y,
             2.0 * FRAC_PI_4 - FRAC_PI_4 * (offset.x / offset.y),
         )
-    }
+    };
+    let (sin, cos) = theta.sin_cos();
+    r * DVec2::new(cos, sin)
 }
 
 /// Maps a point of the unit square `[0, 1)^2` to the regular polygon of `blades` corners
@@ -52,7 +43,7 @@ fn concentric_polar(p: DVec2) -> (f64, f64) {
 /// the angle `rotation` from `u` (toward `v`), at the distance `cos(pi / N)` from the
 /// centre. Cycles picks the polygon's wedge from the first number and a point of that
 /// triangle from both; here the square goes first to the unit disk by the concentric
-/// mapping (radius `r`, angle `theta`), and then
+/// mapping (the disk point at radius `r` and angle `theta`), and then
 ///
 /// ```text
 /// x = ((theta - rotation) / (2 pi / N) + 1/2) mod N,   k = floor(x),   t = x - k
@@ -68,13 +59,8 @@ fn concentric_polar(p: DVec2) -> (f64, f64) {
 /// (the lens centre of one sample per pixel), neighbouring points stay neighbours, and
 /// the square's edges land exactly on the polygon's edges.
 pub fn sample_regular_polygon(p: DVec2, blades: u32, rotation: f64) -> DVec2 {
-    let (signed_r, theta) = concentric_polar(p);
-    // A negative radius is the point across the centre.
-    let (r, theta) = if signed_r < 0.0 {
-        (-signed_r, theta + PI)
-    } else {
-        (signed_r, theta)
-    };
+    let disk = sample_unit_disk_concentric(p);
+    let (r, theta) = (disk.length(), disk.y.atan2(disk.x));
     let corners = f64::from(blades);
     let x = ((theta - rotation) / (TAU / corners) + 0.5).rem_euclid(corners);
     let k = x.floor();

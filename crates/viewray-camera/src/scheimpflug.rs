@@ -53,14 +53,16 @@
 //!
 //! ```text
 //! origin    = e + L
-//! direction = (F / m.c) c - L          when 0 < F / m.c <= 1e9: t = 1 is on the plane
+//! direction = (F / m.c) c - L          when m.c > 0: t = 1 is on the plane
 //! direction = c - (m.c / F) L          otherwise
 //! ```
 //!
 //! The second line is the same family of lines through the (virtual) meeting point,
 //! written so that it stays finite: where the centre ray runs parallel to the plane of
-//! focus (its horizon) or meets it behind the lens, the sharp point lies at infinity or
-//! behind the eye and the lens's rays leave parallel or spreading, as a real lens's do.
+//! focus (its horizon, `m.c = 0`) or meets it behind the lens, the sharp point lies at
+//! infinity or behind the eye and the lens's rays leave parallel or spreading, as a real
+//! lens's do. (Near the horizon `F / m.c` is large: the direction is long, the ray the
+//! same.)
 //! Untilted (`m.c = F d / f`) the first line is the lecture's thin lens,
 //! `(f / d) c - L`.
 
@@ -68,11 +70,6 @@ use glam::{DVec2, DVec3};
 
 use crate::projection::CameraSpaceRay;
 use crate::{CameraError, Frame, ThinLens};
-
-/// The farthest meeting point, in units of the pinhole direction, at which a tilted
-/// lens's rays are written to reach it at `t = 1`: beyond, they are written in the
-/// finite form `c - (m.c / F) L` (the same lines).
-const FARTHEST_FOCUS_T: f64 = 1e9;
 
 /// A plane: a point on it and its unit normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -166,9 +163,10 @@ impl ThinLens {
         let lens_offset = (self.aperture * lens).extend(0.0);
         let (m, focal_length) = self.focus_plane_equation();
         let along = m.dot(centre);
-        let t = focal_length / along;
-        let direction = if t > 0.0 && t <= FARTHEST_FOCUS_T {
-            t * centre - lens_offset
+        // Where the centre ray meets the plane ahead, every ray reaches the point at
+        // t = 1; elsewhere (behind the eye, or parallel: along <= 0) they spread from it.
+        let direction = if along > 0.0 {
+            (focal_length / along) * centre - lens_offset
         } else {
             centre - (along / focal_length) * lens_offset
         };

@@ -326,6 +326,17 @@ fn an_iris_knows_its_corners_and_what_lies_on_it() {
     let turned = Iris::from_degrees(6, 30.0).unwrap();
     assert!(turned.contains(DVec2::new(1.0, 0.0)));
     assert!(!turned.contains(DVec2::new(0.0, 1.0)));
+    // A turned pentagon: just beyond the middle of the edge facing 0.4 rad is outside,
+    // just inside it is in; the corners beside it are on it.
+    let pentagon = Iris::new(5, 0.4).unwrap();
+    let apothem = (PI / 5.0).cos();
+    let facing = DVec2::new(0.4f64.cos(), 0.4f64.sin());
+    assert!(!pentagon.contains((apothem + 1e-6) * facing));
+    assert!(pentagon.contains((apothem - 1e-6) * facing));
+    for corner in pentagon.corners() {
+        assert!(pentagon.contains(corner));
+        assert!(!pentagon.contains(1.001 * corner));
+    }
     // The unit disk, its edge included.
     assert!(Iris::ROUND.contains(DVec2::new(0.6, 0.8)));
     assert!(Iris::ROUND.contains(DVec2::new(-1.0, 0.0)));
