@@ -118,14 +118,16 @@ impl Camera {
         mistakes: Mistakes,
     ) -> Self {
         let pinhole = match projection {
-            Projection::Perspective(p) if !mistakes.moves_pixels() => Some(Pinhole {
-                origin: if mistakes.contains(Mistake::EyeMissing) {
-                    frame.world_from_camera_vector(DVec3::ZERO)
-                } else {
-                    frame.world_from_camera_point(DVec3::ZERO)
-                },
-                depth: p.direction(DVec2::ZERO).z * frame.w(),
-            }),
+            Projection::Perspective(p) if !mistakes.moves_pixels() && !mistakes.skips_basis() => {
+                Some(Pinhole {
+                    origin: if mistakes.contains(Mistake::EyeMissing) {
+                        frame.world_from_camera_vector(DVec3::ZERO)
+                    } else {
+                        frame.world_from_camera_point(DVec3::ZERO)
+                    },
+                    depth: p.direction(DVec2::ZERO).z * frame.w(),
+                })
+            }
             _ => None,
         };
         Self {
@@ -262,6 +264,17 @@ impl Camera {
         self.generate_ray_through(image, sample.p_lens)
     }
 
+    /// The image-plane point `(u, v)` of pixel `(row, col)` at the offset `p_film` in it
+    /// ([`pixel_to_image_plane`] with this camera's size and viewport, after the pixel
+    /// mistakes of a mistaken camera); `None` for the panoramic cameras, which have no
+    /// image plane.
+    pub fn image_plane_point(&self, row: u32, col: u32, p_film: DVec2) -> Option<DVec2> {
+        let viewport = self.projection.viewport()?;
+        let image = DVec2::new(f64::from(col), f64::from(row)) + p_film;
+        let image = self.mistakes.image_point(image, self.size());
+        Some(image_to_image_plane(image, self.size(), viewport))
+    }
+
     /// The viewing ray through the continuous image point `image = (x, y)` (`x` from the
     /// left edge, `y` from the top, in pixels) for the lens sample `p_lens` in
     /// `[0, 1)^2`.
@@ -343,6 +356,15 @@ impl Camera {
         let mut ray = self.projection.camera_space_ray(image, self.size(), lens)?;
         if self.mistakes.contains(Mistake::OrthoOriginFixed) {
             ray.origin = DVec3::ZERO;
+        }
+        if self.mistakes.skips_basis() {
+            // The camera's coordinates taken as the world's, from e (or 0).
+            let e = if self.mistakes.contains(Mistake::EyeMissing) {
+                DVec3::ZERO
+            } else {
+                self.frame.e()
+            };
+            return Some(DRay::new(e + ray.origin, ray.direction));
         }
         let origin = if self.mistakes.contains(Mistake::EyeMissing) {
             // The student's origin: 0 + u U + v V, without e.

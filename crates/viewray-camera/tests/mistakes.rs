@@ -292,10 +292,12 @@ fn a_mistaken_camera_reports_its_mistaken_frame_and_projection() {
     assert_eq!(mistaken.project(p), None);
     // No mistake: the same camera.
     assert_eq!(camera.with_mistakes(Mistakes::NONE).unwrap(), camera);
-    // eye-missing leaves the rays' origin without e, not the frame: a student's
-    // Problem 2 answer keeps e = eye.
+    // eye-missing and basis-missing leave e or the basis out of the rays, not out of
+    // the frame: a student's Problem 2 answer is right.
     let no_eye = camera.with_mistakes(Mistake::EyeMissing.into()).unwrap();
     assert_eq!(no_eye.frame(), camera.frame());
+    let no_basis = camera.with_mistakes(Mistake::BasisMissing.into()).unwrap();
+    assert_eq!(no_basis.frame(), camera.frame());
 }
 
 #[test]
