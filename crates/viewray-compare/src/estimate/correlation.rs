@@ -194,3 +194,94 @@ fn transpose(input: &[Complex32], output: &mut [Complex32], width: usize, height
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random values in [0, 1).
+    fn noise(count: usize, seed: u32) -> Vec<f32> {
+        let mut state = seed.wrapping_mul(2_654_435_761) | 1;
+        (0..count)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                (state >> 8) as f32 / (1u32 << 24) as f32
+            })
+            .collect()
+    }
+
+    /// Every move's NCC and overlap, by move.
+    fn all_moves(
+        correlator: &mut Correlator,
+        g: &[f32],
+        mask: &[f32],
+    ) -> Vec<([i64; 2], f64, f64)> {
+        let mut moves = Vec::new();
+        correlator.correlate(g, mask, 0.5, |u, ncc, n| moves.push((u, ncc, n)));
+        moves
+    }
+
+    #[test]
+    fn the_correlation_peaks_at_one_at_the_planted_move() {
+        let (w, h) = (24usize, 20usize);
+        let g = noise(w * h, 3);
+        let planted = [5i64, -3i64];
+        // actual(x) = g(x - planted) where that lies in g; nothing elsewhere.
+        let mut actual = vec![0.0f32; w * h];
+        let mut mask = vec![0.0f32; w * h];
+        for row in 0..h as i64 {
+            for col in 0..w as i64 {
+                let (source_row, source_col) = (row - planted[1], col - planted[0]);
+                if (0..h as i64).contains(&source_row) && (0..w as i64).contains(&source_col) {
+                    let i = (row as usize) * w + col as usize;
+                    actual[i] = g[source_row as usize * w + source_col as usize];
+                    mask[i] = 1.0;
+                }
+            }
+        }
+        let mut correlator = Correlator::new(&actual, &mask, w, h);
+        let moves = all_moves(&mut correlator, &g, &vec![1.0; w * h]);
+        // Among the moves with an overlap of a hundred pixels or more (a few pixels in
+        // common correlate by chance).
+        let (best, ncc, n) = moves
+            .iter()
+            .copied()
+            .filter(|m| m.2 >= 100.0)
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        assert_eq!(best, planted);
+        assert!((ncc - 1.0).abs() < 1e-3, "{ncc}");
+        // The overlap: the 19 x 17 pixels the two have in common.
+        assert!((n - 19.0 * 17.0).abs() < 0.01, "{n}");
+        // Elsewhere, unrelated noise correlates weakly.
+        let runner_up = moves
+            .iter()
+            .filter(|m| m.0 != planted && m.2 >= 100.0)
+            .map(|m| m.1)
+            .fold(f64::MIN, f64::max);
+        assert!(runner_up < 0.5, "{runner_up}");
+    }
+
+    #[test]
+    fn every_move_counts_the_pixels_both_images_hold() {
+        let (w, h) = (16usize, 12usize);
+        let ones = vec![1.0f32; w * h];
+        let mut correlator = Correlator::new(&noise(w * h, 5), &ones, w, h);
+        let moves = all_moves(&mut correlator, &noise(w * h, 6), &ones);
+        // Every move with an overlap, each once.
+        assert_eq!(moves.len(), (2 * w - 1) * (2 * h - 1));
+        for (u, _, n) in moves {
+            let want = (w as i64 - u[0].abs()) * (h as i64 - u[1].abs());
+            assert!((n - want as f64).abs() < 0.01, "{u:?} {n}");
+        }
+        // A floor on the overlap leaves out the moves with less.
+        let mut seen = 0;
+        correlator.correlate(&noise(w * h, 6), &ones, 100.0, |_, _, n| {
+            assert!(n >= 100.0);
+            seen += 1;
+        });
+        assert!(seen > 0 && seen < (2 * w - 1) * (2 * h - 1));
+    }
+}

@@ -434,3 +434,222 @@ pub(super) fn contrast_floor(pyramid: &Pyramid) -> f64 {
     }
     0.02 * variance / 3.0 + 1e-8
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::FINE_BUDGET;
+    use crate::estimate::pyramid::ExpectedPyramid;
+    use crate::estimate::test_images::{pattern, picture, transformed};
+
+    const SIZE: (usize, usize) = (160, 120);
+
+    /// The expected picture (the pattern) and the actual one `model` makes of it.
+    fn pictures(model: &Model) -> (FloatImage, FloatImage) {
+        (
+            picture(SIZE.0, SIZE.1, pattern),
+            transformed(SIZE.0, SIZE.1, model),
+        )
+    }
+
+    /// `start` refined with `free` from the coarsest level to the finest.
+    fn refined(pyramid: &Pyramid, start: Model, free: Free) -> Model {
+        let mut model = start;
+        for level in (0..=pyramid.top()).rev() {
+            model = refine(
+                pyramid,
+                level,
+                model,
+                free,
+                pyramid.stride(level, FINE_BUDGET),
+                20,
+            );
+        }
+        model
+    }
+
+    #[test]
+    fn solve_solves_a_known_system_and_refuses_a_singular_one() {
+        let mut a = [[0.0; 5]; 5];
+        a[0][..3].copy_from_slice(&[2.0, 1.0, -1.0]);
+        a[1][..3].copy_from_slice(&[-3.0, -1.0, 2.0]);
+        a[2][..3].copy_from_slice(&[-2.0, 1.0, 2.0]);
+        let x = solve(a, [8.0, -11.0, -3.0, 0.0, 0.0], 3).unwrap();
+        for (got, want) in x.iter().zip([2.0, 3.0, -1.0]) {
+            assert!((got - want).abs() < 1e-12, "{x:?}");
+        }
+        // The third row the first again.
+        a[2] = a[0];
+        assert_eq!(solve(a, [8.0, -11.0, -3.0, 0.0, 0.0], 3), None);
+    }
+
+    #[test]
+    fn the_parameters_round_trip_through_a_model() {
+        let model = Model {
+            mirror: [true, false],
+            rotation: 0.2,
+            log_scale: [0.1, -0.05],
+            about: [3.0, 4.0],
+            shift: [-1.5, 2.5],
+        };
+        let p = parameters(&model);
+        assert!((p[1] - 0.025).abs() < 1e-15 && (p[2] - 0.075).abs() < 1e-15);
+        let back = with_parameters(&Model::identity([3.0, 4.0]), &p);
+        assert_eq!(back.rotation, model.rotation);
+        assert_eq!(back.shift, model.shift);
+        for axis in 0..2 {
+            assert!((back.log_scale[axis] - model.log_scale[axis]).abs() < 1e-15);
+        }
+        // The mirrors and the point stay the start's.
+        assert_eq!(back.mirror, [false, false]);
+        let masked = Free {
+            rotation: true,
+            scale: false,
+            aspect: true,
+            shift: false,
+        };
+        assert_eq!(masked.mask(), [true, false, true, false, false]);
+    }
+
+    #[test]
+    fn the_identity_fits_the_same_picture_perfectly_over_all_of_it() {
+        let image = picture(SIZE.0, SIZE.1, pattern);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &image, 2.0, usize::MAX);
+        let identity = Model::identity(pyramid.centre());
+        for level in 0..=pyramid.top() {
+            let fit = evaluate(&pyramid, level, &identity, 1);
+            assert_eq!(fit.sum_sq, 0.0);
+            assert_eq!(fit.count, fit.total);
+            assert_eq!(fit.overlap(), 1.0);
+            assert_eq!(fit.mean(), 0.0);
+            assert_eq!(fit.normalized(contrast_floor(&pyramid)), 0.0);
+            assert_eq!(cost(&pyramid, level, &identity, 1), 0.0);
+        }
+        // The margins: a 160 x 120 picture less 6 pixels each side at full resolution.
+        assert_eq!(evaluate(&pyramid, 0, &identity, 1).total, 148 * 108);
+    }
+
+    #[test]
+    fn a_move_keeps_only_the_part_both_pictures_show() {
+        let image = picture(SIZE.0, SIZE.1, pattern);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &image, 2.0, 1);
+        // Moved 74 pixels right: of the 148 columns inside the margins (pixel centres
+        // 6.5 to 153.5), the 74 from 80.5 on keep a preimage inside them.
+        let moved = Model {
+            shift: [74.0, 0.0],
+            ..Model::identity(pyramid.centre())
+        };
+        let fit = evaluate(&pyramid, 0, &moved, 1);
+        assert_eq!(fit.count, 74 * 108);
+        assert_eq!(fit.overlap(), 0.5);
+        // Moved off the picture: no overlap, an infinite residual.
+        let gone = Model {
+            shift: [200.0, 0.0],
+            ..moved
+        };
+        let fit = evaluate(&pyramid, 0, &gone, 1);
+        assert_eq!((fit.count, fit.mean()), (0, f64::INFINITY));
+    }
+
+    #[test]
+    fn unrelated_pictures_leave_a_normalized_residual_near_one() {
+        // The pattern against itself mirrored both ways: the same colours, elsewhere.
+        let flipped = Model {
+            mirror: [true, true],
+            ..Model::identity([80.0, 60.0])
+        };
+        let (image, other) = pictures(&flipped);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &other, 2.0, 1);
+        let fit = evaluate(&pyramid, 0, &Model::identity(pyramid.centre()), 1);
+        let normalized = fit.normalized(contrast_floor(&pyramid));
+        assert!((0.6..1.6).contains(&normalized), "{normalized}");
+        // The right transform explains it.
+        let fit = evaluate(&pyramid, 0, &flipped, 1);
+        assert!(fit.normalized(contrast_floor(&pyramid)) < 1e-4);
+    }
+
+    #[test]
+    fn the_fit_recovers_a_known_similarity_transform() {
+        let truth = Model {
+            rotation: 2f64.to_radians(),
+            log_scale: [1.04f64.ln(); 2],
+            shift: [3.2, -1.7],
+            ..Model::identity([80.0, 60.0])
+        };
+        let (image, actual) = pictures(&truth);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &actual, 2.0, usize::MAX);
+        let found = refined(&pyramid, Model::identity(pyramid.centre()), Free::ALL);
+        assert!((found.rotation - truth.rotation).abs() < 0.01f64.to_radians());
+        for axis in 0..2 {
+            assert!((found.scale()[axis] - 1.04).abs() < 5e-4, "{found:?}");
+            assert!(
+                (found.shift[axis] - truth.shift[axis]).abs() < 0.02,
+                "{found:?}"
+            );
+        }
+        assert!(evaluate(&pyramid, 0, &found, 1).mean() < 1e-7);
+    }
+
+    #[test]
+    fn refinement_moves_only_the_free_parameters() {
+        let truth = Model {
+            shift: [-4.5, 2.25],
+            ..Model::identity([80.0, 60.0])
+        };
+        let (image, actual) = pictures(&truth);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &actual, 2.0, usize::MAX);
+        let start = Model {
+            rotation: 0.01,
+            log_scale: [0.02, 0.02],
+            ..Model::identity(pyramid.centre())
+        };
+        let moves_only = Free {
+            rotation: false,
+            scale: false,
+            aspect: false,
+            shift: true,
+        };
+        let found = refined(&pyramid, start, moves_only);
+        assert_eq!((found.rotation, found.log_scale), (0.01, [0.02, 0.02]));
+        assert_ne!(found.shift, start.shift);
+        // With nothing free, nothing moves.
+        let nothing = Free {
+            shift: false,
+            ..moves_only
+        };
+        assert_eq!(refined(&pyramid, start, nothing), start);
+        // Everything free finds the move, and undoes the wrong start.
+        let found = refined(&pyramid, start, Free::ALL);
+        assert!(found.rotation.abs() < 1e-4 && found.log_scale[0].abs() < 1e-4);
+        assert!((found.shift[0] + 4.5).abs() < 0.02 && (found.shift[1] - 2.25).abs() < 0.02);
+    }
+
+    #[test]
+    fn texture_sees_no_edges_across_a_picture_that_varies_along_one_axis() {
+        // Horizontal bands: edges across y, none across x.
+        let bands = picture(SIZE.0, SIZE.1, |p| {
+            [((p[1] / 9.0).sin() * 0.4 + 0.5) as f32; 3]
+        });
+        let expected = ExpectedPyramid::new(&bands);
+        let pyramid = Pyramid::new(&expected, &bands, 2.0, 1);
+        let identity = Model::identity(pyramid.centre());
+        let [along_x, along_y] = texture(&pyramid, 0, &identity, 1);
+        assert!(
+            along_x < MIN_TEXTURE && along_y > 0.5,
+            "{along_x} {along_y}"
+        );
+        assert!(!textured([along_x, along_y]));
+        // The pattern has edges both ways over most of it.
+        let image = picture(SIZE.0, SIZE.1, pattern);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &image, 2.0, 1);
+        let both = texture(&pyramid, 0, &identity, 1);
+        assert!(both[0] > 0.5 && both[1] > 0.5, "{both:?}");
+        assert!(textured(both));
+    }
+}

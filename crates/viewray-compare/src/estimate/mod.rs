@@ -55,3 +55,6 @@ pub(crate) const MIN_OVERLAP: f64 = 0.2;
 
 /// The pixels to evaluate at full resolution.
 const FINE_BUDGET: usize = 6_000;
+
+#[cfg(test)]
+mod test_images;

@@ -139,3 +139,107 @@ impl<'a> Pyramid<'a> {
         stride
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::test_images::{pattern, picture};
+
+    fn mean(image: &FloatImage) -> [f64; 3] {
+        let n = image.pixels.len() as f64;
+        [0, 1, 2].map(|c| image.pixels.iter().map(|p| f64::from(p[c])).sum::<f64>() / n)
+    }
+
+    #[test]
+    fn each_level_halves_the_size_and_keeps_the_mean() {
+        let image = picture(320, 240, pattern);
+        let pyramid = ExpectedPyramid::new(&image);
+        // 240, 120, 60, 30: halving 30 would make the shorter side 15.
+        assert_eq!(pyramid.levels.len(), 4);
+        assert_eq!(pyramid.levels[0].image.pixels, image.pixels);
+        for pair in pyramid.levels.windows(2) {
+            let (fine, coarse) = (&pair[0], &pair[1]);
+            assert_eq!(coarse.image.width, fine.image.width / 2);
+            assert_eq!(coarse.image.height, fine.image.height / 2);
+            assert_eq!(coarse.factor, 2.0 * fine.factor);
+            // The blur extends the edges, so the mean moves, but by little.
+            let (a, b) = (mean(&fine.image), mean(&coarse.image));
+            for c in 0..3 {
+                assert!((a[c] - b[c]).abs() < 2e-3 * a[c], "{a:?} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_uniform_picture_keeps_its_value_at_every_level() {
+        let mut image = FloatImage::new(100, 64);
+        image.pixels.fill([0.25, 0.5, 0.75]);
+        for level in ExpectedPyramid::new(&image).levels {
+            for p in &level.image.pixels {
+                for (c, want) in [0.25f32, 0.5, 0.75].into_iter().enumerate() {
+                    assert!((p[c] - want).abs() < 1e-6);
+                }
+            }
+            // Flat: no derivative anywhere.
+            assert!(level.fused.iter().all(|f| f[3..].iter().all(|&d| d == 0.0)));
+        }
+    }
+
+    #[test]
+    fn the_search_level_is_the_last_whose_half_is_under_the_search_side() {
+        for (width, height, levels) in [(320, 240, 4), (64, 64, 3), (64, 31, 1), (10, 10, 1)] {
+            let pyramid = ExpectedPyramid::new(&FloatImage::new(width, height));
+            assert_eq!(pyramid.levels.len(), levels, "{width} x {height}");
+            let top = pyramid.levels.last().unwrap();
+            let side = top.image.width.min(top.image.height);
+            assert!(side / 2 < SEARCH_SIDE);
+            assert!(side >= SEARCH_SIDE || levels == 1);
+        }
+    }
+
+    #[test]
+    fn the_fused_levels_hold_the_colour_and_its_derivatives() {
+        let pyramid = ExpectedPyramid::new(&picture(160, 120, pattern));
+        for level in &pyramid.levels {
+            let (dx, dy) = level.image.gradients();
+            for (i, fused) in level.fused.iter().enumerate() {
+                assert_eq!(fused[..3], level.image.pixels[i]);
+                assert_eq!(fused[3..6], dx.pixels[i]);
+                assert_eq!(fused[6..], dy.pixels[i]);
+            }
+        }
+    }
+
+    #[test]
+    fn the_actual_pyramid_is_made_as_the_expected_one_and_capped() {
+        let image = picture(160, 120, pattern);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &image, 2.0, usize::MAX);
+        assert_eq!(pyramid.levels.len(), expected.levels.len());
+        assert_eq!(pyramid.top(), expected.levels.len() - 1);
+        for (level, e) in pyramid.levels.iter().zip(&expected.levels) {
+            assert_eq!(level.actual.pixels, e.image.pixels);
+            assert_eq!(level.factor, e.factor);
+        }
+        assert_eq!(pyramid.centre(), [80.0, 60.0]);
+        // The blur's margin (2.5 sigma), plus a level pixel.
+        assert_eq!(pyramid.margin(0), 6.0);
+        assert_eq!(pyramid.margin(2), 9.0);
+        assert_eq!(Pyramid::new(&expected, &image, 2.0, 2).levels.len(), 2);
+        assert_eq!(Pyramid::new(&expected, &image, 2.0, 0).levels.len(), 1);
+    }
+
+    #[test]
+    fn the_stride_is_the_smallest_that_keeps_within_the_budget() {
+        let image = picture(160, 120, pattern);
+        let expected = ExpectedPyramid::new(&image);
+        let pyramid = Pyramid::new(&expected, &image, 2.0, usize::MAX);
+        let pixels = 160 * 120;
+        for budget in [1, 100, 6_000, 19_200, 50_000] {
+            let stride = pyramid.stride(0, budget);
+            assert!(pixels / (stride * stride) <= budget, "{budget}");
+            assert!(stride == 1 || pixels / ((stride - 1) * (stride - 1)) > budget);
+        }
+        assert_eq!(pyramid.stride(0, pixels), 1);
+    }
+}

@@ -462,3 +462,125 @@ pub(crate) fn verify_move(
     let explained = 1.0 - r0 / identity;
     (r0 < 0.25 * nearest_other && explained >= 0.8).then_some((t, fraction, explained))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::pyramid::ExpectedPyramid;
+    use crate::estimate::test_images::{pattern, picture, transformed};
+
+    const SIZE: (usize, usize) = (160, 120);
+
+    /// The tolerances `viewray compare` uses by default.
+    const TOLERANCES: Tolerances = Tolerances {
+        shift: 0.25,
+        scale: 0.02,
+        rotation: 0.5 * std::f64::consts::PI / 180.0,
+    };
+
+    /// The search's candidates, best first, for the pattern taken by `truth`.
+    fn candidates(truth: &Model) -> Vec<Candidate> {
+        let expected = ExpectedPyramid::new(&picture(SIZE.0, SIZE.1, pattern));
+        let actual = transformed(SIZE.0, SIZE.1, truth);
+        search(&Pyramid::new(&expected, &actual, 2.0, usize::MAX))
+    }
+
+    #[test]
+    fn the_grid_holds_the_identity_and_turns_and_scales_alone() {
+        let grid = search_grid();
+        assert_eq!(grid[0], (0.0, 1.0));
+        assert_eq!(grid.len(), 1 + 12 + 10);
+        assert!(
+            grid.iter()
+                .all(|&(degrees, scale)| degrees == 0.0 || scale == 1.0)
+        );
+        let turns = grid.iter().map(|g| g.0.abs()).fold(0.0, f64::max);
+        let scales = grid.iter().map(|g| g.1);
+        assert_eq!(turns, 30.0);
+        assert!((scales.clone().fold(f64::MAX, f64::min) - 0.6806).abs() < 1e-4);
+        assert!((scales.fold(0.0, f64::max) - 1.4693).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_fft_search_finds_a_planted_whole_pixel_move() {
+        // 160 x 120 has three levels: the search level has 4 pixels per pixel, and the
+        // move is (3, -2) of them.
+        let truth = Model {
+            shift: [12.0, -8.0],
+            ..Model::identity([80.0, 60.0])
+        };
+        let candidates = candidates(&truth);
+        let best = candidates[0];
+        assert_eq!(best.model, truth, "{candidates:?}");
+        assert!(best.score > 0.99, "{}", best.score);
+        // Best first.
+        assert!(candidates.windows(2).all(|w| w[0].score >= w[1].score));
+    }
+
+    #[test]
+    fn the_fft_search_sees_a_mirror() {
+        let truth = Model {
+            mirror: [true, false],
+            ..Model::identity([80.0, 60.0])
+        };
+        let best = candidates(&truth)[0];
+        assert_eq!(best.model.mirror, [true, false]);
+        assert_eq!((best.model.rotation, best.model.log_scale), (0.0, [0.0; 2]));
+        assert_eq!(best.model.shift, [0.0; 2]);
+    }
+
+    #[test]
+    fn the_full_search_measures_a_move_and_names_nothing_else() {
+        let truth = Model {
+            shift: [13.5, -7.25],
+            ..Model::identity([80.0, 60.0])
+        };
+        let expected = ExpectedPyramid::new(&picture(SIZE.0, SIZE.1, pattern));
+        let actual = transformed(SIZE.0, SIZE.1, &truth);
+        let pyramid = Pyramid::new(&expected, &actual, 2.0, usize::MAX);
+        let estimate = estimate_search(&pyramid, &[pyramid.centre()], &[], &TOLERANCES);
+        let model = estimate.model;
+        assert_eq!(model.mirror, [false, false]);
+        assert_eq!((model.rotation, model.log_scale), (0.0, [0.0; 2]));
+        assert!((model.shift[0] - 13.5).abs() < 0.02, "{model:?}");
+        assert!((model.shift[1] + 7.25).abs() < 0.02, "{model:?}");
+        assert_eq!(
+            estimate.kept,
+            Free {
+                rotation: false,
+                scale: false,
+                aspect: false,
+                shift: true,
+            }
+        );
+        assert!(!estimate.ambiguous);
+        assert!(estimate.normalized < 1e-3 && estimate.fit.mean() < 1e-3 * estimate.identity_mean);
+    }
+
+    #[test]
+    fn a_predicted_move_is_measured_to_half_a_pixel_on_the_sharp_pictures() {
+        let expected = picture(SIZE.0, SIZE.1, pattern);
+        let truth = Model {
+            shift: [40.0, 0.0],
+            ..Model::identity([80.0, 60.0])
+        };
+        let actual = transformed(SIZE.0, SIZE.1, &truth);
+        let (shift, fraction, explained) = verify_move(&expected, &actual, [41.0, 0.5]).unwrap();
+        assert_eq!(shift, [40.0, 0.0]);
+        // The 120 of 160 columns the two pictures share.
+        assert!((fraction - 0.75).abs() < 1e-12, "{fraction}");
+        assert!(explained > 0.999, "{explained}");
+        // Further than 3 pixels from the prediction, the move is not found.
+        assert_eq!(verify_move(&expected, &actual, [45.0, 0.0]), None);
+        // Nor in a picture the move does not explain.
+        let mirrored = transformed(
+            SIZE.0,
+            SIZE.1,
+            &Model {
+                mirror: [true, true],
+                ..truth
+            },
+        );
+        assert_eq!(verify_move(&expected, &mirrored, [40.0, 0.0]), None);
+    }
+}

@@ -192,3 +192,136 @@ pub(super) fn select(
         ambiguous: false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::pyramid::ExpectedPyramid;
+    use crate::estimate::test_images::{pattern, picture, transformed};
+
+    const SIZE: (usize, usize) = (160, 120);
+
+    /// Tolerances small enough that every component of the tests' starts is tested by
+    /// the residual, not dropped as noise.
+    const FINE: Tolerances = Tolerances {
+        shift: 0.05,
+        scale: 0.002,
+        rotation: 0.05 * std::f64::consts::PI / 180.0,
+    };
+
+    const MOVE_ONLY: Free = Free {
+        rotation: false,
+        scale: false,
+        aspect: false,
+        shift: true,
+    };
+
+    /// The selection from `start`, for the pattern taken by `truth`, about the centre.
+    fn selected(truth: &Model, start: &Model, tolerances: &Tolerances) -> Estimate {
+        let expected = ExpectedPyramid::new(&picture(SIZE.0, SIZE.1, pattern));
+        let actual = transformed(SIZE.0, SIZE.1, truth);
+        let pyramid = Pyramid::new(&expected, &actual, 2.0, usize::MAX);
+        select(&pyramid, *start, &[pyramid.centre()], tolerances)
+    }
+
+    #[test]
+    fn a_component_stays_when_removing_it_raises_the_residual_clearly() {
+        let full = 1e-4;
+        let code = (0.33f64 / 255.0).powi(2);
+        assert!(!clearly_worse(1.5 * full, full));
+        assert!(clearly_worse(1.5 * full + 1.01 * code, full));
+        // On a perfect fit, a third of an 8-bit code of RMS is within the noise.
+        assert!(!clearly_worse(0.99 * code, 0.0));
+    }
+
+    #[test]
+    fn selection_prefers_the_simpler_model_when_the_residual_does_not_need_more() {
+        let truth = Model {
+            shift: [2.5, -1.5],
+            ..Model::identity([80.0, 60.0])
+        };
+        // A start with a spurious turn and scale, each above the tolerances.
+        let start = Model {
+            rotation: 0.6f64.to_radians(),
+            log_scale: [0.01, 0.012],
+            ..truth
+        };
+        let estimate = selected(&truth, &start, &FINE);
+        assert_eq!(estimate.kept, MOVE_ONLY);
+        let model = estimate.model;
+        assert_eq!((model.rotation, model.log_scale), (0.0, [0.0; 2]));
+        assert!((model.shift[0] - 2.5).abs() < 0.02 && (model.shift[1] + 1.5).abs() < 0.02);
+        let explained = 1.0 - estimate.fit.mean() / estimate.identity_mean;
+        assert!(explained > 0.999, "{explained}");
+    }
+
+    #[test]
+    fn selection_keeps_a_scale_the_residual_needs_and_drops_the_move_it_does_not() {
+        // Scaled 1.08x about the centre: no move about the anchor.
+        let truth = Model {
+            log_scale: [1.08f64.ln(); 2],
+            ..Model::identity([80.0, 60.0])
+        };
+        let start = Model {
+            rotation: 0.3f64.to_radians(),
+            log_scale: [1.07f64.ln(), 1.09f64.ln()],
+            shift: [0.4, -0.3],
+            ..truth
+        };
+        let estimate = selected(&truth, &start, &FINE);
+        assert_eq!(
+            estimate.kept,
+            Free {
+                rotation: false,
+                scale: true,
+                aspect: false,
+                shift: false,
+            }
+        );
+        let model = estimate.model;
+        assert_eq!(model.about, [80.0, 60.0]);
+        assert_eq!((model.rotation, model.shift), (0.0, [0.0; 2]));
+        assert_eq!(model.log_scale[0], model.log_scale[1]);
+        assert!((model.scale()[0] - 1.08).abs() < 5e-4, "{model:?}");
+    }
+
+    #[test]
+    fn a_component_within_its_tolerance_is_never_named() {
+        // A turn of 0.3 degrees that the residual needs, under a tolerance of half a
+        // degree: every reduction without it is clearly worse, so the full model stands,
+        // but the turn is not among what it keeps.
+        let truth = Model {
+            rotation: 0.3f64.to_radians(),
+            shift: [3.0, 0.0],
+            ..Model::identity([80.0, 60.0])
+        };
+        let tolerances = Tolerances {
+            rotation: 0.5f64.to_radians(),
+            ..FINE
+        };
+        let estimate = selected(&truth, &truth, &tolerances);
+        assert_eq!(estimate.kept, MOVE_ONLY);
+        assert_eq!(estimate.model, truth);
+    }
+
+    #[test]
+    fn the_local_estimate_finds_a_small_move_from_the_identity() {
+        let truth = Model {
+            shift: [0.5, 0.5],
+            ..Model::identity([80.0, 60.0])
+        };
+        let expected = ExpectedPyramid::new(&picture(SIZE.0, SIZE.1, pattern));
+        let actual = transformed(SIZE.0, SIZE.1, &truth);
+        let pyramid = Pyramid::new(&expected, &actual, 2.0, 2);
+        let tolerances = Tolerances {
+            shift: 0.25,
+            scale: 0.02,
+            rotation: 0.5f64.to_radians(),
+        };
+        let estimate = estimate_local(&pyramid, &[pyramid.centre()], &tolerances);
+        assert_eq!(estimate.kept, MOVE_ONLY);
+        assert!((estimate.model.shift[0] - 0.5).abs() < 0.01, "{estimate:?}");
+        assert!((estimate.model.shift[1] - 0.5).abs() < 0.01, "{estimate:?}");
+        assert!(!estimate.ambiguous);
+    }
+}
