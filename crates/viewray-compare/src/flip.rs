@@ -28,6 +28,7 @@
 use std::sync::OnceLock;
 
 use image::RgbImage;
+use viewray_output::srgb_to_linear;
 
 /// A per-pixel FLIP error map: values in [0, 1], 0 where a viewer sees no difference.
 #[derive(Clone, Debug)]
@@ -187,20 +188,14 @@ fn max_distance() -> f32 {
     hyab(lab_hunt([0.0, 1.0, 0.0]), lab_hunt([0.0, 0.0, 1.0])).powf(GQC)
 }
 
-/// The 8-bit sRGB code as FLIP reads it, `code / 255`, in linear light
-/// (`color3::sRGB2LinearRGB`), for every code.
+/// The 8-bit sRGB code as FLIP reads it, `code / 255`, in linear light, for every code.
+///
+/// FLIP's `color3::sRGB2LinearRGB` is viewray-output's [`srgb_to_linear`] operation for
+/// operation in `f32` (the same breakpoint, constants and `powf`), so the table is the
+/// same bit for bit as NVIDIA's code computes it.
 fn srgb8_to_linear_table() -> &'static [f32; 256] {
     static TABLE: OnceLock<[f32; 256]> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        std::array::from_fn(|code| {
-            let s = code as f32 / 255.0;
-            if s <= 0.040_45 {
-                s / 12.92
-            } else {
-                ((s + 0.055) / 1.055).powf(2.4)
-            }
-        })
-    })
+    TABLE.get_or_init(|| std::array::from_fn(|code| srgb_to_linear(code as f32 / 255.0)))
 }
 
 /// FLIP's separable filters at its default viewing condition.
