@@ -30,6 +30,8 @@ use std::sync::OnceLock;
 use image::RgbImage;
 use viewray_output::srgb_to_linear;
 
+use crate::magma::magma;
+
 /// A per-pixel FLIP error map: values in [0, 1], 0 where a viewer sees no difference.
 #[derive(Clone, Debug)]
 pub(crate) struct ErrorMap {
@@ -539,13 +541,12 @@ impl ErrorMap {
         peak as f32
     }
 
-    /// The error map through FLIP's magma colour map: black where nothing differs, through
-    /// purple and orange to pale yellow at the largest error.
+    /// The error map through FLIP's magma colour map ([`magma`]): black where nothing
+    /// differs, through purple and orange to pale yellow at the largest error.
     pub(crate) fn heatmap(&self) -> RgbImage {
         let (w, h) = (self.width as u32, self.height as u32);
-        let map = nv_flip::FlipImageFloat::with_data(w, h, &self.values);
-        let colored = map.apply_color_lut(&nv_flip::magma_lut());
-        RgbImage::from_raw(w, h, colored.to_vec()).expect("the colour map keeps the image size")
+        let colored = self.values.iter().flat_map(|&v| magma(v)).collect();
+        RgbImage::from_raw(w, h, colored).expect("the colour map keeps the image size")
     }
 }
 

@@ -58,6 +58,7 @@ mod flip;
 mod golden;
 mod instructor;
 mod load;
+mod magma;
 mod raster;
 mod report;
 
