@@ -31,18 +31,20 @@
 //! and y down, so a diagnosis's move (-0.5, -0.5) is left and up.
 //!
 //! ```no_run
-//! use viewray_compare::{Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report};
+//! use viewray_compare::{
+//!     Outcome, Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report,
+//! };
 //!
 //! let expected = load_png("golden/scenes/perspective.png")?;
 //! let actual = load_png("target/golden/perspective.png")?;
-//! let comparison = compare(&expected, &actual, &Thresholds::GOLDEN);
-//! if !comparison.passed() {
-//!     eprintln!("perspective: {}", comparison.reasons());
+//! let outcome = Outcome::from(compare(&expected, &actual, &Thresholds::GOLDEN));
+//! if !outcome.passed() {
+//!     eprintln!("perspective: {}", outcome.note());
 //! }
-//! let entry = ReportEntry::compared("perspective", &expected, &actual, &comparison);
+//! let entry = ReportEntry::new("perspective", Some(&expected), Some(&actual), &outcome);
 //! let report = Report {
 //!     title: "perspective against its golden image",
-//!     summary: comparison.verdict(),
+//!     summary: outcome.verdict().label(),
 //!     rules: Rules::Golden(Thresholds::GOLDEN),
 //!     entries: &[entry],
 //! };
@@ -59,6 +61,7 @@ mod golden;
 mod instructor;
 mod load;
 mod magma;
+mod outcome;
 mod raster;
 mod report;
 
@@ -71,7 +74,8 @@ pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Signific
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
-pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, unique_stem, write_report};
+pub use outcome::{Outcome, Verdict};
+pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 
 /// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
 /// target.

@@ -15,6 +15,7 @@ use viewray_output::{Compression, encode_png, write_atomically};
 use crate::comparison::{Comparison, Metrics};
 use crate::golden::Thresholds;
 use crate::instructor::InstructorThresholds;
+use crate::outcome::{Outcome, Verdict};
 
 /// A report: what it is about, what the terminal said, the rules, and the pairs.
 #[derive(Clone, Copy, Debug)]
@@ -50,97 +51,28 @@ pub struct ReportEntry<'a> {
     /// The actual image, if it could be read.
     pub actual: Option<&'a RgbaImage>,
     /// What became of the pair.
-    pub outcome: Outcome<'a>,
-}
-
-/// What became of one pair of images.
-#[derive(Clone, Copy, Debug)]
-pub enum Outcome<'a> {
-    /// The images were compared.
-    Compared(&'a Comparison),
-    /// They could not be compared (a missing file, a PNG that does not decode): the
-    /// message says why. The golden check's word for a reference it lacks.
-    Error(&'a str),
-    /// The actual image could not be compared because it is missing or cannot be read
-    /// (the message says which): the student's failure, as `viewray compare` judges
-    /// folders.
-    Failed(&'a str),
-}
-
-/// A pair's verdict, in the words the terminal prints: `PASS`, `FAIL` or `ERROR`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Verdict {
-    /// Compared, and judged the same picture.
-    Pass,
-    /// Judged different, or the actual image is missing or unreadable.
-    Fail,
-    /// Not compared, and no one's failure: the golden check lacks a reference.
-    Error,
-}
-
-impl Verdict {
-    /// `PASS`, `FAIL` or `ERROR`.
-    pub fn label(self) -> &'static str {
-        match self {
-            Verdict::Pass => "PASS",
-            Verdict::Fail => "FAIL",
-            Verdict::Error => "ERROR",
-        }
-    }
-
-    /// `pass`, `fail` or `error`: the page's CSS class, and the JSON lines' word.
-    pub fn word(self) -> &'static str {
-        match self {
-            Verdict::Pass => "pass",
-            Verdict::Fail => "fail",
-            Verdict::Error => "error",
-        }
-    }
+    pub outcome: &'a Outcome,
 }
 
 impl<'a> ReportEntry<'a> {
-    /// An entry for a pair that was compared.
-    pub fn compared(
+    /// An entry for the pair `name`, with whichever images were read.
+    pub fn new(
         name: &'a str,
-        expected: &'a RgbaImage,
-        actual: &'a RgbaImage,
-        comparison: &'a Comparison,
-    ) -> Self {
-        Self {
-            name,
-            expected: Some(expected),
-            actual: Some(actual),
-            outcome: Outcome::Compared(comparison),
-        }
-    }
-
-    /// An entry for a pair that could not be compared, with whichever images were read.
-    pub fn error(
-        name: &'a str,
-        message: &'a str,
         expected: Option<&'a RgbaImage>,
         actual: Option<&'a RgbaImage>,
+        outcome: &'a Outcome,
     ) -> Self {
         Self {
             name,
             expected,
             actual,
-            outcome: Outcome::Error(message),
+            outcome,
         }
     }
 
-    /// The verdict: [`Verdict::Error`] for a pair that could not be compared.
-    pub fn verdict(&self) -> Verdict {
-        match self.outcome {
-            Outcome::Compared(c) if c.passed() => Verdict::Pass,
-            Outcome::Compared(_) | Outcome::Failed(_) => Verdict::Fail,
-            Outcome::Error(_) => Verdict::Error,
-        }
-    }
-
-    /// Whether this entry passed (an error never does).
-    pub fn passed(&self) -> bool {
-        self.verdict() == Verdict::Pass
+    /// The pair's verdict.
+    fn verdict(&self) -> Verdict {
+        self.outcome.verdict()
     }
 }
 
@@ -187,7 +119,7 @@ pub fn write_report(directory: impl AsRef<Path>, report: &Report<'_>) -> io::Res
                 actual.width(),
             )?;
         }
-        if let Outcome::Compared(comparison) = entry.outcome
+        if let Some(comparison) = entry.outcome.comparison()
             && let Some(heatmap) = comparison.heatmap()
         {
             let png = encode_png(&heatmap, Compression::Balanced)?;

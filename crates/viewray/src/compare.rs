@@ -19,10 +19,10 @@ use rayon::prelude::*;
 use serde_json::{Map, Value, json};
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry, RgbaImage,
-    Rules, Verdict, judge_with, load_png, write_report,
+    CameraKind, Diagnosis, Expectations, InstructorThresholds, Outcome, Report, ReportEntry,
+    RgbaImage, Rules, Verdict, judge_with, load_png, write_report,
 };
-use viewray_grade::{Counterpart, Outcome, ReferenceImage, in_order, load_counterpart};
+use viewray_grade::{Counterpart, ReferenceImage, in_order, load_counterpart};
 use viewray_scene::{LoadOptions, Scene};
 
 /// Exit code when a render failed.
@@ -203,9 +203,9 @@ struct Tally {
 impl Tally {
     fn add(&mut self, outcome: &Outcome) {
         match outcome {
-            Outcome::Judged(c) if c.passed() => self.passed += 1,
-            Outcome::Judged(_) => self.failed += 1,
-            Outcome::Failed(_) => {
+            Outcome::Compared(c) if c.passed() => self.passed += 1,
+            Outcome::Compared(_) => self.failed += 1,
+            Outcome::Failed(_) | Outcome::Error(_) => {
                 self.failed += 1;
                 self.not_compared += 1;
             }
@@ -378,19 +378,9 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
     }
     out.flush()?;
     if let Some(directory) = &args.report {
-        let messages: Vec<String> = results.iter().map(|r| r.outcome.note()).collect();
         let entries: Vec<ReportEntry<'_>> = results
             .iter()
-            .zip(&messages)
-            .map(|(r, message)| ReportEntry {
-                name: &r.name,
-                expected: r.expected.as_ref(),
-                actual: r.actual.as_ref(),
-                outcome: match &r.outcome {
-                    Outcome::Judged(comparison) => viewray_compare::Outcome::Compared(comparison),
-                    Outcome::Failed(_) => viewray_compare::Outcome::Failed(message),
-                },
-            })
+            .map(|r| ReportEntry::new(&r.name, r.expected.as_ref(), r.actual.as_ref(), &r.outcome))
             .collect();
         let title = format!(
             "viewray compare {} {}",
@@ -422,7 +412,7 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, keep_images: bool)
                 thresholds,
                 reference.expectations.as_ref(),
             );
-            (Some(actual), Outcome::Judged(Box::new(comparison)))
+            (Some(actual), Outcome::from(comparison))
         }
         Err(message) => (None, Outcome::Failed(message)),
     };
@@ -464,12 +454,12 @@ fn figure(value: f32) -> Value {
 /// A pair's JSON fields after its name: verdict, figures, diagnosis, transform, reasons.
 pub(crate) fn json_fields(line: &mut Map<String, Value>, outcome: &Outcome, threshold: f32) {
     let (metrics, diagnosis, reasons) = match outcome {
-        Outcome::Judged(c) => (
+        Outcome::Compared(c) => (
             c.metrics,
             c.diagnosis,
             c.failures.iter().map(ToString::to_string).collect(),
         ),
-        Outcome::Failed(message) => (None, None, vec![message.clone()]),
+        Outcome::Failed(message) | Outcome::Error(message) => (None, None, vec![message.clone()]),
     };
     line.insert("verdict".into(), json!(outcome.verdict().word()));
     line.insert(
