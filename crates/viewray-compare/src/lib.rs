@@ -62,6 +62,7 @@ mod instructor;
 mod load;
 mod magma;
 mod outcome;
+mod page;
 mod raster;
 mod report;
 
@@ -75,6 +76,7 @@ pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
 pub use outcome::{Outcome, Verdict};
+pub use page::{report_page, verdict_badge};
 pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 
 /// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
