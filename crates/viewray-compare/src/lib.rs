@@ -75,7 +75,7 @@ pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Signific
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
-pub use outcome::{Outcome, Verdict};
+pub use outcome::{Outcome, Tally, Verdict};
 pub use page::{report_page, verdict_badge};
 pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 

@@ -75,6 +75,55 @@ impl Outcome {
     }
 }
 
+/// How a set of pairs fared: `passed + failed` pairs in all.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// The pairs that passed.
+    pub passed: usize,
+    /// The pairs judged different, missing or unreadable (or, for the golden check, not
+    /// compared).
+    pub failed: usize,
+    /// Of those failed, the ones not compared: missing or unreadable.
+    pub not_compared: usize,
+}
+
+impl Tally {
+    /// Counts one more pair.
+    pub fn add(&mut self, outcome: &Outcome) {
+        match outcome {
+            Outcome::Compared(c) if c.passed() => self.passed += 1,
+            Outcome::Compared(_) => self.failed += 1,
+            Outcome::Failed(_) | Outcome::Error(_) => {
+                self.failed += 1;
+                self.not_compared += 1;
+            }
+        }
+    }
+
+    /// The pairs counted.
+    pub fn total(&self) -> usize {
+        self.passed + self.failed
+    }
+
+    /// The summary line, e.g. `6 images: 1 passed, 5 failed, 2 of them missing or
+    /// unreadable`.
+    pub fn summary(&self) -> String {
+        let total = self.total();
+        let noun = if total == 1 { "image" } else { "images" };
+        let mut line = format!(
+            "{total} {noun}: {} passed, {} failed",
+            self.passed, self.failed
+        );
+        if self.not_compared > 0 {
+            line.push_str(&format!(
+                ", {} of them missing or unreadable",
+                self.not_compared
+            ));
+        }
+        line
+    }
+}
+
 /// A pair's verdict, in the words the terminal prints: `PASS`, `FAIL` or `ERROR`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Verdict {
@@ -103,5 +152,48 @@ impl Verdict {
             Verdict::Fail => "fail",
             Verdict::Error => "error",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tally_counts_each_outcome_once_and_says_so_in_one_line() {
+        let mut tally = Tally::default();
+        assert_eq!(tally.summary(), "0 images: 0 passed, 0 failed");
+        tally.add(&Outcome::Failed("missing".to_owned()));
+        assert_eq!(
+            tally.summary(),
+            "1 image: 0 passed, 1 failed, 1 of them missing or unreadable"
+        );
+        tally.add(&Outcome::Error("no golden".to_owned()));
+        assert_eq!(
+            tally,
+            Tally {
+                passed: 0,
+                failed: 2,
+                not_compared: 2
+            }
+        );
+        assert_eq!(tally.total(), 2);
+    }
+
+    #[test]
+    fn an_outcome_that_was_not_compared_has_no_figures_and_says_why() {
+        let failed = Outcome::Failed("not a PNG: it does not decode".to_owned());
+        assert_eq!(failed.verdict(), Verdict::Fail);
+        assert_eq!(
+            (failed.peak_flip(), failed.comparison().is_none()),
+            (None, true)
+        );
+        assert_eq!(failed.note(), "not a PNG: it does not decode");
+        let error = Outcome::Error("no golden image".to_owned());
+        assert_eq!((error.verdict(), error.passed()), (Verdict::Error, false));
+        assert_eq!(
+            [Verdict::Pass, Verdict::Fail, Verdict::Error].map(|v| (v.label(), v.word())),
+            [("PASS", "pass"), ("FAIL", "fail"), ("ERROR", "error")]
+        );
     }
 }
