@@ -26,6 +26,13 @@
 //!   prepared once (its blur, its half of FLIP, its image pyramid) to judge a class of
 //!   renders against, with the same result as [`judge_with`], bit for bit.
 //!
+//! What became of a pair, compared or not and whose failure that is, is an [`Outcome`]
+//! with its [`Verdict`]; a [`Tally`] counts many. The golden check, `viewray compare` and
+//! `viewray grade` speak of pairs in these words, and their HTML pages share one skeleton
+//! ([`report_page`], [`verdict_badge`]). FLIP is NVIDIA's reference code ported bit for bit
+//! (module `flip`, its heatmap colours in `magma`); the transform behind a diagnosis is
+//! estimated in module `estimate` (start at its `estimate_search`).
+//!
 //! Images follow the camera crate's pixel convention: W columns by H rows, 0-based from
 //! the top-left, pixel (row, col) covering [col, col + 1) x [row, row + 1); x runs right
 //! and y down, so a diagnosis's move (-0.5, -0.5) is left and up.

@@ -24,7 +24,7 @@ pub(crate) struct Estimate {
     /// The edges in its overlap (see [`texture`]).
     pub(crate) texture: [f64; 2],
     /// Whether the picture repeats, so that another move explains it about as well
-    /// (see [`ambiguous`]).
+    /// (see [`estimate_search`](super::search::estimate_search)).
     pub(crate) ambiguous: bool,
 }
 
