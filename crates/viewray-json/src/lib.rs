@@ -21,6 +21,10 @@ use glam::{DVec2, DVec3};
 use serde_json::{Map, Value, json};
 use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
 
+mod judgement;
+
+pub use judgement::{class_summary_line, pair_line, pairs_summary_line, student_image_line};
+
 /// A number for printing: `-0` becomes `0` (a student's answer never says minus zero),
 /// by viewray-output's one rule for it.
 pub fn number(x: f64) -> Value {
