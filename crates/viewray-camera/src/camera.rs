@@ -5,6 +5,7 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
+use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Projection, sample_unit_disk_concentric};
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
@@ -85,7 +86,7 @@ impl Camera {
     /// A camera with the given pose, projection and image size.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero, and the projection's
+    /// [`CameraError::Image`] if `width` or `height` is zero, and the projection's
     /// first invalid parameter (see [`Projection::validate`]).
     pub fn new(
         frame: Frame,
@@ -93,9 +94,7 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Result<Self, CameraError> {
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         crate::frame::check_finite_vector("eye", frame.e)?;
         projection.validate()?;
         let pinhole = match projection {
@@ -118,7 +117,7 @@ impl Camera {
     /// 1 x 1 viewport, with a `width x height` image.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn canonical(width: u32, height: u32) -> Result<Self, CameraError> {
         Self::new(
             Frame::CANONICAL,
@@ -131,7 +130,7 @@ impl Camera {
     /// The same camera making an image of another size (the projection is unchanged).
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
         Self::new(self.frame, self.projection, width, height)
     }

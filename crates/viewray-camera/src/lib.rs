@@ -87,6 +87,7 @@
 mod camera;
 mod error;
 mod frame;
+mod image_limits;
 mod lens;
 mod presets;
 mod projection;
@@ -96,6 +97,9 @@ pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
 pub use error::CameraError;
 pub use frame::Frame;
+pub use image_limits::{
+    ImageLimitError, ImageLimits, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
+};
 pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
 pub use projection::{Fisheye, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens};

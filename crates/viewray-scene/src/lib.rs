@@ -41,8 +41,11 @@ pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
 pub use error::{Position, SceneError};
-pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+pub use load::LoadOptions;
 pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
+/// viewray's image limits, which scene files obey: re-exported from the camera crate, where
+/// the rule is written.
+pub use viewray_camera::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of
 /// the OBJ fuzz target. Returns the number of triangles kept, or the error message.

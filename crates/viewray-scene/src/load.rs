@@ -10,8 +10,8 @@ use glam::{Affine3A, DVec2, DVec3, Quat, Vec3};
 use ron::error::{Error as RonError, SpannedError};
 use ron::value::RawValue;
 use viewray_camera::{
-    Camera, Fisheye, FovAxis, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection,
-    SensorFit, ThinLens, aperture_from_f_number,
+    Camera, Fisheye, FovAxis, Frame, ImageLimitError, ImageLimits, Lens, Oblique, Orthographic,
+    Perspective, Preset, Projection, SensorFit, ThinLens, aperture_from_f_number,
 };
 
 use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
@@ -27,13 +27,6 @@ use crate::{
     Animation, CameraSpec, Ease, Grid, Key, Light, Material, ObjectMaterial, Position, Scene,
     SceneError, SceneParts, Shading,
 };
-
-/// The largest image side viewray renders.
-pub const MAX_IMAGE_SIDE: u32 = 16_384;
-/// The largest number of pixels viewray renders: 2^28 (a 16384 x 16384 image).
-pub const MAX_IMAGE_PIXELS: u64 = 1 << 28;
-/// The largest number of samples per pixel.
-pub const MAX_SAMPLES: u32 = 65_536;
 
 /// Where a piece of text starts inside the scene file, so positions in it can be turned
 /// into positions in the file.
@@ -479,37 +472,23 @@ fn mesh_path(scene: &Path, mesh: &str) -> PathBuf {
     scene.parent().unwrap_or(Path::new("")).join(mesh)
 }
 
+/// The image's size and samples, checked against viewray's limits.
 fn check_image(
     image: &ImageDef,
     path: &Path,
     origin: Origin,
 ) -> Result<(u32, u32, u32), SceneError> {
-    let error = |message: String| {
+    let error = |message: ImageLimitError| {
         SceneError::at(path, Some(origin.position()), format!("image: {message}"))
     };
-    let (width, height) = (image.width, image.height);
-    if width == 0 || height == 0 {
-        return Err(error(format!(
-            "the image must be at least 1 x 1 pixels, found {width} x {height}"
-        )));
-    }
-    if width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
-        return Err(error(format!(
-            "{width} x {height} is too large: each side can be at most {MAX_IMAGE_SIDE} pixels"
-        )));
-    }
-    if u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS {
-        return Err(error(format!(
-            "{width} x {height} is too large: at most {MAX_IMAGE_PIXELS} pixels (2^28)"
-        )));
-    }
-    if image.samples == 0 || image.samples > MAX_SAMPLES {
-        return Err(error(format!(
-            "samples must be between 1 and {MAX_SAMPLES}, found {}",
-            image.samples
-        )));
-    }
-    Ok((width, height, image.samples))
+    let limits = ImageLimits::VIEWRAY;
+    let (width, height) = limits
+        .check_size(u64::from(image.width), u64::from(image.height))
+        .map_err(error)?;
+    let samples = limits
+        .check_samples(u64::from(image.samples))
+        .map_err(error)?;
+    Ok((width, height, samples))
 }
 
 /// Parses `text` as a scene file's `camera:` value on its own (an explicit camera or a

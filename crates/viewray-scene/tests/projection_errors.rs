@@ -109,12 +109,27 @@ const MIXES: &[(&str, &str)] = &[
         "Perspective(distance: 1.0, viewport: (1.0, 1.0))",
         "Perspective(viewport: (1.0, 1.0))",
     ),
-    ("Perspective(viewport: (1.0, 1.0))", "Perspective(fov_y: 40.0)"),
+    (
+        "Perspective(viewport: (1.0, 1.0))",
+        "Perspective(fov_y: 40.0)",
+    ),
     ("Perspective(fov_x: 40.0)", "Perspective(fov_y: 40.0)"),
-    ("Perspective(fov_y: 40.0)", "Perspective(fov_diagonal: 40.0)"),
-    ("Perspective(fov_diagonal: 40.0)", "Perspective(fov_smaller: 40.0)"),
-    ("Perspective(fov_smaller: 40.0)", "Perspective(fov_larger: 40.0)"),
-    ("Perspective(fov_larger: 40.0)", "Perspective(focal_length: 40.0)"),
+    (
+        "Perspective(fov_y: 40.0)",
+        "Perspective(fov_diagonal: 40.0)",
+    ),
+    (
+        "Perspective(fov_diagonal: 40.0)",
+        "Perspective(fov_smaller: 40.0)",
+    ),
+    (
+        "Perspective(fov_smaller: 40.0)",
+        "Perspective(fov_larger: 40.0)",
+    ),
+    (
+        "Perspective(fov_larger: 40.0)",
+        "Perspective(focal_length: 40.0)",
+    ),
     (
         "Perspective(focal_length: 40.0, sensor: (36.0, 24.0))",
         "Perspective(focal_length: 40.0)",

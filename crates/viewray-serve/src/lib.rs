@@ -40,6 +40,7 @@ mod params;
 
 use std::path::Path;
 
+use viewray_camera::ImageLimits;
 use viewray_scene::{Scene, SceneError};
 
 pub use crate::http::{ServeOptions, Server, Stopper};
@@ -74,6 +75,19 @@ impl Default for Limits {
             max_camera_bytes: 16 << 10,
             max_points: 256,
         }
+    }
+}
+
+impl Limits {
+    /// The limits on a rendered image's size and samples, as viewray's image limits
+    /// (tightened to them when these are looser).
+    pub fn image(&self) -> ImageLimits {
+        ImageLimits {
+            max_side: self.max_side,
+            max_pixels: self.max_pixels,
+            max_samples: self.max_samples,
+        }
+        .within_viewray()
     }
 }
 

@@ -7,8 +7,9 @@ use std::process::ExitCode;
 
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use glam::{DVec2, DVec3};
+use viewray_camera::ImageLimits;
 use viewray_render::ImageFormat;
-use viewray_scene::{MAX_FPS, MAX_FRAMES, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+use viewray_scene::{MAX_FPS, MAX_FRAMES};
 
 /// The conventions, after the help of the commands that print numbers. Each line fits
 /// in 80 columns, so that clap does not rewrap it.
@@ -466,41 +467,22 @@ pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
     Ok((row, col))
 }
 
-/// Parses an image size `WIDTHxHEIGHT` within the renderer's limits.
+/// Parses an image size `WIDTHxHEIGHT` within viewray's image limits.
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let wrong = || "expected the size as WIDTHxHEIGHT in pixels, like 640x480".to_owned();
     let (width, height) = text.split_once(['x', 'X']).ok_or_else(wrong)?;
     let width: u64 = width.trim().parse().map_err(|_| wrong())?;
     let height: u64 = height.trim().parse().map_err(|_| wrong())?;
-    if width == 0 || height == 0 {
-        return Err(format!(
-            "the image must be at least 1 x 1 pixels, found {width} x {height}"
-        ));
-    }
-    let side = u64::from(MAX_IMAGE_SIDE);
-    if width > side || height > side {
-        return Err(format!(
-            "{width} x {height} is too large: each side can be at most {side} pixels"
-        ));
-    }
-    // Both sides are at most MAX_IMAGE_SIDE (2^14), so the product cannot overflow.
-    if width * height > MAX_IMAGE_PIXELS {
-        return Err(format!(
-            "{width} x {height} is too large: at most {MAX_IMAGE_PIXELS} pixels (2^28)"
-        ));
-    }
-    // Both sides are at most MAX_IMAGE_SIDE, so they fit.
-    Ok((width as u32, height as u32))
+    ImageLimits::VIEWRAY
+        .check_size(width, height)
+        .map_err(|error| error.to_string())
 }
 
-/// Parses a number of samples per pixel, 1 to [`MAX_SAMPLES`].
+/// Parses a number of samples per pixel, 1 to [`viewray_camera::MAX_SAMPLES`].
 fn parse_samples(text: &str) -> Result<u32, String> {
-    let wrong = || format!("expected a whole number of samples from 1 to {MAX_SAMPLES}");
-    let samples: u64 = text.trim().parse().map_err(|_| wrong())?;
-    match u32::try_from(samples) {
-        Ok(samples) if (1..=MAX_SAMPLES).contains(&samples) => Ok(samples),
-        _ => Err(wrong()),
-    }
+    ImageLimits::VIEWRAY
+        .parse_samples(text)
+        .map_err(|error| error.to_string())
 }
 
 /// Parses a number of frames, 1 to [`MAX_FRAMES`].

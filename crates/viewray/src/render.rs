@@ -181,7 +181,7 @@ pub(crate) fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> 
     // width, or where that does not fit, the same height.
     let same_width = (f64::from(width) / viewport_aspect).round();
     let same_height = (f64::from(height) * viewport_aspect).round();
-    let side = f64::from(viewray_scene::MAX_IMAGE_SIDE);
+    let side = f64::from(viewray_camera::MAX_IMAGE_SIDE);
     let square = if (1.0..=side).contains(&same_width) {
         Some(format!("{width}x{same_width}"))
     } else if (1.0..=side).contains(&same_height) {
