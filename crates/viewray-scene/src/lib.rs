@@ -25,18 +25,23 @@
 //! Angles are degrees in scene files.
 
 mod animation;
+mod camera;
 mod document;
 mod error;
 mod load;
 mod mesh;
+mod mix;
+mod ron_text;
 mod scene;
 mod schema;
+mod values;
 
 use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-pub use animation::{Animation, CameraSpec, Ease, Key, MAX_FPS, MAX_FRAMES};
+pub use animation::{Animation, Ease, Key, MAX_FPS, MAX_FRAMES};
+pub use camera::{CameraSpec, camera_text, parse_camera};
 pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
@@ -55,36 +60,6 @@ pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
     let no_mtl = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
     let mut build_time = std::time::Duration::ZERO;
     mesh::parse_obj(bytes, no_mtl, &mut materials, &mut build_time).map(|m| m.mesh.triangle_count())
-}
-
-/// Parses `text` as the `camera:` value of a scene file, on its own, for an image of
-/// `width x height` pixels: an explicit camera `(eye: .., look_at: .., projection: ..)`
-/// or a taxonomy preset `Isometric(target: .., size: ..)`, exactly as a scene file
-/// writes it. Fields of view and presets follow the image's aspect ratio, as they do
-/// when a scene is loaded with [`LoadOptions::size`].
-///
-/// Error positions count from the start of `text` (line 1, column 1), and `name` names
-/// it (for example `camera`): `camera:1:9: unknown field ..`.
-///
-/// # Errors
-/// A [`SceneError`] if `text` is not a valid camera or the size is not one a scene
-/// file may have.
-pub fn parse_camera(
-    text: &str,
-    name: &Path,
-    width: u32,
-    height: u32,
-) -> Result<viewray_camera::Camera, SceneError> {
-    load::parse_camera_text(text, name, width, height)
-}
-
-/// The `camera:` value of the scene file `text` as written there, without the
-/// surrounding whitespace: what [`parse_camera`] reads back.
-///
-/// # Errors
-/// A [`SceneError`] if `text` is not a scene file (it is not checked any further).
-pub fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
-    load::camera_text(text, path)
 }
 
 /// How long loading a scene took.
