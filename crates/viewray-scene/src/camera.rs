@@ -14,7 +14,8 @@ use viewray_camera::{
 use crate::SceneError;
 use crate::ron_text::{self, LineIndex, Origin, skip_whitespace_and_comments};
 use crate::schema::{
-    ExplicitCamera, ImageDef, PresetDef, ProjectionDef, SceneFile, SensorFitDef, V2, V3,
+    ExplicitCamera, ImageDef, PerspectiveDef, PresetDef, ProjectionDef, SceneFile, SensorFitDef,
+    ThinLensDef, V2, V3,
 };
 
 /// A camera as a scene file writes it (the `camera:` value), before it is built for an
@@ -147,32 +148,27 @@ fn explicit_camera(def: &ExplicitCamera, width: u32, height: u32) -> Result<Came
     Camera::new(frame, projection, width, height).map_err(|e| e.to_string())
 }
 
-/// The fields that size a perspective viewport, as written in the file.
-struct PerspectiveExtent {
-    distance: Option<f64>,
-    viewport: Option<V2>,
-    fovs: [(FovAxis, Option<f64>); 5],
-    focal_length: Option<f64>,
-    sensor: Option<V2>,
-    fit: Option<SensorFitDef>,
-}
-
 /// Blender's default sensor, 36 x 24 mm, for a `focal_length` given without `sensor`.
 const DEFAULT_SENSOR: V2 = (36.0, 24.0);
 
-/// The perspective projection (distance and viewport) from exactly one of `viewport`,
-/// a field of view (`fov_x`, `fov_y`, `fov_diagonal`, `fov_smaller`, `fov_larger`, in
-/// degrees, scaled by `distance` when one is given) and a physical `focal_length` (mm,
-/// with `sensor` in mm and `fit`), the last two following the image's aspect ratio.
-fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Perspective, String> {
-    let fovs: Vec<(FovAxis, f64)> = extent
-        .fovs
-        .iter()
-        .filter_map(|&(axis, fov)| fov.map(|f| (axis, f)))
-        .collect();
-    let given = usize::from(extent.viewport.is_some())
-        + fovs.len()
-        + usize::from(extent.focal_length.is_some());
+/// The perspective projection (distance, viewport and shift) from exactly one of
+/// `viewport`, a field of view (`fov_x`, `fov_y`, `fov_diagonal`, `fov_smaller`,
+/// `fov_larger`, in degrees, scaled by `distance` when one is given) and a physical
+/// `focal_length` (mm, with `sensor` in mm and `fit`), the last two following the image's
+/// aspect ratio.
+fn perspective(def: &PerspectiveDef, aspect: f64) -> Result<Perspective, String> {
+    let fovs: Vec<(FovAxis, f64)> = [
+        (FovAxis::X, def.fov_x),
+        (FovAxis::Y, def.fov_y),
+        (FovAxis::Diagonal, def.fov_diagonal),
+        (FovAxis::Smaller, def.fov_smaller),
+        (FovAxis::Larger, def.fov_larger),
+    ]
+    .into_iter()
+    .filter_map(|(axis, fov)| fov.map(|f| (axis, f)))
+    .collect();
+    let given =
+        usize::from(def.viewport.is_some()) + fovs.len() + usize::from(def.focal_length.is_some());
     if given > 1 {
         return Err(
             "give only one of `viewport`, a field of view (`fov_x`, `fov_y`, \
@@ -180,7 +176,7 @@ fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Per
                 .to_owned(),
         );
     }
-    if extent.focal_length.is_none() && (extent.sensor.is_some() || extent.fit.is_some()) {
+    if def.focal_length.is_none() && (def.sensor.is_some() || def.fit.is_some()) {
         return Err(
             "`sensor` and `fit` describe a physical camera: give `focal_length` \
                     (mm) with them"
@@ -188,40 +184,74 @@ fn perspective(extent: &PerspectiveExtent, shift: V2, aspect: f64) -> Result<Per
         );
     }
     let error = |e: viewray_camera::CameraError| e.to_string();
-    let mut projection = if let Some(viewport) = extent.viewport {
+    let mut projection = if let Some(viewport) = def.viewport {
         Perspective {
-            distance: extent.distance.unwrap_or(1.0),
+            distance: def.distance.unwrap_or(1.0),
             viewport: v2(viewport),
             shift: DVec2::ZERO,
         }
     } else if let Some(&(axis, degrees)) = fovs.first() {
         let mut p = Perspective::from_fov(axis, degrees.to_radians(), aspect).map_err(error)?;
-        if let Some(distance) = extent.distance {
+        if let Some(distance) = def.distance {
             p.distance = distance;
             p.viewport *= distance;
         }
         p
-    } else if let Some(focal_length) = extent.focal_length {
-        if extent.distance.is_some() {
+    } else if let Some(focal_length) = def.focal_length {
+        if def.distance.is_some() {
             return Err(
                 "`focal_length` sets the distance d (the focal length in metres): \
                         give `distance` or `focal_length`, not both"
                     .to_owned(),
             );
         }
-        let fit = match extent.fit.unwrap_or(SensorFitDef::Auto) {
+        let fit = match def.fit.unwrap_or(SensorFitDef::Auto) {
             SensorFitDef::Auto => SensorFit::Auto,
             SensorFitDef::Horizontal => SensorFit::Horizontal,
             SensorFitDef::Vertical => SensorFit::Vertical,
         };
-        let sensor = v2(extent.sensor.unwrap_or(DEFAULT_SENSOR));
+        let sensor = v2(def.sensor.unwrap_or(DEFAULT_SENSOR));
         Perspective::from_focal_length(focal_length, sensor, fit, aspect).map_err(error)?
     } else {
         return Err("missing `viewport: (vw, vh)` (or a field of view such as `fov_y` in                     degrees, or `focal_length` in mm)"
             .to_owned());
     };
-    projection.shift = v2(shift);
+    projection.shift = v2(def.shift);
     Ok(projection)
+}
+
+/// The thin lens: a perspective window and a lens of radius `aperture`, or of a focal
+/// length's `f_number`, focused at `focus`.
+fn thin_lens(def: &ThinLensDef, aspect: f64) -> Result<ThinLens, String> {
+    let pinhole = perspective(&def.perspective, aspect)?;
+    let aperture = match (def.aperture, def.f_number, def.perspective.focal_length) {
+        (Some(aperture), None, _) => aperture,
+        (None, Some(n), Some(f)) => aperture_from_f_number(f, n).map_err(|e| e.to_string())?,
+        (None, Some(_), None) => {
+            return Err(
+                "`f_number` needs a `focal_length` (mm): the lens radius is \
+                        focal_length / (2 f_number)"
+                    .to_owned(),
+            );
+        }
+        (Some(_), Some(_), _) => {
+            return Err("give either `aperture` (the lens radius) or `f_number`, \
+                        not both"
+                .to_owned());
+        }
+        (None, None, _) => {
+            return Err("missing `aperture` (the lens radius) or `f_number` (with \
+                        `focal_length`)"
+                .to_owned());
+        }
+    };
+    Ok(ThinLens {
+        distance: pinhole.distance,
+        viewport: pinhole.viewport,
+        shift: pinhole.shift,
+        aperture,
+        focus: def.focus,
+    })
 }
 
 /// The viewport of a parallel projection from exactly one of `viewport` and `height`.
@@ -240,134 +270,30 @@ fn parallel_viewport(
     }
 }
 
-/// The fields of view as written, each with the axis it spans.
-fn fovs(
-    x: Option<f64>,
-    y: Option<f64>,
-    diagonal: Option<f64>,
-    smaller: Option<f64>,
-    larger: Option<f64>,
-) -> [(FovAxis, Option<f64>); 5] {
-    [
-        (FovAxis::X, x),
-        (FovAxis::Y, y),
-        (FovAxis::Diagonal, diagonal),
-        (FovAxis::Smaller, smaller),
-        (FovAxis::Larger, larger),
-    ]
-}
-
 /// The projection as written, for an image of aspect ratio `aspect` (width / height).
 fn projection(def: &ProjectionDef, aspect: f64) -> Result<Projection, String> {
-    Ok(match *def {
-        ProjectionDef::Perspective {
-            distance,
-            viewport,
-            fov_x,
-            fov_y,
-            fov_diagonal,
-            fov_smaller,
-            fov_larger,
-            focal_length,
-            sensor,
-            fit,
-            shift,
-        } => {
-            let extent = PerspectiveExtent {
-                distance,
-                viewport,
-                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
-                focal_length,
-                sensor,
-                fit,
-            };
-            Projection::Perspective(perspective(&extent, shift, aspect)?)
-        }
-        ProjectionDef::ThinLens {
-            distance,
-            viewport,
-            fov_x,
-            fov_y,
-            fov_diagonal,
-            fov_smaller,
-            fov_larger,
-            focal_length,
-            sensor,
-            fit,
-            shift,
-            aperture,
-            f_number,
-            focus,
-        } => {
-            let extent = PerspectiveExtent {
-                distance,
-                viewport,
-                fovs: fovs(fov_x, fov_y, fov_diagonal, fov_smaller, fov_larger),
-                focal_length,
-                sensor,
-                fit,
-            };
-            let pinhole = perspective(&extent, shift, aspect)?;
-            let aperture = match (aperture, f_number, focal_length) {
-                (Some(aperture), None, _) => aperture,
-                (None, Some(n), Some(f)) => {
-                    aperture_from_f_number(f, n).map_err(|e| e.to_string())?
-                }
-                (None, Some(_), None) => {
-                    return Err(
-                        "`f_number` needs a `focal_length` (mm): the lens radius is \
-                                focal_length / (2 f_number)"
-                            .to_owned(),
-                    );
-                }
-                (Some(_), Some(_), _) => {
-                    return Err("give either `aperture` (the lens radius) or `f_number`, \
-                                not both"
-                        .to_owned());
-                }
-                (None, None, _) => {
-                    return Err("missing `aperture` (the lens radius) or `f_number` (with \
-                                `focal_length`)"
-                        .to_owned());
-                }
-            };
-            Projection::ThinLens(ThinLens {
-                distance: pinhole.distance,
-                viewport: pinhole.viewport,
-                shift: pinhole.shift,
-                aperture,
-                focus,
-            })
-        }
-        ProjectionDef::Orthographic {
-            viewport,
-            height,
-            aperture,
-            focus,
-        } => {
-            let lens = match (aperture, focus) {
+    Ok(match def {
+        ProjectionDef::Perspective(def) => Projection::Perspective(perspective(def, aspect)?),
+        ProjectionDef::ThinLens(def) => Projection::ThinLens(thin_lens(def, aspect)?),
+        ProjectionDef::Orthographic(def) => {
+            let lens = match (def.aperture, def.focus) {
                 (None, None) => None,
                 (Some(aperture), Some(focus)) => Some(Lens { aperture, focus }),
                 _ => return Err("a lens needs both `aperture` and `focus`".to_owned()),
             };
             Projection::Orthographic(Orthographic {
-                viewport: parallel_viewport(viewport, height, aspect)?,
+                viewport: parallel_viewport(def.viewport, def.height, aspect)?,
                 lens,
             })
         }
-        ProjectionDef::Oblique {
-            viewport,
-            height,
-            ratio,
-            angle,
-        } => Projection::Oblique(Oblique {
-            viewport: parallel_viewport(viewport, height, aspect)?,
-            ratio,
-            angle: angle.to_radians(),
+        ProjectionDef::Oblique(def) => Projection::Oblique(Oblique {
+            viewport: parallel_viewport(def.viewport, def.height, aspect)?,
+            ratio: def.ratio,
+            angle: def.angle.to_radians(),
         }),
         ProjectionDef::Equirectangular => Projection::Equirectangular,
-        ProjectionDef::Fisheye { fov } => Projection::Fisheye(Fisheye {
-            fov: fov.to_radians(),
+        ProjectionDef::Fisheye(def) => Projection::Fisheye(Fisheye {
+            fov: def.fov.to_radians(),
         }),
     })
 }

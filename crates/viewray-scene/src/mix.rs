@@ -3,7 +3,10 @@
 
 use crate::CameraSpec;
 use crate::camera::CameraDef;
-use crate::schema::{ExplicitCamera, PresetDef, ProjectionDef, V2, V3};
+use crate::schema::{
+    ExplicitCamera, FisheyeDef, ObliqueDef, OrthographicDef, PerspectiveDef, PresetDef,
+    ProjectionDef, ThinLensDef, V2, V3,
+};
 
 impl CameraSpec {
     /// The camera `s` of the way from `self` to `other`, field by field:
@@ -114,135 +117,29 @@ fn mix_explicit(a: &ExplicitCamera, b: &ExplicitCamera, s: f64) -> Result<Explic
 fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<ProjectionDef, String> {
     use ProjectionDef as P;
     Ok(match (a, b) {
-        (
-            P::Perspective {
-                distance: d0,
-                viewport: vp0,
-                fov_x: fx0,
-                fov_y: fy0,
-                fov_diagonal: fd0,
-                fov_smaller: fs0,
-                fov_larger: fl0,
-                focal_length: fo0,
-                sensor: se0,
-                fit: fit0,
-                shift: s0,
-            },
-            P::Perspective {
-                distance: d1,
-                viewport: vp1,
-                fov_x: fx1,
-                fov_y: fy1,
-                fov_diagonal: fd1,
-                fov_smaller: fs1,
-                fov_larger: fl1,
-                focal_length: fo1,
-                sensor: se1,
-                fit: fit1,
-                shift: s1,
-            },
-        ) => P::Perspective {
-            distance: mix_option("distance", *d0, *d1, s)?,
-            viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            fov_x: mix_option("fov_x", *fx0, *fx1, s)?,
-            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
-            fov_diagonal: mix_option("fov_diagonal", *fd0, *fd1, s)?,
-            fov_smaller: mix_option("fov_smaller", *fs0, *fs1, s)?,
-            fov_larger: mix_option("fov_larger", *fl0, *fl1, s)?,
-            focal_length: mix_option("focal_length", *fo0, *fo1, s)?,
-            sensor: mix_option("sensor", *se0, *se1, s)?,
-            fit: same("fit", *fit0, *fit1)?,
-            shift: s0.mix(s1, s),
-        },
-        (
-            P::ThinLens {
-                distance: d0,
-                viewport: vp0,
-                fov_x: fx0,
-                fov_y: fy0,
-                fov_diagonal: fd0,
-                fov_smaller: fs0,
-                fov_larger: fl0,
-                focal_length: fo0,
-                sensor: se0,
-                fit: fit0,
-                shift: s0,
-                aperture: a0,
-                f_number: n0,
-                focus: f0,
-            },
-            P::ThinLens {
-                distance: d1,
-                viewport: vp1,
-                fov_x: fx1,
-                fov_y: fy1,
-                fov_diagonal: fd1,
-                fov_smaller: fs1,
-                fov_larger: fl1,
-                focal_length: fo1,
-                sensor: se1,
-                fit: fit1,
-                shift: s1,
-                aperture: a1,
-                f_number: n1,
-                focus: f1,
-            },
-        ) => P::ThinLens {
-            distance: mix_option("distance", *d0, *d1, s)?,
-            viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            fov_x: mix_option("fov_x", *fx0, *fx1, s)?,
-            fov_y: mix_option("fov_y", *fy0, *fy1, s)?,
-            fov_diagonal: mix_option("fov_diagonal", *fd0, *fd1, s)?,
-            fov_smaller: mix_option("fov_smaller", *fs0, *fs1, s)?,
-            fov_larger: mix_option("fov_larger", *fl0, *fl1, s)?,
-            focal_length: mix_option("focal_length", *fo0, *fo1, s)?,
-            sensor: mix_option("sensor", *se0, *se1, s)?,
-            fit: same("fit", *fit0, *fit1)?,
-            shift: s0.mix(s1, s),
-            aperture: mix_option("aperture", *a0, *a1, s)?,
-            f_number: mix_option("f_number", *n0, *n1, s)?,
-            focus: f0.mix(f1, s),
-        },
-        (
-            P::Orthographic {
-                viewport: vp0,
-                height: h0,
-                aperture: a0,
-                focus: f0,
-            },
-            P::Orthographic {
-                viewport: vp1,
-                height: h1,
-                aperture: a1,
-                focus: f1,
-            },
-        ) => P::Orthographic {
-            viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            height: mix_option("height", *h0, *h1, s)?,
-            aperture: mix_option("aperture", *a0, *a1, s)?,
-            focus: mix_option("focus", *f0, *f1, s)?,
-        },
-        (
-            P::Oblique {
-                viewport: vp0,
-                height: h0,
-                ratio: r0,
-                angle: a0,
-            },
-            P::Oblique {
-                viewport: vp1,
-                height: h1,
-                ratio: r1,
-                angle: a1,
-            },
-        ) => P::Oblique {
-            viewport: mix_option("viewport", *vp0, *vp1, s)?,
-            height: mix_option("height", *h0, *h1, s)?,
-            ratio: r0.mix(r1, s),
-            angle: a0.mix(a1, s),
-        },
+        (P::Perspective(a), P::Perspective(b)) => P::Perspective(mix_perspective(a, b, s)?),
+        (P::ThinLens(a), P::ThinLens(b)) => P::ThinLens(ThinLensDef {
+            perspective: mix_perspective(&a.perspective, &b.perspective, s)?,
+            aperture: mix_option("aperture", a.aperture, b.aperture, s)?,
+            f_number: mix_option("f_number", a.f_number, b.f_number, s)?,
+            focus: a.focus.mix(&b.focus, s),
+        }),
+        (P::Orthographic(a), P::Orthographic(b)) => P::Orthographic(OrthographicDef {
+            viewport: mix_option("viewport", a.viewport, b.viewport, s)?,
+            height: mix_option("height", a.height, b.height, s)?,
+            aperture: mix_option("aperture", a.aperture, b.aperture, s)?,
+            focus: mix_option("focus", a.focus, b.focus, s)?,
+        }),
+        (P::Oblique(a), P::Oblique(b)) => P::Oblique(ObliqueDef {
+            viewport: mix_option("viewport", a.viewport, b.viewport, s)?,
+            height: mix_option("height", a.height, b.height, s)?,
+            ratio: a.ratio.mix(&b.ratio, s),
+            angle: a.angle.mix(&b.angle, s),
+        }),
         (P::Equirectangular, P::Equirectangular) => P::Equirectangular,
-        (P::Fisheye { fov: f0 }, P::Fisheye { fov: f1 }) => P::Fisheye { fov: f0.mix(f1, s) },
+        (P::Fisheye(a), P::Fisheye(b)) => P::Fisheye(FisheyeDef {
+            fov: a.fov.mix(&b.fov, s),
+        }),
         _ => {
             return Err(format!(
                 "cannot interpolate between the projection families `{}` and `{}`: the \
@@ -252,6 +149,27 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
                 projection_name(b)
             ));
         }
+    })
+}
+
+/// The perspective window's fields mixed, the first not given alike in both named.
+fn mix_perspective(
+    a: &PerspectiveDef,
+    b: &PerspectiveDef,
+    s: f64,
+) -> Result<PerspectiveDef, String> {
+    Ok(PerspectiveDef {
+        distance: mix_option("distance", a.distance, b.distance, s)?,
+        viewport: mix_option("viewport", a.viewport, b.viewport, s)?,
+        fov_x: mix_option("fov_x", a.fov_x, b.fov_x, s)?,
+        fov_y: mix_option("fov_y", a.fov_y, b.fov_y, s)?,
+        fov_diagonal: mix_option("fov_diagonal", a.fov_diagonal, b.fov_diagonal, s)?,
+        fov_smaller: mix_option("fov_smaller", a.fov_smaller, b.fov_smaller, s)?,
+        fov_larger: mix_option("fov_larger", a.fov_larger, b.fov_larger, s)?,
+        focal_length: mix_option("focal_length", a.focal_length, b.focal_length, s)?,
+        sensor: mix_option("sensor", a.sensor, b.sensor, s)?,
+        fit: same("fit", a.fit, b.fit)?,
+        shift: a.shift.mix(&b.shift, s),
     })
 }
 

@@ -121,12 +121,7 @@ pub(crate) fn skip_whitespace_and_comments(mut text: &str) -> &str {
 /// A RON error in `text` (which starts at `origin` in the file) as a [`SceneError`], its
 /// position moved from `origin`-relative to the file and its message in the scene
 /// format's words.
-fn ron_error(
-    path: &Path,
-    text: &str,
-    origin: Origin,
-    error: &SpannedError,
-) -> SceneError {
+fn ron_error(path: &Path, text: &str, origin: Origin, error: &SpannedError) -> SceneError {
     let start = error.span.start;
     if let Some((line, column, message)) = number_error(text, error) {
         return SceneError::at(path, Some(origin.offset(line, column)), message);
