@@ -80,7 +80,7 @@ fn obj_text(mesh: &MeshData) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use viewray_scene::Scene;
+    use viewray_scene::SceneLoader;
 
     /// The scene and an OBJ written by `obj_text` load back: the same triangles, the
     /// benchmark's camera.
@@ -90,7 +90,10 @@ mod tests {
         let mesh = MeshData::icosphere(2, 1.0);
         std::fs::write(dir.path().join("icosphere.obj"), obj_text(&mesh)).expect("an OBJ");
         std::fs::write(dir.path().join("icosphere.ron"), SCENE).expect("a scene");
-        let scene = Scene::load(&dir.path().join("icosphere.ron")).expect("a valid scene");
+        let scene = SceneLoader::file(&dir.path().join("icosphere.ron"))
+            .load()
+            .expect("a valid scene")
+            .scene;
         assert_eq!(scene.world().triangle_count(), 320);
         assert_eq!(scene.world().triangle_count(), mesh.triangles.len());
         assert_eq!(

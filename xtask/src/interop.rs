@@ -329,7 +329,10 @@ fn import_camera(file: &Path, format: Format) -> Result<Camera> {
         viewray_interop::import(&bytes, file, format).map_err(|e| anyhow::anyhow!("{e}"))?;
     // Only the camera is compared: the objects would only cost time to load.
     document.objects.clear();
-    let scene = Scene::parse(&document.to_ron(), file).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let scene = viewray_scene::SceneLoader::text(&document.to_ron(), file)
+        .load()
+        .map_err(|e| anyhow::anyhow!("{e}"))?
+        .scene;
     Ok(*scene.camera())
 }
 
@@ -889,7 +892,10 @@ fn cases(root: &Path) -> Result<Vec<Case>> {
             .and_then(|s| s.to_str())
             .unwrap_or("scene")
             .to_owned();
-        let scene = Scene::load(file).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let scene = viewray_scene::SceneLoader::file(file)
+            .load()
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .scene;
         scenes.push((name, scene, true));
     }
     let world = format!(
@@ -985,7 +991,9 @@ fn cases(root: &Path) -> Result<Vec<Case>> {
               camera: (eye: (1.5, 1.2, 6.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), projection: {projection}),
               {world})"
         );
-        let scene = Scene::parse(&text, &root.join(format!("{name}.ron")))
+        let scene = viewray_scene::SceneLoader::text(&text, &root.join(format!("{name}.ron")))
+            .load()
+            .map(|loaded| loaded.scene)
             .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
         scenes.push((format!("camera_{name}"), scene, true));
     }

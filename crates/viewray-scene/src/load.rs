@@ -17,17 +17,9 @@ use crate::ron_text::{
 };
 use crate::schema::{ImageDef, LightDef, MaterialDef, ObjectDef, SceneFile, ShadingDef};
 use crate::values::{affine, color, direction, light, material, point, positive};
-use crate::{Animation, Material, ObjectMaterial, Scene, SceneError, SceneParts, Shading};
-
-/// Settings that override the scene file's, applied before the camera is built (so a
-/// field of view or a preset follows the new aspect ratio).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct LoadOptions {
-    /// Render at `(width, height)` instead of the file's image size.
-    pub size: Option<(u32, u32)>,
-    /// Take this many samples per pixel instead of the file's.
-    pub samples: Option<u32>,
-}
+use crate::{
+    Animation, LoadOptions, Material, ObjectMaterial, Scene, SceneError, SceneParts, Shading,
+};
 
 /// Parses the scene `text` read from `path` (used in error messages; meshes are found
 /// relative to its folder).

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use viewray_scene::{LoadOptions, Scene, parse_camera};
+use viewray_scene::{SceneLoader, parse_camera};
 
 /// `projection` inside an explicit camera, parsed alone for a 64 x 48 image.
 fn camera_error(projection: &str) -> String {
@@ -30,7 +30,7 @@ fn mix_error(a: &str, b: &str) -> String {
         key(0.0, a),
         key(1.0, b)
     );
-    match Scene::parse_animated(&text, Path::new("mix.ron"), LoadOptions::default()) {
+    match SceneLoader::text(&text, Path::new("mix.ron")).load() {
         Ok(_) => "ok".to_owned(),
         Err(error) => error.to_string(),
     }

@@ -41,7 +41,7 @@ mod params;
 use std::path::Path;
 
 use viewray_camera::ImageLimits;
-use viewray_scene::{Scene, SceneError};
+use viewray_scene::{Scene, SceneError, SceneLoader};
 
 pub use crate::http::{ServeOptions, Server, Stopper};
 
@@ -115,7 +115,7 @@ impl ServedScene {
     /// # Errors
     /// The scene's error, naming `path`, line and column.
     pub fn parse(name: &str, text: String, path: &Path) -> Result<ServedScene, SceneError> {
-        let scene = Scene::parse(&text, path)?;
+        let scene = SceneLoader::text(&text, path).load()?.scene;
         let camera_text = viewray_scene::camera_text(&text, path)?.to_owned();
         let page = page::page(name, &camera_text, &scene);
         Ok(ServedScene {

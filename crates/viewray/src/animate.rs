@@ -2,7 +2,7 @@
 //! into a looping GIF, an animated PNG or a folder of numbered PNGs, atomically.
 
 use std::io::{BufWriter, IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -12,7 +12,7 @@ use viewray_animation::{
 };
 use viewray_output::{Compression, MAX_GIF_SIDE};
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, LoadedScene};
 
 use crate::cli::{AnimateArgs, is_standard_stream};
 use crate::output::Output;
@@ -95,12 +95,15 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
     let movie = match (&args.demo, &args.scene) {
         (Some(name), _) => Movie::from_demo(&demo_by_name(name)?, options, settings)?,
         (None, Some(path)) => {
-            let (scene, animation, name) = load_animated(path, options)?;
+            let LoadedScene {
+                scene, animation, ..
+            } = crate::input::load_scene(Some(path), options)?;
             let animation = animation.ok_or_else(|| {
                 anyhow!(
-                    "{name}: the scene has no `animation:` section: add one (keys of cameras \
+                    "{}: the scene has no `animation:` section: add one (keys of cameras \
                      at times in [0, 1], as docs/scene-format.md describes) or animate a \
-                     built-in demo (`viewray animate --list`)"
+                     built-in demo (`viewray animate --list`)",
+                    crate::input::scene_name(path)
                 )
             })?;
             if let Some(size) = args.size
@@ -192,21 +195,6 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
         out.flush()?;
     }
     Ok(())
-}
-
-/// Loads an animated scene from a file or standard input; returns it with the name it
-/// goes by in messages.
-fn load_animated(
-    path: &Path,
-    options: LoadOptions,
-) -> Result<(Scene, Option<viewray_scene::Animation>, String)> {
-    if is_standard_stream(path) {
-        let name = PathBuf::from("<stdin>");
-        let (scene, animation) = Scene::read_animated(std::io::stdin().lock(), &name, options)?;
-        return Ok((scene, animation, name.display().to_string()));
-    }
-    let (scene, animation) = Scene::load_animated(path, options)?;
-    Ok((scene, animation, path.display().to_string()))
 }
 
 /// The file name of frame `k` in a folder: `frame_0000.png`.

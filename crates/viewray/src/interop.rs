@@ -8,7 +8,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use viewray_interop::Format;
 use viewray_output::AtomicFile;
-use viewray_scene::Scene;
+use viewray_scene::SceneLoader;
 
 /// The largest file `viewray import` reads: 256 MiB.
 const MAX_IMPORT_BYTES: u64 = 256 << 20;
@@ -50,7 +50,7 @@ fn parse_format(text: &str) -> Result<Format, String> {
 /// `viewray export`: the scene written for another tool, atomically (nothing is written
 /// when the tool cannot express the camera).
 pub(crate) fn export(args: &ExportArgs) -> Result<()> {
-    let scene = Scene::load(&args.scene)?;
+    let scene = SceneLoader::file(&args.scene).load()?.scene;
     let file_name = args
         .output
         .file_name()
@@ -126,13 +126,15 @@ pub(crate) fn import(args: &ImportArgs) -> Result<()> {
         objects: Vec::new(),
         ..document
     };
-    Scene::parse(&camera_only.to_ron(), path).map_err(|e| {
-        anyhow!(
-            "{}: the imported scene is not valid in viewray: {}",
-            path.display(),
-            e.message()
-        )
-    })?;
+    SceneLoader::text(&camera_only.to_ron(), path)
+        .load()
+        .map_err(|e| {
+            anyhow!(
+                "{}: the imported scene is not valid in viewray: {}",
+                path.display(),
+                e.message()
+            )
+        })?;
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())?;
     out.flush()?;

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use viewray_camera::{Camera, Projection};
 use viewray_render::{Image, ImageFormat, RenderSettings};
-use viewray_scene::LoadOptions;
+use viewray_scene::{LoadOptions, LoadedScene};
 
 use crate::cli::{RenderArgs, is_standard_stream, usage_error};
 use crate::output::Output;
@@ -100,7 +100,11 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         size: args.size,
         samples: args.samples,
     };
-    let (scene, load_times) = crate::input::load_scene(args.scene.as_deref(), options)?;
+    let LoadedScene {
+        scene,
+        times: load_times,
+        ..
+    } = crate::input::load_scene(args.scene.as_deref(), options)?;
     if let Some(size) = args.size
         && let Some(warning) = stretched_pixels(scene.camera(), size)
     {

@@ -9,7 +9,7 @@ use clap::Args;
 use viewray_serve::{ServeOptions, ServedScene, Server};
 
 use crate::cli::is_standard_stream;
-use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH};
+use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH, STDIN_NAME};
 
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
@@ -37,7 +37,7 @@ pub(crate) fn serve(args: &ServeArgs) -> Result<()> {
             Path::new(DEFAULT_SCENE_PATH),
         )?,
         Some(path) if is_standard_stream(path) => {
-            let name = Path::new("<stdin>");
+            let name = Path::new(STDIN_NAME);
             let text = viewray_scene::read_scene_text(std::io::stdin().lock(), name)?;
             ServedScene::parse("standard input", text, name)?
         }
