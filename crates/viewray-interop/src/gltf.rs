@@ -43,16 +43,6 @@ fn lacks(what: impl Into<String>) -> ExportError {
     ExportError::new(Format::Gltf, what)
 }
 
-/// Whether JSON `bytes` look like glTF (an `"asset"` with a `"version"`).
-pub(crate) fn looks_like_gltf(bytes: &[u8]) -> bool {
-    if bytes.starts_with(GLB_MAGIC) {
-        return true;
-    }
-    serde_json::from_slice::<Value>(bytes)
-        .ok()
-        .is_some_and(|v| v.pointer("/asset/version").is_some())
-}
-
 /// Writes `scene` as glTF 2.0: `.gltf` JSON with the buffer embedded, or `.glb`.
 ///
 /// # Errors

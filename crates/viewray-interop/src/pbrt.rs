@@ -54,31 +54,6 @@ fn lacks(what: impl Into<String>) -> ExportError {
     ExportError::new(Format::Pbrt, what)
 }
 
-/// Whether `text` (after leading whitespace) starts like a pbrt file: a comment or a
-/// directive pbrt knows.
-pub(crate) fn looks_like_pbrt(text: &str) -> bool {
-    let first = text.split_whitespace().next().unwrap_or("");
-    first.starts_with('#')
-        || [
-            "LookAt",
-            "Camera",
-            "Film",
-            "Sampler",
-            "Integrator",
-            "WorldBegin",
-            "Scale",
-            "Translate",
-            "Rotate",
-            "Transform",
-            "ConcatTransform",
-            "Option",
-            "ColorSpace",
-            "PixelFilter",
-            "Identity",
-        ]
-        .contains(&first)
-}
-
 /// Writes `scene` as a pbrt-v4 scene file.
 ///
 /// # Errors

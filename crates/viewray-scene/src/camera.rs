@@ -12,7 +12,8 @@ use viewray_camera::{
 };
 
 use crate::SceneError;
-use crate::ron_text::{self, LineIndex, Origin, skip_whitespace_and_comments};
+use crate::file_kind::skip_whitespace_and_comments;
+use crate::ron_text::{self, LineIndex, Origin};
 use crate::schema::{
     ExplicitCamera, ImageDef, PerspectiveDef, PresetDef, ProjectionDef, SceneFile, SensorFitDef,
     ThinLensDef, V2, V3,

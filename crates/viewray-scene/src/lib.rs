@@ -10,6 +10,8 @@
 //!   reworded in the format's terms (`ron_text`).
 //! - [`SceneLoader`], the one way in: a file, a reader or text, with [`LoadOptions`],
 //!   giving a [`LoadedScene`]; and [`parse_camera`], a `camera:` value on its own.
+//! - [`FileKind`], the recogniser of every kind of file viewray reads or writes (scenes,
+//!   meshes, other tools' scenes, images), so that a wrong file is named for what it is.
 //! - [`SceneDocument`], which writes a scene file from plain values, for code that makes
 //!   scenes (the importers of other tools' scenes).
 //!
@@ -47,6 +49,7 @@ mod animation;
 mod camera;
 mod document;
 mod error;
+mod file_kind;
 mod load;
 mod loader;
 mod mesh;
@@ -64,6 +67,7 @@ pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
 pub use error::{Position, SceneError};
+pub use file_kind::FileKind;
 pub use loader::{
     LoadOptions, LoadTimes, LoadedScene, MAX_SCENE_BYTES, SceneLoader, read_scene_file,
     read_scene_text,

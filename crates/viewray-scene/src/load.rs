@@ -11,10 +11,9 @@ use viewray_geometry::{Aabb, Instance, Object, Plane, Sphere, Triangle, World};
 
 use crate::animation::parse_animation;
 use crate::camera::camera_at;
+use crate::file_kind::skip_whitespace_and_comments;
 use crate::mesh::MeshCache;
-use crate::ron_text::{
-    self, LineIndex, Origin, empty_file_message, list, skip_whitespace_and_comments,
-};
+use crate::ron_text::{self, LineIndex, Origin, empty_file_message, list};
 use crate::schema::{ImageDef, LightDef, MaterialDef, ObjectDef, SceneFile, ShadingDef};
 use crate::values::{affine, color, direction, light, material, point, positive};
 use crate::{

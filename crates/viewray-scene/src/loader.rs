@@ -2,13 +2,15 @@
 //! reader such as standard input, or text in hand) and which settings to override, and
 //! [`SceneLoader::load`] gives the scene, its animation and how long loading took.
 //!
-//! A file or a reader is read whole, at most [`MAX_SCENE_BYTES`], before it is parsed.
+//! A file or a reader is read whole (at most [`MAX_SCENE_BYTES`]) and recognised
+//! ([`FileKind::recognise`]) before it is parsed, so that an OBJ mesh, an image or another
+//! tool's scene given as a scene is named for what it is.
 
 use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use crate::{Animation, Scene, SceneError};
+use crate::{Animation, FileKind, Scene, SceneError};
 
 /// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
 pub const MAX_SCENE_BYTES: u64 = 16 << 20;
@@ -129,8 +131,9 @@ impl<'a> SceneLoader<'a> {
 /// serves it).
 ///
 /// # Errors
-/// A [`SceneError`] naming `path` for a missing file, a directory, a file that is not
-/// UTF-8 text, or one larger than [`MAX_SCENE_BYTES`].
+/// A [`SceneError`] naming `path` for a missing file, a directory, a file of another kind
+/// ([`SceneError::found`]), a file that is not UTF-8 text, or one larger than
+/// [`MAX_SCENE_BYTES`].
 pub fn read_scene_file(path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
     let file = std::fs::File::open(path).map_err(|e| match e.kind() {
@@ -147,21 +150,29 @@ pub fn read_scene_file(path: &Path) -> Result<String, SceneError> {
 }
 
 /// Reads scene text from `reader` (standard input, say) as [`read_scene_file`] reads a
-/// file, refusing text that is not UTF-8 or too large to be a scene; `path` names it in
-/// errors.
+/// file, refusing a file of another kind, text that is not UTF-8 or too large to be a
+/// scene; `path` names it in errors.
 ///
 /// # Errors
 /// A [`SceneError`] naming `path`.
 pub fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
     let error = |message: String| SceneError::at(path, None, message);
-    let mut text = String::new();
-    let read = reader
+    let not_text = || error("is not a text file (not UTF-8)".to_owned());
+    let mut bytes = Vec::new();
+    reader
         .take(MAX_SCENE_BYTES + 1)
-        .read_to_string(&mut text)
+        .read_to_end(&mut bytes)
         .map_err(|e| match e.kind() {
-            std::io::ErrorKind::InvalidData => error("is not a text file (not UTF-8)".to_owned()),
+            std::io::ErrorKind::InvalidData => not_text(),
             _ => error(format!("cannot read the scene: {e}")),
         })?;
+    if let Some(kind) = FileKind::recognise(path, &bytes)
+        && let Some(message) = kind.not_a_scene()
+    {
+        return Err(SceneError::not_a_scene(path, kind, message));
+    }
+    let read = bytes.len();
+    let text = String::from_utf8(bytes).map_err(|_| not_text())?;
     if read as u64 > MAX_SCENE_BYTES {
         return Err(error(format!(
             "is larger than {} MiB: too large for a scene file",

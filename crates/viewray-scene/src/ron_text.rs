@@ -104,20 +104,6 @@ impl<'a> LineIndex<'a> {
     }
 }
 
-/// `text` from its first character that is neither whitespace nor in a comment.
-pub(crate) fn skip_whitespace_and_comments(mut text: &str) -> &str {
-    loop {
-        let trimmed = text.trim_start();
-        if let Some(rest) = trimmed.strip_prefix("//") {
-            text = rest.split_once('\n').map_or("", |(_, after)| after);
-        } else if let Some(rest) = trimmed.strip_prefix("/*") {
-            text = rest.split_once("*/").map_or("", |(_, after)| after);
-        } else {
-            return trimmed;
-        }
-    }
-}
-
 /// A RON error in `text` (which starts at `origin` in the file) as a [`SceneError`], its
 /// position moved from `origin`-relative to the file and its message in the scene
 /// format's words.

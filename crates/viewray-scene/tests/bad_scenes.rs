@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use viewray_scene::SceneLoader;
+use viewray_scene::{FileKind, SceneLoader};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -66,4 +66,37 @@ fn a_byte_order_mark_is_accepted() {
         .unwrap()
         .scene;
     assert_eq!((scene.camera().width(), scene.camera().height()), (4, 2));
+}
+
+#[test]
+fn a_file_of_another_kind_is_named_for_what_it_is() {
+    let mesh = fixtures().join("meshes/cube.obj");
+    let error = SceneLoader::file(&mesh).load().unwrap_err();
+    assert_eq!(error.found(), Some(FileKind::ObjMesh));
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: this is an OBJ mesh; a scene file names it in `objects`",
+            mesh.display()
+        )
+    );
+    // Standard input has no name to go by: its first bytes say what it is.
+    let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR";
+    let error = SceneLoader::reader(&png[..], Path::new("<stdin>"))
+        .load()
+        .unwrap_err();
+    assert_eq!(error.found(), Some(FileKind::Png));
+    assert_eq!(
+        error.to_string(),
+        "<stdin>: this is a PNG image, not a viewray scene file"
+    );
+    // A scene file's own mistakes are a scene file's, whatever it is called.
+    let error = SceneLoader::reader(&b"(camera: Top())"[..], Path::new("camera.json"))
+        .load()
+        .unwrap_err();
+    assert_eq!(error.found(), None);
+    assert_eq!(
+        error.to_string(),
+        "camera.json:1:14: missing field `target` in `Top`"
+    );
 }

@@ -1,10 +1,11 @@
-//! Where a scene comes from: a file, standard input (`-`), or the built-in default.
+//! Where a scene comes from: a file, standard input (`-`), or the built-in default; and a
+//! scene's error as the command prints it.
 
 use std::io::IsTerminal;
 use std::path::Path;
 
-use anyhow::Result;
-use viewray_scene::{LoadOptions, LoadedScene, SceneLoader};
+use anyhow::{Result, anyhow};
+use viewray_scene::{FileKind, LoadOptions, LoadedScene, SceneError, SceneLoader};
 
 use crate::cli::is_standard_stream;
 
@@ -38,7 +39,7 @@ pub(crate) fn load_scene(path: Option<&Path>, options: LoadOptions) -> Result<Lo
         }
         Some(path) => SceneLoader::file(path),
     };
-    Ok(loader.options(options).load()?)
+    loader.options(options).load().map_err(scene_error)
 }
 
 /// Loads the scene `path` names (`-`: standard input) as it is.
@@ -55,5 +56,23 @@ pub(crate) fn scene_name(path: &Path) -> String {
         STDIN_NAME.to_owned()
     } else {
         path.display().to_string()
+    }
+}
+
+/// A scene's error as the command prints it: another tool's scene given as a scene
+/// comes with the command that converts it.
+pub(crate) fn scene_error(error: SceneError) -> anyhow::Error {
+    match error.found() {
+        Some(
+            FileKind::MitsubaXml
+            | FileKind::Pbrt
+            | FileKind::ThreeJson
+            | FileKind::Gltf
+            | FileKind::Glb,
+        ) => anyhow!(
+            "{error}: `viewray import {} > scene.ron` turns it into one",
+            error.path().display()
+        ),
+        _ => error.into(),
     }
 }

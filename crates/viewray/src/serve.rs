@@ -9,7 +9,7 @@ use clap::Args;
 use viewray_serve::{ServeOptions, ServedScene, Server};
 
 use crate::cli::is_standard_stream;
-use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH, STDIN_NAME};
+use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH, STDIN_NAME, scene_error};
 
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
@@ -38,11 +38,12 @@ pub(crate) fn serve(args: &ServeArgs) -> Result<()> {
         )?,
         Some(path) if is_standard_stream(path) => {
             let name = Path::new(STDIN_NAME);
-            let text = viewray_scene::read_scene_text(std::io::stdin().lock(), name)?;
+            let text = viewray_scene::read_scene_text(std::io::stdin().lock(), name)
+                .map_err(scene_error)?;
             ServedScene::parse("standard input", text, name)?
         }
         Some(path) => {
-            let text = viewray_scene::read_scene_file(path)?;
+            let text = viewray_scene::read_scene_file(path).map_err(scene_error)?;
             ServedScene::parse(&path.display().to_string(), text, path)?
         }
     };
