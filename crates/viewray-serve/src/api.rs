@@ -196,9 +196,9 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
     let indices = PixelIndices::one_based_if(one_based);
     let pixel = indices
         .pixel((first, second), width, height)
-        .map_err(|message| {
+        .map_err(|outside| {
             let name = if one_based { "i" } else { "row" };
-            BadRequest(format!("{name}: {message}"))
+            BadRequest(format!("{name}: {}", outside.sentence(Some("i=I&j=J"))))
         })?;
     Ok(json_lines(&[ray_line(
         &camera,
@@ -251,7 +251,8 @@ fn diagram(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, 
             Some(
                 PixelIndices::ZeroBased
                     .pixel((row, col), width, height)
-                    .map_err(|message| BadRequest(format!("row: {message}")))?,
+                    // This endpoint takes row and col only: no other indices to offer.
+                    .map_err(|outside| BadRequest(format!("row: {outside}")))?,
             )
         }
     };

@@ -77,7 +77,7 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
         .map(|&pixel| {
             indices
                 .pixel(pixel, width, height)
-                .map_err(anyhow::Error::msg)
+                .map_err(|outside| anyhow::anyhow!(outside.sentence(Some("--one-based"))))
         })
         .collect::<Result<Vec<(u32, u32)>>>()?;
     note_pixel_convention(args.one_based);

@@ -343,7 +343,14 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
         "/api/rays?row=480&col=0",
         400,
         "row: pixel 480,0 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
-         (0-based; --one-based for the lecture's i, j)",
+         (0-based; i=I&j=J for the lecture's i, j)",
+    );
+    // The side view takes row and col only: the sentence offers no other indices.
+    check(
+        "/api/diagram.svg?row=0&col=640",
+        400,
+        "row: pixel 0,640 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
+         (0-based)",
     );
     check(
         "/api/project?point=1,2",
