@@ -2,10 +2,11 @@
 //! into a looping GIF, an animated PNG or a folder of numbered PNGs, atomically.
 
 use std::io::{BufWriter, IsTerminal, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
 use serde_json::json;
 use viewray_animation::{
     Movie, MovieSettings, all_demos, demo_by_name, write_apng, write_frames, write_gif,
@@ -14,10 +15,57 @@ use viewray_output::{Compression, MAX_GIF_SIDE};
 use viewray_render::RenderSettings;
 use viewray_scene::{LoadOptions, LoadedScene};
 
-use crate::cli::{AnimateArgs, is_standard_stream};
 use crate::output::Output;
 use crate::render::{available_memory, gib, progress_bar, seconds, stretched_pixels};
 use crate::style;
+use crate::values::{
+    is_standard_stream, parse_fps, parse_frames, parse_samples, parse_size, parse_threads,
+};
+
+#[derive(Args, Debug)]
+pub(crate) struct AnimateArgs {
+    /// The scene file to animate (it needs an `animation:` section), or - to read it from
+    /// standard input.
+    #[arg(value_name = "SCENE", conflicts_with_all = ["demo", "list"],
+          required_unless_present_any = ["demo", "list"])]
+    pub(crate) scene: Option<PathBuf>,
+    /// Where to write: OUT.gif (looping GIF), OUT.png (animated PNG) or DIR/ (numbered
+    /// PNG frames, DIR/frame_0000.png, ...).
+    #[arg(short, long, value_name = "OUT", default_value = "viewray.gif")]
+    pub(crate) output: PathBuf,
+    /// Animate one of the lecture's demonstrations on its built-in scene.
+    #[arg(long, value_name = "NAME", conflicts_with = "list",
+          value_parser = clap::builder::PossibleValuesParser::new(viewray_animation::demo_names()))]
+    pub(crate) demo: Option<String>,
+    /// List the demonstrations, one line each, and exit.
+    #[arg(long)]
+    pub(crate) list: bool,
+    /// How many frames, instead of the animation's (1 to 10000).
+    #[arg(long, value_name = "N", value_parser = parse_frames)]
+    pub(crate) frames: Option<u32>,
+    /// Frames per second, instead of the animation's (1 to 100; a GIF plays at most 50).
+    #[arg(long, value_name = "N", value_parser = parse_fps)]
+    pub(crate) fps: Option<u32>,
+    /// The size of each picture as WIDTHxHEIGHT, instead of the scene's; fields of view
+    /// and presets follow the new aspect ratio, as for `render`.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// Samples per pixel, instead of the scene's.
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub(crate) samples: Option<u32>,
+    /// Put the side view of each frame's camera beside its picture.
+    #[arg(long)]
+    pub(crate) with_diagram: bool,
+    /// How many threads to render on (default: one per core).
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub(crate) threads: Option<usize>,
+    /// Print one JSON line of statistics on stdout:
+    /// {"frames":N,"width":W,"height":H,"render_s":..,"encode_s":..}. render_s is
+    /// rendering and laying out the frames; encode_s is choosing the palette, encoding
+    /// and writing them.
+    #[arg(long)]
+    pub(crate) stats: bool,
+}
 
 /// `viewray animate`.
 pub(crate) fn animate(args: &AnimateArgs) -> Result<()> {

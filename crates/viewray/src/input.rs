@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::{Result, anyhow};
 use viewray_scene::{FileKind, LoadOptions, LoadedScene, SceneError, SceneLoader};
 
-use crate::cli::is_standard_stream;
+use crate::values::is_standard_stream;
 
 /// The scene rendered when no scene file is given. It uses only analytic shapes, so it
 /// needs no other file and works from any directory.

@@ -25,12 +25,15 @@ mod output;
 mod render;
 mod serve;
 mod style;
+mod usage;
+mod values;
 
 use std::process::ExitCode;
 
 use clap::Parser;
 
 use crate::cli::{Cli, Command};
+use crate::usage::EXIT_BAD_INPUT;
 
 /// mimalloc rather than the system allocator: the renderer, compare and grade allocate
 /// and free image-sized buffers per image, which glibc hands back to the kernel each
@@ -39,20 +42,18 @@ use crate::cli::{Cli, Command};
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-/// Exit code for bad input or usage.
-const EXIT_BAD_INPUT: u8 = 2;
-
 fn main() -> ExitCode {
     let args: Vec<_> = std::env::args_os().collect();
-    if let Some(message) = cli::spaced_number_list(&args) {
-        let help = cli::see_help(cli::subcommand_in(&args).as_deref());
+    let command = cli::subcommand_in(&args);
+    if let Some(message) = usage::spaced_number_list(&args) {
+        let help = usage::see_help(command.as_deref());
         style::error(format_args!("{message} {help}"));
         return ExitCode::from(EXIT_BAD_INPUT);
     }
-    let expanded = cli::expand_repeated_values(args.iter().cloned());
+    let expanded = usage::expand_repeated_values(args.iter().cloned());
     let cli = match Cli::try_parse_from(&expanded) {
         Ok(cli) => cli,
-        Err(error) => return cli::report_usage_error(&error, &args),
+        Err(error) => return usage::report_usage_error(&error, command.as_deref()),
     };
     let result = match cli.command {
         Command::Render(args) => render::render(&args),
@@ -69,8 +70,8 @@ fn main() -> ExitCode {
         Command::Diagram(args) => diagram::diagram(&args),
         Command::Serve(args) => serve::serve(&args),
         Command::Scene(args) => commands::scene(&args),
-        Command::Completions(args) => commands::completions(&args),
-        Command::Man(args) => commands::man(&args),
+        Command::Completions(args) => cli::completions(&args),
+        Command::Man(args) => cli::man(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

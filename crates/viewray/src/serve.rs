@@ -8,8 +8,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use viewray_serve::{ServeOptions, ServedScene, Server};
 
-use crate::cli::is_standard_stream;
 use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH, STDIN_NAME, scene_error};
+use crate::values::is_standard_stream;
 
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
