@@ -1,5 +1,6 @@
 //! A request's query parameters: decoded, checked against the endpoint's list, and
-//! turned into values with the command line's words for what is wrong.
+//! turned into values with the command line's words for what is wrong (the image limits'
+//! sentences are viewray-camera's, as the command line's are).
 //!
 //! Every error message starts with the parameter's name (`width: ...`, and for the
 //! camera the position in its text, `camera:1:9: ...`), so the page can show it next

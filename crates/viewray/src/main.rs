@@ -2,8 +2,23 @@
 //! projections so students can check homework numbers, compare renders, and draw the
 //! lecture's figures.
 //!
-//! Output meant for programs (and for checking by hand) is JSON lines on stdout. Errors
-//! are one line, `error: ...`, on stderr. The conventions the numbers follow (pixel
+//! # What it owns
+//!
+//! The command line and the terminal: `cli` (the command tree, assembled from each
+//! command's arguments; `completions` and `man`), one module per command or family of
+//! commands (`render`, `animate`, `commands` for frame/rays/project/scene, `compare`,
+//! `grade`, `figures`, `diagram`, `serve`, `interop` for export/import), and what they
+//! share below them: `values` (parsers of what is typed), `usage` (argument rewriting
+//! and the usage-error line), `input` (where a scene comes from, and a scene's error as
+//! printed), `output` (atomic files and folders, Ctrl-C), `style` (colours). Module
+//! dependencies point one way, from `cli` down.
+//!
+//! # Invariant
+//!
+//! The libraries know nothing of the command line: every flag, exit code, progress bar
+//! and hint that names a command is here. Output meant for programs (and for checking by
+//! hand) is JSON lines on stdout. Errors are one line, `error: ...`, on stderr, and bad
+//! input never leaves a partial output file. The conventions the numbers follow (pixel
 //! indices, the camera frame, each family's ray, `project`'s coordinates) are written
 //! for users in the repository's `docs/cameras.md`, the scene format in
 //! `docs/scene-format.md`.
@@ -11,6 +26,11 @@
 //! Exit codes: 0 success; 1 a comparison failed; 2 bad input or usage; anything else an
 //! internal error. A closed standard output (`viewray rays scene.ron | head`) ends the
 //! command quietly with 0.
+//!
+//! # Where to start reading
+//!
+//! `main` below (how a command line becomes a command), `cli`, then the command's own
+//! module.
 
 mod animate;
 mod cli;
