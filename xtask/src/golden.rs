@@ -24,7 +24,7 @@ use anyhow::{Context, Result, bail};
 use viewray_compare::{Comparison, Outcome, Report, ReportEntry, RgbaImage, Rules, Thresholds};
 use viewray_output::Compression;
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::LoadOptions;
 
 /// The command line of `cargo xtask golden`.
 #[derive(Debug, Default, clap::Args)]
@@ -363,7 +363,10 @@ fn check(case: &Case) -> Verdict {
 fn make(case: &Case) -> Result<Made> {
     match &case.source {
         Source::Scene(path, options) => {
-            let scene = Scene::load_with(path, *options)?;
+            let scene = viewray_scene::SceneLoader::file(path)
+                .options(*options)
+                .load()?
+                .scene;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
             Ok(Made {

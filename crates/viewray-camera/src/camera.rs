@@ -5,6 +5,7 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
+use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Mistake, Mistakes, Projection, sample_unit_disk_concentric};
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
@@ -88,7 +89,7 @@ impl Camera {
     /// A camera with the given pose, projection and image size.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero, and the projection's
+    /// [`CameraError::Image`] if `width` or `height` is zero, and the projection's
     /// first invalid parameter (see [`Projection::validate`]).
     pub fn new(
         frame: Frame,
@@ -96,9 +97,7 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Result<Self, CameraError> {
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         projection.validate()?;
         Ok(Self::from_parts(
             frame,
@@ -192,7 +191,7 @@ impl Camera {
     /// 1 x 1 viewport, with a `width x height` image.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn canonical(width: u32, height: u32) -> Result<Self, CameraError> {
         Self::new(
             Frame::CANONICAL,
@@ -205,11 +204,9 @@ impl Camera {
     /// The same camera making an image of another size (the projection is unchanged).
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         if self.mistakes.contains(Mistake::SizeMinusOne) && (width < 2 || height < 2) {
             return Err(CameraError::MistakeDoesNotFit {
                 id: Mistake::SizeMinusOne.id(),

@@ -209,7 +209,8 @@ fn fisheye_has_no_rays_outside_its_circle() {
 
 #[test]
 fn invalid_parameters_are_errors() {
-    use viewray_camera::CameraError::{EmptyImage, NotFinite, NotPositive, OutOfRange};
+    use viewray_camera::CameraError::{Image, NotFinite, NotPositive, OutOfRange};
+    use viewray_camera::ImageLimitError::Empty;
     let perspective = |distance, vw, vh| {
         Projection::Perspective(Perspective {
             distance,
@@ -255,10 +256,10 @@ fn invalid_parameters_are_errors() {
     ));
     assert_eq!(
         Camera::new(Frame::CANONICAL, perspective(1.0, 1.0, 1.0), 0, 3),
-        Err(EmptyImage {
+        Err(Image(Empty {
             width: 0,
             height: 3
-        })
+        }))
     );
     assert!(matches!(
         Perspective::from_fov_y(PI, 1.0),

@@ -40,7 +40,7 @@ pub mod three;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use viewray_scene::{Scene, SceneDocument};
+use viewray_scene::{FileKind, Scene, SceneDocument};
 
 /// A tool viewray exchanges scenes with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -96,43 +96,23 @@ impl Format {
         Format::ALL.into_iter().find(|f| f.name() == name)
     }
 
-    /// The format of a file to import, from its extension (`.xml`, `.pbrt`, `.json`,
-    /// `.gltf`, `.glb`) or, failing that, its first bytes.
+    /// The format of a file to import, as viewray-scene's recogniser tells its kind from
+    /// its first bytes and its name ([`FileKind::recognise`]); `None` for a file that is
+    /// no tool's scene (a viewray scene, a mesh, an image) or of a kind viewray does not
+    /// know.
     pub fn detect(path: &Path, bytes: &[u8]) -> Option<Format> {
-        let extension = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match extension.as_deref() {
-            Some("xml") => return Some(Format::Mitsuba),
-            Some("pbrt") => return Some(Format::Pbrt),
-            Some("gltf" | "glb") => return Some(Format::Gltf),
-            Some("json") => {
-                return Some(if gltf::looks_like_gltf(bytes) {
-                    Format::Gltf
-                } else {
-                    Format::Three
-                });
-            }
-            _ => {}
-        }
-        if bytes.starts_with(b"glTF") {
-            return Some(Format::Gltf);
-        }
-        let text = std::str::from_utf8(bytes).ok()?;
-        let start = text.trim_start_matches('\u{feff}').trim_start();
-        if start.starts_with('<') {
-            Some(Format::Mitsuba)
-        } else if start.starts_with('{') {
-            Some(if gltf::looks_like_gltf(bytes) {
-                Format::Gltf
-            } else {
-                Format::Three
-            })
-        } else if pbrt::looks_like_pbrt(start) {
-            Some(Format::Pbrt)
-        } else {
-            None
+        match FileKind::recognise(path, bytes)? {
+            FileKind::MitsubaXml => Some(Format::Mitsuba),
+            FileKind::Pbrt => Some(Format::Pbrt),
+            FileKind::BlenderScript => Some(Format::Blender),
+            FileKind::ThreeJson => Some(Format::Three),
+            FileKind::Gltf | FileKind::Glb => Some(Format::Gltf),
+            FileKind::Scene
+            | FileKind::ObjMesh
+            | FileKind::ObjMaterials
+            | FileKind::Png
+            | FileKind::Ppm
+            | FileKind::Exr => None,
         }
     }
 }

@@ -3,6 +3,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::FileKind;
+
 /// A scene file that could not be loaded: the file, the position when known, and a
 /// sentence saying what was found and what was expected.
 ///
@@ -13,6 +15,8 @@ pub struct SceneError {
     path: PathBuf,
     position: Option<Position>,
     message: String,
+    /// The kind of file found instead of a scene file, when it is one viewray knows.
+    found: Option<FileKind>,
 }
 
 /// A 1-based line and column in a scene file.
@@ -31,6 +35,16 @@ impl SceneError {
             path: path.to_path_buf(),
             position,
             message: one_line(&message.into()),
+            found: None,
+        }
+    }
+
+    /// The file `path` is of another `kind` than a scene file: an error saying what it is
+    /// and where it goes instead.
+    pub(crate) fn not_a_scene(path: &Path, kind: FileKind, message: String) -> Self {
+        Self {
+            found: Some(kind),
+            ..Self::at(path, None, message)
         }
     }
 
@@ -47,6 +61,13 @@ impl SceneError {
     /// What went wrong, without the location.
     pub fn message(&self) -> &str {
         &self.message
+    }
+
+    /// The kind of file that was found where a scene file was expected, when it is
+    /// another kind viewray knows ([`FileKind::recognise`]): a program can add how to
+    /// turn it into a scene.
+    pub fn found(&self) -> Option<FileKind> {
+        self.found
     }
 }
 

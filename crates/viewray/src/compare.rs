@@ -22,7 +22,7 @@ use viewray_compare::{
     Tally, Verdict, judge_with, load_png, write_report,
 };
 use viewray_grade::{Counterpart, ReferenceImage, in_order, load_counterpart};
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 /// Exit code when a render failed.
 pub(crate) const EXIT_FAILED: u8 = 1;
@@ -155,7 +155,7 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
         size: Some((width, height)),
         samples: None,
     };
-    let scene = Scene::load_with(path, options)?;
+    let scene = SceneLoader::file(path).options(options).load()?.scene;
     // The principal point, where u + sx = 0 and v + sy = 0: x = W (1/2 - sx/vw),
     // y = H (1/2 + sy/vh).
     let perspective = |viewport: glam::DVec2, shift: glam::DVec2| Expectations {

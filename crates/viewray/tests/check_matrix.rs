@@ -89,8 +89,10 @@ const SIZES: [(u32, u32); 3] = [(4, 3), (7, 5), (16, 9)];
 /// The scene's camera, loaded by viewray from the scene file the student tracer writes.
 fn loaded_camera(camera: &CameraSpec, (w, h): (u32, u32)) -> viewray_camera::Camera {
     let ron = Scene::example().to_ron(camera, w, h, 1);
-    *viewray_scene::Scene::parse(&ron, Path::new("homework.ron"))
+    *viewray_scene::SceneLoader::text(&ron, Path::new("homework.ron"))
+        .load()
         .expect("the student's scene loads")
+        .scene
         .camera()
 }
 
