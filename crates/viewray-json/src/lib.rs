@@ -24,8 +24,10 @@
 //! # Where to start reading
 //!
 //! This file holds the lines of `frame`, `rays` and `project`; `pixel` the indices and
-//! their sentence; `judgement` the lines of `compare` and `grade`.
+//! their sentence; `judgement` the lines of `compare` and `grade`; `check` those of
+//! `check`.
 
+mod check;
 mod judgement;
 mod pixel;
 
@@ -35,6 +37,7 @@ use glam::{DVec2, DVec3};
 use serde_json::{Map, Value, json};
 use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
 
+pub use check::{check_summary_line, checked_line};
 pub use judgement::{class_summary_line, pair_line, pairs_summary_line, student_image_line};
 pub use pixel::{PixelIndices, PixelOutside};
 

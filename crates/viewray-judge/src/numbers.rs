@@ -584,31 +584,41 @@ impl fmt::Display for Judged {
                     uv: right_uv, ray, ..
                 },
             ) => {
-                if let (Some(found), Some(right)) = (uv, right_uv) {
-                    write!(
-                        f,
-                        "; (u, v) {} (expected {})",
+                let Some((right_origin, right_direction)) = ray else {
+                    return f.write_str(": this pixel has no ray (outside the image circle)");
+                };
+                let options = CheckOptions::default();
+                let mut parts = Vec::new();
+                if let (Some(found), Some(right)) = (uv, right_uv)
+                    && !close2(DVec2::new(found.0, found.1), right, options.tolerance)
+                {
+                    parts.push(format!(
+                        "(u, v) {}, expected {}",
                         pair(found),
                         pair((right.x, right.y))
-                    )?;
+                    ));
                 }
-                match ray {
-                    Some((o, d)) => write!(
-                        f,
-                        "; origin {} direction {} (expected origin {} direction {})",
+                if !close(origin, right_origin, options.tolerance) {
+                    parts.push(format!(
+                        "origin {}, expected {}",
                         vector(origin),
-                        vector(direction),
-                        vector(o),
-                        vector(d)
-                    ),
-                    None => f.write_str("; this pixel has no ray (outside the image circle)"),
+                        vector(right_origin)
+                    ));
                 }
+                if parts.is_empty() || !same_direction(direction, right_direction, options) {
+                    parts.push(format!(
+                        "direction {}, expected {}",
+                        vector(direction),
+                        vector(right_direction)
+                    ));
+                }
+                write!(f, ": {}", parts.join("; "))
             }
             (Answer::Project { xy, .. }, Expected::Project(right)) => {
                 let show = |xy: Option<(f64, f64)>| xy.map_or("not seen".to_owned(), pair);
                 write!(
                     f,
-                    "; {} (expected {})",
+                    ": {}, expected {}",
                     show(xy),
                     show(right.map(|r| (r.x, r.y)))
                 )
@@ -640,26 +650,35 @@ impl fmt::Display for Report {
                 }
             })?;
         }
-        if let Some(explanation) = &self.diagnosis {
-            let many = explanation.alternatives.len() > 1;
-            writeln!(
-                f,
-                "\nthe catalogue explains {}:",
-                if self.wrong == 1 { "it" } else { "them" }
-            )?;
-            for (k, set) in explanation.alternatives.iter().enumerate() {
-                if many {
-                    writeln!(f, "{} {set}", if k == 0 { "  " } else { "or" })?;
-                } else {
-                    writeln!(f, "  {set}")?;
+        if let Some(diagnosis) = &self.diagnosis {
+            let them = if self.wrong == 1 { "it" } else { "them" };
+            let names: Vec<String> = diagnosis
+                .alternatives
+                .iter()
+                .map(ToString::to_string)
+                .collect();
+            write!(f, "\nthe catalogue explains {them}: {}", names.join(" or "))?;
+            if let [set] = diagnosis.alternatives.as_slice()
+                && set.len() == 1
+            {
+                let mistake = set.iter().next().expect("a set of one");
+                write!(f, " ({})", mistake.entry().summary)?;
+            } else if diagnosis.alternatives.len() > 1 {
+                f.write_str(" (the same numbers for this camera)")?;
+            }
+            let mut shown = Mistakes::NONE;
+            for mistake in diagnosis.alternatives.iter().flat_map(|set| set.iter()) {
+                if shown.contains(mistake) {
+                    continue;
                 }
-                for mistake in set.iter() {
-                    let entry = mistake.entry();
-                    writeln!(f, "    {}: {}", entry.id, entry.summary)?;
-                    writeln!(f, "      you wrote:        {}", entry.mistaken)?;
-                    writeln!(f, "      the lecture says: {}", entry.fix)?;
-                    writeln!(f, "      in the picture:   {}", entry.picture)?;
+                shown = shown.with(mistake);
+                let entry = mistake.entry();
+                if diagnosis.alternatives.len() > 1 || diagnosis.alternatives[0].len() > 1 {
+                    write!(f, "\n  {}: {}", entry.id, entry.summary)?;
                 }
+                write!(f, "\n    you wrote:        {}", entry.mistaken)?;
+                write!(f, "\n    the lecture says: {}", entry.fix)?;
+                write!(f, "\n    in the picture:   {}", entry.picture)?;
             }
         } else if let Some(pattern) = &self.pattern {
             write!(

@@ -106,6 +106,28 @@ pub(crate) enum Command {
     /// not visible (behind a perspective eye).
     #[command(verbatim_doc_comment)]
     Project(crate::commands::ProjectArgs),
+    /// Check a student's numbers: frames, viewing rays and projections, answer by answer.
+    ///
+    /// ANSWERS is what the student's program printed, in any language: viewray's own
+    /// JSON lines (the keys of `frame`, `rays`, `project`), or plain lines, numbers
+    /// apart by white space or commas, with # comments:
+    ///
+    ///     frame ex ey ez ux uy uz vx vy vz wx wy wz
+    ///     ray ROW COL ox oy oz dx dy dz
+    ///     project px py pz x y          (x y may be null null: not seen)
+    ///
+    /// Each answer is judged against the scene's camera (relative tolerance; a
+    /// direction is right up to a positive factor, so a normalized one is right, unless
+    /// --exact-direction), and printed right, or wrong with the expected value. The wrong
+    /// ones are then explained by the lecture's catalogue of mistakes: the entry (or two
+    /// entries together) that reproduces every answer, with the formula to fix; or, when
+    /// none does, what the wrong answers have in common. Pixels 1-based where 0-based
+    /// were asked (or the other way round) are named as such.
+    ///
+    /// Exit code 0 when every answer is right, 1 when any is wrong, 2 on bad input (an
+    /// answer that cannot be read, naming its line and what was expected).
+    #[command(verbatim_doc_comment)]
+    Check(crate::check::CheckArgs),
     /// Judge renders against reference images, as an instructor would.
     ///
     /// EXPECTED and ACTUAL are two PNG files, or two folders: each *.png file of

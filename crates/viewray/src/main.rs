@@ -7,7 +7,7 @@
 //! The command line and the terminal: `cli` (the command tree, assembled from each
 //! command's arguments; `completions` and `man`), one module per command or family of
 //! commands (`render`, `animate`, `commands` for frame/rays/project/scene, `compare`,
-//! `grade`, `figures`, `diagram`, `serve`, `interop` for export/import), and what they
+//! `check`, `grade`, `figures`, `diagram`, `serve`, `interop` for export/import), and what they
 //! share below them: `values` (parsers of what is typed), `usage` (argument rewriting
 //! and the usage-error line), `input` (where a scene comes from, and a scene's error as
 //! printed), `output` (atomic files and folders, Ctrl-C), `style` (colours). Module
@@ -33,6 +33,7 @@
 //! module.
 
 mod animate;
+mod check;
 mod cli;
 mod commands;
 mod compare;
@@ -81,6 +82,7 @@ fn main() -> ExitCode {
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
+        Command::Check(args) => return check::run(&args),
         Command::Compare(args) => return compare::run(&args),
         Command::Grade(args) => return grade::run(&args),
         Command::Figure(args) => figures::figure(&args),
