@@ -115,12 +115,13 @@ impl PyScene {
     }
 
     fn __repr__(&self) -> String {
+        let samples = self.samples();
         format!(
-            "<viewray.Scene {}: {} x {}, {} samples>",
+            "<viewray.Scene {}: {} x {}, {samples} sample{}>",
             self.path.display(),
             self.width(),
             self.height(),
-            self.samples()
+            if samples == 1 { "" } else { "s" }
         )
     }
 
