@@ -6,8 +6,9 @@ environment with pytest and Pillow (an image decoder independent of viewray), an
 this file there. It needs nothing else from the repository but the fixtures.
 """
 
+import ast
+import doctest
 import json
-import math
 import shutil
 import subprocess
 import sys
@@ -21,7 +22,8 @@ from PIL import Image
 
 import viewray
 
-FIXTURES = Path(__file__).resolve().parents[3] / "fixtures"
+ROOT = Path(__file__).resolve().parents[3]
+FIXTURES = ROOT / "fixtures"
 SCENES = sorted(
     [FIXTURES / "default.ron"]
     + list((FIXTURES / "scenes").glob("*.ron"))
@@ -307,3 +309,30 @@ def test_wrong_argument_types_raise_type_error():
         scene.render(samples="four")
     with pytest.raises(TypeError):
         scene.render(4, 5)
+
+
+def test_the_type_stub_is_shipped_and_names_what_the_module_has():
+    stub = Path(viewray.__file__).with_name("__init__.pyi")
+    assert stub.is_file(), f"no type stub beside {viewray.__file__}"
+    assert stub.with_name("py.typed").is_file()
+    tree = ast.parse(stub.read_text())
+    top = {n.target.id for n in tree.body if isinstance(n, ast.AnnAssign)}
+    top |= {n.name for n in tree.body if isinstance(n, ast.ClassDef)}
+    public = {n for n in dir(viewray) if not n.startswith("_") and not isinstance(getattr(viewray, n), type(viewray))}
+    assert top == public | {"__version__"}
+    (scene_stub,) = [n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Scene"]
+    members = {n.name for n in scene_stub.body if isinstance(n, ast.FunctionDef)}
+    assert members == {n for n in dir(viewray.Scene) if not n.startswith("_")}
+
+
+def test_the_readmes_notebook_example_prints_what_it_shows(monkeypatch):
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("\n## Install with pip\n", 1)[1]
+    example = section.split("```pycon\n", 1)[1].split("```", 1)[0]
+    monkeypatch.chdir(ROOT)
+    test = doctest.DocTestParser().get_doctest(example, {}, "README", "README.md", 0)
+    assert len(test.examples) == 5, "the README promises five lines"
+    report = []
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    runner.run(test, out=report.append)
+    assert runner.failures == 0, "".join(report)
