@@ -12,12 +12,12 @@
 //! beside its `pyproject.toml` for the time of the build.
 //!
 //! maturin, the `ziglang` package and auditwheel are installed from PyPI, pinned below,
-//! into a virtual environment under the target directory (`wheel/tools`), once. The
+//! into a virtual environment under the target directory (`python/tools`), once. The
 //! wheel goes to `wheels/` in the target directory and is checked with `auditwheel
 //! show`, which must find it consistent with manylinux_2_17 or older.
 //!
 //! `--test` then lints the PyO3 layer, installs the wheel into a fresh virtual
-//! environment (`wheel/test-venv`, with pytest and Pillow) and runs
+//! environment (`python/test-venv`, with pytest and Pillow) and runs
 //! `crates/viewray-python/tests/` there. `--in-diff` (what CI runs) does all of this
 //! only when the wheel's inputs changed since the merge base with `main` (see
 //! [`wheel_inputs`]).
@@ -59,7 +59,8 @@ pub struct WheelArgs {
 /// Where the tools and the outputs live.
 struct Paths {
     root: PathBuf,
-    /// `wheel/` in the target directory: the tools and the scratch files.
+    /// `python/` in the target directory: the tools and the scratch files (not `wheel/`,
+    /// where cargo puts the `wheel` profile's host builds).
     work: PathBuf,
     /// The tools' virtual environment.
     tools: PathBuf,
@@ -83,7 +84,7 @@ pub fn wheel(root: &Path, args: &WheelArgs) -> Result<()> {
         }
     }
     let target = crate::target_dir(root)?;
-    let work = target.join("wheel");
+    let work = target.join("python");
     let paths = Paths {
         root: root.to_path_buf(),
         tools: work.join("tools"),
@@ -163,15 +164,23 @@ fn pip_install(venv: &Path, packages: &[&str]) -> Result<()> {
 
 /// Builds the command, then the wheel with the command in it; returns the wheel's path.
 fn build(paths: &Paths) -> Result<PathBuf> {
-    let maturin = paths.tools.join("bin/maturin");
+    let python = paths.tools.join("bin/python");
     // maturin runs zig as `python -m ziglang` with the Python it finds first.
     let path = prepend_path(&paths.tools.join("bin"))?;
 
     let cli_wheels = paths.work.join("cli");
     remove_dir(&cli_wheels)?;
     run(
-        Command::new(&maturin)
-            .args(["build", "--bindings", "bin", "--zig", "--strip"])
+        Command::new(&python)
+            .args([
+                "-m",
+                "maturin",
+                "build",
+                "--bindings",
+                "bin",
+                "--zig",
+                "--strip",
+            ])
             .args(["--compatibility", "manylinux2014", "--profile", "wheel"])
             .arg("--manifest-path")
             .arg(paths.root.join("crates/viewray/Cargo.toml"))
@@ -189,8 +198,8 @@ fn build(paths: &Paths) -> Result<PathBuf> {
         std::fs::remove_file(&old).with_context(|| format!("cannot remove {}", old.display()))?;
     }
     run(
-        Command::new(&maturin)
-            .args(["build", "--zig"])
+        Command::new(&python)
+            .args(["-m", "maturin", "build", "--zig"])
             .arg("--manifest-path")
             .arg(paths.root.join(MODULE_CRATE).join("Cargo.toml"))
             .arg("--out")
@@ -263,8 +272,8 @@ fn set_executable(_: &Path) -> Result<()> {
 /// # Errors
 /// When auditwheel cannot run, or the tag needs a glibc newer than manylinux2014's.
 fn audit(paths: &Paths, wheel: &Path) -> Result<String> {
-    let output = Command::new(paths.tools.join("bin/auditwheel"))
-        .arg("show")
+    let output = Command::new(paths.tools.join("bin/python"))
+        .args(["-m", "auditwheel", "show"])
         .arg(wheel)
         .output()
         .context("cannot run auditwheel")?;
@@ -561,5 +570,27 @@ mod tests {
             "crates/viewray/src/main.rs",
             "crates/viewray-python"
         ));
+    }
+
+    #[test]
+    fn this_workspaces_wheel_inputs_are_the_modules_crates_not_the_commands() {
+        let root = crate::workspace_root();
+        let inputs = wheel_inputs(&cargo_metadata(&root).unwrap(), &root).unwrap();
+        for input in [
+            "crates/viewray-python",
+            "crates/viewray-scene",
+            "crates/viewray-camera",
+            "crates/viewray-render",
+            "crates/viewray-geometry",
+            "crates/viewray-output",
+        ] {
+            assert!(inputs.iter().any(|i| i == input), "{input}: {inputs:?}");
+        }
+        for not_input in ["crates/viewray", "crates/viewray-serve", "xtask"] {
+            assert!(
+                !inputs.iter().any(|i| i == not_input),
+                "{not_input}: {inputs:?}"
+            );
+        }
     }
 }
