@@ -1,6 +1,7 @@
 //! viewray's automation, written in Rust so it runs wherever cargo does: the golden check,
 //! the lecture figures, the benchmark's icosphere scene, the interop check against the
-//! real tools, the live playground driven in headless Chromium, and mutation testing.
+//! real tools, the live playground driven in headless Chromium, mutation testing, and
+//! the wheel for `pip install viewray`.
 //!
 //! `main.rs` is the `cargo xtask` command (an alias in `.cargo/config.toml`); the golden
 //! check is also the `golden` test target (`tests/golden.rs`), so plain `cargo test` runs
@@ -13,6 +14,7 @@ pub mod golden;
 pub mod icosphere;
 pub mod interop;
 pub mod mutants;
+pub mod wheel;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
