@@ -27,7 +27,7 @@ use glam::{DVec2, DVec3};
 use serde_json::json;
 use viewray_interop::Format;
 use viewray_render::RenderSettings;
-use viewray_scene::Scene;
+use viewray_scene::SceneLoader;
 
 use super::Paths;
 use super::install::script;
@@ -131,8 +131,10 @@ pub(super) fn check(paths: &Paths, filter: Option<&str>, report: &mut Report) ->
     let mut ours = Vec::new();
     for case in &cases {
         let file = paths.work.join(format!("{}.ron", case.name));
-        let scene = Scene::parse(&case.scene_text(), &file)
-            .with_context(|| format!("the case {}", case.name))?;
+        let scene = SceneLoader::text(&case.scene_text(), &file)
+            .load()
+            .with_context(|| format!("the case {}", case.name))?
+            .scene;
         let script = paths.work.join(format!("{}.py", case.name));
         let export = viewray_interop::export(&scene, Format::Blender, "scene.py")
             .map_err(|e| anyhow::anyhow!("{}: {e}", case.name))?;
@@ -404,8 +406,11 @@ mod tests {
     #[test]
     fn every_case_is_a_valid_scene_that_blender_takes() {
         for case in &CASES {
-            let scene = Scene::parse(&case.scene_text(), std::path::Path::new("case.ron"))
-                .unwrap_or_else(|e| panic!("{}: {e}", case.name));
+            let text = case.scene_text();
+            let scene = SceneLoader::text(&text, std::path::Path::new("case.ron"))
+                .load()
+                .unwrap_or_else(|e| panic!("{}: {e}", case.name))
+                .scene;
             let script = viewray_interop::export(&scene, Format::Blender, "scene.py").unwrap();
             let text = String::from_utf8(script.main).unwrap();
             assert!(text.contains(&format!("cam.dof.aperture_blades = {}\n", case.blades)));
