@@ -19,8 +19,9 @@ use crate::{CameraError, sample_regular_polygon, sample_unit_disk_concentric};
 /// ```
 ///
 /// Angles are measured from `U` toward `V`. An out-of-focus point light is pictured as
-/// this shape (upside down and mirrored beyond the plane of focus, where the rays have
-/// crossed).
+/// this shape, in the image's own directions (`U` right, `V` up), when it lies beyond the
+/// plane of focus, and turned half a turn when it lies nearer (its rays cross at the
+/// point, before they reach the plane of focus).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Iris {
     /// `N`: the number of blades, 0 for a round aperture, else at least 3.
