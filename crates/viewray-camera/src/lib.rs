@@ -8,6 +8,11 @@
 //!   `lens`), [`Camera`] (a frame, a projection and an image size: [`Camera::generate_ray`]
 //!   and its block and differential forms, [`Camera::project`]; `camera`), the taxonomy
 //!   [`Preset`]s (`presets`) and the lens's sample points (`sampling`).
+//! - The thin lens's movements and iris: a tilted or swung lens's plane of focus, its
+//!   Scheimpflug and hinge lines ([`TiltedFocus`], [`Camera::focus_plane`]; `scheimpflug`)
+//!   and the aperture's blades ([`Iris`]; `iris`), with the ray through a chosen lens
+//!   point ([`Camera::generate_ray_at_lens`]).
+//! - The lecture's catalogue of mistakes ([`Mistake`], [`Mistakes`]; `mistakes`).
 //! - viewray's image limits: the largest image and the most samples per pixel, and the
 //!   one check of a size and a sample count against them ([`ImageLimits`],
 //!   [`ImageLimitError`]; `image_limits`), which scene files, the command line and the
@@ -20,11 +25,6 @@
 //! are rejected where a value is built ([`Frame::from_eye_view_up`], [`Camera::new`]),
 //! so a [`Camera`] that exists always produces finite rays, and [`Camera::project`]
 //! inverts [`Camera::generate_ray`] for every family.
-//!
-//! # Where to start reading
-//!
-//! `camera` (the pixel -> ray rule and its inverse), then `projection` (each family's
-//! formula, the table below) and `frame`.
 //!
 //! # Conventions
 //!
@@ -123,12 +123,12 @@
 //!
 //! # Where to start reading
 //!
-//! `projection` (the families and their camera-space rules) and `camera` (the pixel
-//! mapping, the frame transform, `project`); `frame` builds the basis, `lens` the
-//! fields of view and physical cameras, `presets` the taxonomy, `mistakes` the
-//! lecture's catalogue of wrong formulas. The lens: `sampling` maps lens samples to the
-//! unit disk or a polygon, `iris` is the aperture's shape, `scheimpflug` the tilted
-//! lens's plane of focus and rays.
+//! `camera` (the pixel -> ray rule and its inverse: the pixel mapping, the frame
+//! transform, `project`), then `projection` (each family's formula, the table above) and
+//! `frame`, which builds the basis; `lens` the fields of view and physical cameras,
+//! `presets` the taxonomy, `mistakes` the lecture's catalogue of wrong formulas. The
+//! lens: `sampling` maps lens samples to the unit disk or a polygon, `iris` is the
+//! aperture's shape, `scheimpflug` the tilted lens's plane of focus and rays.
 
 mod camera;
 mod error;
