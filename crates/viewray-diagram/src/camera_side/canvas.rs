@@ -18,6 +18,17 @@ pub enum SideViewCanvas {
     /// A square panel, 800 x 800, without a title: for a top view, whose window is as
     /// deep as it is wide, beside the side view (the live playground).
     Square,
+    /// A panel of the given size in pixels, without a title, for a box on a screen whose
+    /// shape is known (the live playground's views): the drawing fills it above a caption
+    /// as on [`SideViewCanvas::Panel`], whose margins and label sizes it keeps, so that a
+    /// box shown at a given height reads the same whatever its width. Ask for about 600
+    /// pixels tall, at least 300 by 300.
+    Fitted {
+        /// The width in pixels.
+        width: u32,
+        /// The height in pixels.
+        height: u32,
+    },
     /// A 16:9 panel beside an animation's picture, 1280 x 720, without a title, the
     /// drawing filling it: painted at the picture's height
     /// ([`render_scaled`](viewray_draw::raster::render_scaled)), every line and label
@@ -43,6 +54,7 @@ impl SideViewCanvas {
             SideViewCanvas::Slide => style::SLIDE,
             SideViewCanvas::Panel => (1000, 600),
             SideViewCanvas::Square => (800, 800),
+            SideViewCanvas::Fitted { width, height } => (width, height),
             SideViewCanvas::Beside => (1280, 720),
         }
     }
@@ -51,7 +63,7 @@ impl SideViewCanvas {
     pub(super) fn caption_left(self) -> f32 {
         match self {
             SideViewCanvas::Slide => 56.0,
-            SideViewCanvas::Panel | SideViewCanvas::Square => 24.0,
+            SideViewCanvas::Panel | SideViewCanvas::Square | SideViewCanvas::Fitted { .. } => 24.0,
             SideViewCanvas::Beside => 20.0,
         }
     }
@@ -82,6 +94,18 @@ impl SideViewCanvas {
                 caption_at: Vec2::new(left, 540.0 - extra(2)),
                 title: false,
             },
+            SideViewCanvas::Fitted { width, height } => {
+                let (width, height) = (width as f32, height as f32);
+                Layout {
+                    drawing: Rect::from_corners(
+                        Vec2::new(50.0, 50.0),
+                        // A long caption on a narrow panel leaves the drawing 100 tall.
+                        Vec2::new(width - 50.0, (height - 110.0 - extra(2)).max(150.0)),
+                    ),
+                    caption_at: Vec2::new(left, height - 60.0 - extra(2)),
+                    title: false,
+                }
+            }
             SideViewCanvas::Square => Layout {
                 drawing: Rect::from_corners(
                     Vec2::new(40.0, 40.0),

@@ -41,7 +41,9 @@ impl Caption {
                 all.extend(rest);
                 vec![all]
             }
-            SideViewCanvas::Panel | SideViewCanvas::Square => vec![parameters, more],
+            SideViewCanvas::Panel | SideViewCanvas::Square | SideViewCanvas::Fitted { .. } => {
+                vec![parameters, more]
+            }
             SideViewCanvas::Beside => {
                 let lens: Paragraph = parts.lens.iter().map(|p| (p.clone(), ",  ")).collect();
                 vec![parameters, lens]
@@ -67,7 +69,10 @@ impl Caption {
     pub(super) fn draw(&self, sketch: &mut Sketch, canvas: SideViewCanvas, at: Vec2) {
         let step = LINE_SPACING * style::SMALL_LABEL_SIZE;
         match canvas {
-            SideViewCanvas::Slide | SideViewCanvas::Panel | SideViewCanvas::Square => {
+            SideViewCanvas::Slide
+            | SideViewCanvas::Panel
+            | SideViewCanvas::Square
+            | SideViewCanvas::Fitted { .. } => {
                 let lines: Vec<(&str, _, f32)> = self
                     .lines
                     .iter()

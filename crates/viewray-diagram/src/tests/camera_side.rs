@@ -69,10 +69,18 @@ fn fitted(
     side_view(scene, camera, &window, canvas, pixel)
 }
 
-const CANVASES: [SideViewCanvas; 4] = [
+const CANVASES: [SideViewCanvas; 6] = [
     SideViewCanvas::Slide,
     SideViewCanvas::Panel,
     SideViewCanvas::Square,
+    SideViewCanvas::Fitted {
+        width: 1700,
+        height: 600,
+    },
+    SideViewCanvas::Fitted {
+        width: 600,
+        height: 600,
+    },
     SideViewCanvas::Beside,
 ];
 
@@ -594,4 +602,21 @@ fn the_top_view_is_the_plane_of_u_and_w_with_the_view_up_the_page() {
             }
         }
     }
+}
+
+#[test]
+fn a_fitted_panel_of_the_panels_size_is_the_panel() {
+    let scene = scene("default", SCENES[0].1);
+    let camera = *scene.camera();
+    let panel = fitted(&scene, &camera, Some((10, 20)), SideViewCanvas::Panel);
+    let sized = fitted(
+        &scene,
+        &camera,
+        Some((10, 20)),
+        SideViewCanvas::Fitted {
+            width: 1000,
+            height: 600,
+        },
+    );
+    assert_eq!(panel, sized);
 }
