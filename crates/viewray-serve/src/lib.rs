@@ -18,7 +18,9 @@
 //! | `/api/frame?camera` | the line of `viewray frame` |
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
 //! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
-//! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::side_view`]) |
+//! | `/api/diagram.svg?camera&width&height[&row&col][&view=top][&canvas=WxH]` | the camera's side view ([`viewray_diagram::side_view`]), or its top view, on a canvas of that size |
+//! | `/api/depth?camera&width&height` | `{"depth": D, "from": "hit"}`: how far along the view the scene lies at the picture's middle (what the centre ray hits, else the objects' middle; `null` if nothing is in front), for switching the projection kind |
+//! | `/api/slide.png?camera&width&height&samples&shading[&row&col][&top=1]` | a 1920 x 1080 slide: the render at the slide's size, the side view (and the top view), the frame's and the pixel's numbers |
 //! | `/api/scene` | the served scene's RON text |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, the command line's words, starting
@@ -34,9 +36,11 @@
 //! This crate owns the HTTP server and the page; it knows nothing of the command line.
 
 mod api;
+mod depth;
 mod http;
 mod page;
 mod params;
+mod slide;
 
 use std::path::Path;
 

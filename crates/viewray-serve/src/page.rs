@@ -1,5 +1,6 @@
-//! The page: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
-//! together once per served scene with the scene's starting state.
+//! The page: HTML, CSS and JavaScript written by hand (the script in four parts: `ron.js`,
+//! `live.js`, `page.js`, `presenter.js`), compiled into the binary, and put together once
+//! per served scene with the scene's starting state.
 
 use serde_json::json;
 use viewray_scene::{Scene, Shading};
@@ -8,7 +9,14 @@ use crate::Limits;
 
 const HTML: &str = include_str!("../page/index.html");
 const CSS: &str = include_str!("../page/page.css");
-const JS: &str = include_str!("../page/page.js");
+/// The page's script in its four parts, in the order they are put together: the RON
+/// reader, the state and requests, the controls, the presenter (which starts the page).
+const SCRIPTS: [&str; 4] = [
+    include_str!("../page/ron.js"),
+    include_str!("../page/live.js"),
+    include_str!("../page/page.js"),
+    include_str!("../page/presenter.js"),
+];
 
 /// The page for the scene called `name` whose camera is `camera_text`: the served
 /// scene's camera, size, samples and shading are the state a page without a URL
@@ -34,7 +42,7 @@ pub(crate) fn page(name: &str, camera_text: &str, scene: &Scene) -> String {
     // Inside <script>, "</" could end the element: JSON allows writing it "<\/".
     let state = state.to_string().replace("</", "<\\/");
     HTML.replace("/*STYLE*/", CSS)
-        .replace("/*SCRIPT*/", JS)
+        .replace("/*SCRIPT*/", &SCRIPTS.join("\n"))
         .replace("{/*STATE*/}", &state)
         .replace("<!--SCENE-->", &escape_html(name))
 }

@@ -6,6 +6,7 @@
 //! to the control that caused it.
 
 use glam::DVec3;
+use viewray_diagram::SideViewCanvas;
 use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, Shading};
 
 use crate::Limits;
@@ -128,12 +129,10 @@ pub(crate) fn size(
     ))
 }
 
-/// Samples per pixel from `samples` (default `default`), 1 to the limit, and at most
-/// `limits.max_frame_samples` for the whole `width x height` frame.
-pub(crate) fn samples(
+/// Samples per pixel from `samples` (default `default`), 1 to the limit.
+pub(crate) fn samples_per_pixel(
     query: &Query,
     default: u32,
-    (width, height): (u32, u32),
     limits: &Limits,
 ) -> Result<u32, BadRequest> {
     let max = limits.max_samples.min(MAX_SAMPLES);
@@ -146,10 +145,21 @@ pub(crate) fn samples(
         None => u64::from(default),
         Some(text) => text.trim().parse::<u64>().map_err(|_| wrong())?,
     };
-    let samples = u32::try_from(samples)
+    u32::try_from(samples)
         .ok()
         .filter(|s| (1..=max).contains(s))
-        .ok_or_else(wrong)?;
+        .ok_or_else(wrong)
+}
+
+/// Samples per pixel from `samples` (default `default`), 1 to the limit, and at most
+/// `limits.max_frame_samples` for the whole `width x height` frame.
+pub(crate) fn samples(
+    query: &Query,
+    default: u32,
+    (width, height): (u32, u32),
+    limits: &Limits,
+) -> Result<u32, BadRequest> {
+    let samples = samples_per_pixel(query, default, limits)?;
     let total = u64::from(width) * u64::from(height) * u64::from(samples);
     if total > limits.max_frame_samples {
         return Err(BadRequest(format!(
@@ -159,6 +169,34 @@ pub(crate) fn samples(
         )));
     }
     Ok(samples)
+}
+
+/// The smallest and largest side of a diagram's canvas, `canvas=WxH`, in pixels.
+const CANVAS_SIDES: (u32, u32) = (300, 4000);
+
+/// The canvas a diagram is drawn on when `canvas=WxH` is given: a panel of that size.
+pub(crate) fn canvas(query: &Query) -> Result<Option<SideViewCanvas>, BadRequest> {
+    let Some(text) = query.get("canvas") else {
+        return Ok(None);
+    };
+    let (low, high) = CANVAS_SIDES;
+    let wrong = || {
+        BadRequest(format!(
+            "canvas: expected WIDTHxHEIGHT in pixels, each from {low} to {high}, found `{text}`"
+        ))
+    };
+    let (width, height) = text.split_once('x').ok_or_else(wrong)?;
+    let side = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|side| (low..=high).contains(side))
+            .ok_or_else(wrong)
+    };
+    Ok(Some(SideViewCanvas::Fitted {
+        width: side(width)?,
+        height: side(height)?,
+    }))
 }
 
 /// The shading named by `shading`, or `default`.
@@ -298,6 +336,36 @@ mod tests {
             "samples: 2048 x 2048 at 1024 samples per pixel is too much for one frame: at \
              most 67108864 samples in all (pixels x samples)"
         );
+    }
+
+    #[test]
+    fn a_diagrams_canvas_is_a_bounded_size() {
+        let canvas_of = |text: &str| {
+            let query = Query::parse(text, &["canvas"], &[]).unwrap();
+            canvas(&query)
+        };
+        assert_eq!(canvas_of(""), Ok(None));
+        assert_eq!(
+            canvas_of("canvas=1700x600"),
+            Ok(Some(SideViewCanvas::Fitted {
+                width: 1700,
+                height: 600
+            }))
+        );
+        for bad in [
+            "canvas=1700",
+            "canvas=299x600",
+            "canvas=600x4001",
+            "canvas=axb",
+        ] {
+            assert!(
+                canvas_of(bad)
+                    .unwrap_err()
+                    .0
+                    .starts_with("canvas: expected WIDTHxHEIGHT in pixels, each from 300 to 4000"),
+                "{bad}"
+            );
+        }
     }
 
     #[test]
