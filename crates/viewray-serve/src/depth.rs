@@ -59,13 +59,13 @@ pub(crate) fn depth_json(depth: Option<(f64, &'static str)>) -> Value {
 mod tests {
     use std::path::Path;
 
-    use viewray_scene::{Scene, parse_camera};
+    use viewray_scene::{Scene, SceneLoader, parse_camera};
 
     use super::*;
 
     /// A unit sphere at `(0, 1, -3)` over the ground.
     fn scene() -> Scene {
-        Scene::parse(
+        SceneLoader::text(
             "(camera: (eye: (0.0, 1.0, 5.0), look_at: (0.0, 1.0, 0.0), \
              projection: Perspective(fov_y: 40.0)), \
              image: (width: 64, height: 36), \
@@ -74,7 +74,9 @@ mod tests {
                        Sphere(center: (0.0, 1.0, -3.0), radius: 1.0, material: \"grey\")])",
             Path::new("scene.ron"),
         )
+        .load()
         .unwrap()
+        .scene
     }
 
     fn camera(text: &str) -> Camera {

@@ -55,7 +55,10 @@ fn scene(name: &str, text: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/scenes")
         .join(format!("{name}.ron"));
-    Scene::parse(text, &path).unwrap_or_else(|e| panic!("{e}"))
+    viewray_scene::SceneLoader::text(text, &path)
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
 }
 
 /// The side view of `camera` in a window fitted to it alone.
@@ -225,7 +228,7 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
 
 /// A unit sphere at the origin, and nothing else.
 fn sphere_scene() -> Scene {
-    Scene::parse(
+    viewray_scene::SceneLoader::text(
         "(camera: (eye: (0.0, 0.0, 5.0), look_at: (0.0, 0.0, 0.0), \
          projection: Perspective(distance: 1.0, viewport: (1.0, 1.0))), \
          image: (width: 40, height: 40), \
@@ -233,6 +236,8 @@ fn sphere_scene() -> Scene {
          objects: [Sphere(center: (0.0, 0.0, 0.0), radius: 1.0, material: \"grey\")])",
         Path::new("sphere.ron"),
     )
+    .load()
+    .map(|loaded| loaded.scene)
     .unwrap()
 }
 
@@ -473,11 +478,13 @@ fn polygon_meets(rect: &Rect, points: &[Vec2]) -> bool {
 #[test]
 fn side_view_labels_keep_off_the_rays_and_the_objects() {
     let default = scene("default", SCENES[0].1);
-    let street = Scene::parse(
+    let street = viewray_scene::SceneLoader::text(
         include_str!("../../../viewray-animation/scenes/street.ron"),
         Path::new("street.ron"),
     )
-    .unwrap();
+    .load()
+    .unwrap()
+    .scene;
     let cases = [
         (
             &default,
