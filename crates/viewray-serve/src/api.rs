@@ -91,6 +91,10 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
             "text/html; charset=utf-8",
             served.page.as_bytes(),
         ))),
+        "/lecture" => Ok(Route::Now(Reply::ok(
+            "text/html; charset=utf-8",
+            served.lecture.as_bytes(),
+        ))),
         "/api/scene" => Ok(Route::Now(Reply::ok(
             "text/plain; charset=utf-8",
             served.text.as_bytes(),

@@ -34,6 +34,7 @@
 //! | path | reply |
 //! |---|---|
 //! | `/` | the page (HTML, CSS and JavaScript compiled in; the URL fragment holds its state) |
+//! | `/lecture` | the lecture as live steps, each with its render, views, controls and formulas (MathML, the command line's digits); the URL fragment names the step and the camera |
 //! | `/api/render?camera&width&height&samples&shading` | `image/png`: pixel for pixel what `viewray render` writes for the scene with that camera and settings |
 //! | `/api/frame?camera` | the line of `viewray frame` |
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
@@ -128,6 +129,8 @@ pub struct ServedScene {
     scene: Scene,
     /// The page, with the scene's starting state in it.
     page: String,
+    /// The lecture, with the scene's camera in it.
+    lecture: String,
 }
 
 impl ServedScene {
@@ -140,12 +143,14 @@ impl ServedScene {
         let scene = SceneLoader::text(&text, path).load()?.scene;
         let camera_text = viewray_scene::camera_text(&text, path)?.to_owned();
         let page = page::page(name, &camera_text, &scene);
+        let lecture = page::lecture(name, &camera_text);
         Ok(ServedScene {
             name: name.to_owned(),
             text,
             camera_text,
             scene,
             page,
+            lecture,
         })
     }
 

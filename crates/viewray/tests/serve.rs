@@ -100,6 +100,62 @@ fn the_first_line_is_the_url_on_loopback_and_the_page_is_served() {
 }
 
 #[test]
+fn the_lecture_is_served_whole_with_its_steps_in_the_lectures_order() {
+    let served = Served::start(BINARY, &[]);
+    let page = served.get("/lecture");
+    assert_eq!(page.status, 200);
+    assert_eq!(
+        page.header("content-type"),
+        Some("text/html; charset=utf-8")
+    );
+    let html = page.text();
+    for outside in [
+        "src=\"http",
+        "href=\"http",
+        "<script src",
+        "<link rel=\"stylesheet\"",
+        "cdn",
+    ] {
+        assert!(!html.contains(outside), "the lecture loads {outside}");
+    }
+    // Formulas are MathML, typeset by the browser: the script writes <math> elements.
+    assert!(html.contains("<math display=\"block\">"));
+    // The steps, in the lecture's order.
+    let order = [
+        "pseudocode",
+        "canonical",
+        "distance",
+        "viewport",
+        "eye",
+        "rotated",
+        "basis-${which}",
+        "thin-lens",
+        "taxonomy",
+        "parallel",
+        "shift",
+        "foreshortening",
+        "tilt-shift",
+    ];
+    let at: Vec<usize> = order
+        .iter()
+        .map(|id| {
+            html.find(&format!("id: \"{id}\""))
+                .or_else(|| html.find(&format!("id: `{id}`")))
+                .unwrap_or_else(|| panic!("no step {id}"))
+        })
+        .collect();
+    assert!(
+        at.windows(2).all(|w| w[0] < w[1]),
+        "steps out of order: {at:?}"
+    );
+    // The first step follows the served scene's camera.
+    let camera = camera_text(&default_text(), Path::new("x"))
+        .unwrap()
+        .to_owned();
+    assert!(html.contains(&serde_json::to_string(&camera).unwrap()));
+}
+
+#[test]
 fn renders_are_pixel_for_pixel_what_viewray_render_writes() {
     let dir = TempDir::new().unwrap();
     let served = Served::start(BINARY, &[]);
