@@ -142,8 +142,11 @@ const STEPS = [
       { key: "uz", label: "up z", min: -1, max: 1, step: 0.05, value: 0 },
     ],
     buttons: [
-      // Exactly the view (up need not be a unit vector), so that the camera is refused.
-      { label: "up along the view", apply: (p) => { [p.ux, p.uy, p.uz] = sub3(LOOK_AT, [p.ex, p.ey, p.ez]); } },
+      // The view itself (up need not be a unit vector), as the RON writes it: parallel to
+      // the server's look_at - eye well within its tolerance, so the camera is refused.
+      { label: "up along the view", apply: (p) => {
+        [p.ux, p.uy, p.uz] = sub3(LOOK_AT, [p.ex, p.ey, p.ez]).map((x) => Number(ronNumber(x)));
+      } },
       { label: "up = y", apply: (p) => { p.ux = 0; p.uy = 1; p.uz = 0; } },
     ],
     top: () => true,

@@ -81,6 +81,8 @@ function buildControls() {
   const p = paramsOf(step);
   const box = $("controls");
   box.replaceChildren();
+  // Many sliders (the basis's eye and up) stand in two columns, to leave room for the formulas.
+  box.classList.toggle("two", (step.controls || []).length > 4);
   for (const c of step.controls || []) {
     const label = document.createElement("label");
     label.append(c.label);
