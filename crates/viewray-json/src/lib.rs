@@ -1,6 +1,7 @@
-//! The JSON lines of `viewray frame`, `viewray rays` and `viewray project`: the numbers a
-//! student checks a homework answer against, formatted in one place so that the command
-//! line and the live playground (`viewray serve`) print the same digits.
+//! The JSON lines of `viewray frame`, `viewray rays`, `viewray project` and `viewray
+//! trace`: the numbers a student checks a homework answer against, formatted in one
+//! place so that the command line and the live playground (`viewray serve`) print the
+//! same digits.
 //!
 //! Numbers are printed as Rust prints an `f64` (the shortest text that reads back to the
 //! same number), with `-0` written `0`. Ray directions are not normalized: they are the
@@ -11,15 +12,25 @@
 //! frame:    {"e":[..],"u":[..],"v":[..],"w":[..]}
 //! rays:     {"row":R,"col":C,"u":U,"v":V,"origin":[..],"direction":[..]}
 //! project:  {"point":[..],"x":X,"y":Y,"row":R,"col":C}
+//! trace:    {"step":..,"bounce":B,..} per step, then {"row":R,"col":C,"linear":[..],"srgb8":[..]}
 //! ```
 //!
-//! This crate knows cameras and JSON, and nothing of the command line, files or HTTP.
+//! The trace's lines ([`trace_lines`], module `trace`) format viewray-render's
+//! [`PixelTrace`](viewray_render::PixelTrace), which is why this crate depends on the
+//! renderer's types.
+//!
+//! This crate knows cameras, the renderer's trace and JSON, and nothing of the command
+//! line, files or HTTP.
+
+mod trace;
 
 use std::io::Write;
 
 use glam::{DVec2, DVec3};
 use serde_json::{Map, Value, json};
 use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
+
+pub use crate::trace::{number_f32, trace_lines, vector_f32};
 
 /// A number for printing: `-0` becomes `0` (a student's answer never says minus zero),
 /// by viewray-output's one rule for it.
