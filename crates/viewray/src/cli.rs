@@ -12,7 +12,7 @@ use viewray_scene::{MAX_FPS, MAX_FRAMES, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_S
 
 /// The conventions, after the help of the commands that print numbers. Each line fits
 /// in 80 columns, so that clap does not rewrap it.
-const CONVENTIONS: &str = "\
+pub(crate) const CONVENTIONS: &str = "\
 Conventions (the lecture's, made exact; docs/cameras.md in the source explains
 them with worked examples):
 
@@ -129,6 +129,30 @@ pub(crate) enum Command {
     /// not visible (behind a perspective eye).
     #[command(verbatim_doc_comment)]
     Project(ProjectArgs),
+    /// Print one pixel's trace, step by step, with every number
+    ///
+    /// For the pixel (ROW,COL, or the lecture's I,J with --one-based):
+    ///
+    ///   generate a viewing ray for the pixel: u, v (or a panoramic camera's
+    ///     angles), each with its formula, and the ray's origin and direction;
+    ///   find the closest object it intersects: each object tested (hit at t, or
+    ///     miss), then the closest (object, t, point, normal);
+    ///   determine the colour of the object: the shading's terms, for Lit the
+    ///     ambient light, each light's diffuse and specular with its shadow ray
+    ///     (blocked or not), and a mirror's reflected ray traced the same way;
+    ///
+    /// then the linear colour and the 8-bit value `viewray render --samples 1`
+    /// writes for the pixel (always the same: the numbers are the renderer's own).
+    /// With --json, one JSON line per step,
+    ///
+    ///     {"step":"viewing-ray","bounce":0,"row":R,"col":C,..,"origin":[..],..}
+    ///     {"step":"test","bounce":0,"object":K,"shape":"Sphere","t":T}
+    ///     ...
+    ///
+    /// and last {"row":R,"col":C,"linear":[r,g,b],"srgb8":[r,g,b]} (with
+    /// --one-based, "i" and "j" instead of "row" and "col").
+    #[command(verbatim_doc_comment)]
+    Trace(crate::trace::TraceArgs),
     /// Judge renders against reference images, as an instructor would.
     ///
     /// EXPECTED and ACTUAL are two PNG files, or two folders: each *.png file of
@@ -678,7 +702,8 @@ pub(crate) fn report_usage_error(error: &clap::Error, args: &[OsString]) -> Exit
     // `viewray rays --eye ..`: the camera comes from the scene; clap's tip ("use '--
     // --eye'") would send a student the wrong way.
     if error.kind() == ErrorKind::UnknownArgument
-        && let (Some(command @ ("rays" | "project")), Some(arg)) = (command.as_deref(), invalid)
+        && let (Some(command @ ("rays" | "project" | "trace")), Some(arg)) =
+            (command.as_deref(), invalid)
         && let Some(option) = FRAME_OPTIONS.iter().find(|o| arg.starts_with(**o))
     {
         crate::style::error(format_args!(

@@ -25,6 +25,7 @@ mod output;
 mod render;
 mod serve;
 mod style;
+mod trace;
 
 use std::process::ExitCode;
 
@@ -60,6 +61,7 @@ fn main() -> ExitCode {
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
+        Command::Trace(args) => trace::trace(&args),
         Command::Compare(args) => return compare::run(&args),
         Command::Grade(args) => return grade::run(&args),
         Command::Figure(args) => figures::figure(&args),
