@@ -1,6 +1,6 @@
-//! The `viewray` command: render scenes, print camera frames, viewing rays and
-//! projections so students can check homework numbers, compare renders, and draw the
-//! lecture's figures.
+//! The `viewray` command: render scenes, print camera frames, viewing rays, projections
+//! and one pixel's trace so students can check homework numbers, compare renders, and
+//! draw the lecture's figures.
 //!
 //! Output meant for programs (and for checking by hand) is JSON lines on stdout. Errors
 //! are one line, `error: ...`, on stderr. The conventions the numbers follow (pixel

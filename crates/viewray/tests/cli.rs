@@ -570,8 +570,9 @@ fn colour_only_on_request_and_never_with_no_color() {
     );
 }
 
-/// Every `$ viewray frame|rays|project ...` example in the user docs prints exactly what
-/// the docs show under it, so the docs cannot drift from the program.
+/// Every `$ viewray frame|rays|project|trace ...` example in the user docs prints exactly
+/// what the docs show under it (blank lines aside), so the docs cannot drift from the
+/// program.
 #[test]
 fn the_documented_examples_print_what_the_docs_show() {
     for doc in ["docs/cameras.md", "README.md"] {
@@ -592,12 +593,17 @@ fn the_documented_examples_print_what_the_docs_show() {
                     }
                 }
                 let args: Vec<&str> = command.split_whitespace().collect();
-                if !["frame", "rays", "project"].contains(&args[0]) {
+                if !["frame", "rays", "project", "trace"].contains(&args[0]) {
                     continue;
                 }
                 let out = support::viewray_in(&repository(), &args);
                 assert!(out.status.success(), "{doc}: viewray {command}");
-                let stdout = String::from_utf8(out.stdout).unwrap();
+                let stdout: String = String::from_utf8(out.stdout)
+                    .unwrap()
+                    .lines()
+                    .filter(|line| !line.is_empty())
+                    .map(|line| format!("{line}\n"))
+                    .collect();
                 assert_eq!(stdout, expected, "{doc}: viewray {command}");
                 checked += 1;
             }
