@@ -23,7 +23,8 @@ fuzz_target!(|bytes: &[u8]| {
                 objects: Vec::new(),
                 ..document
             };
-            if let Err(error) = viewray_scene::Scene::parse(&camera_only.to_ron(), path) {
+            if let Err(error) = viewray_scene::SceneLoader::text(&camera_only.to_ron(), path).load()
+            {
                 let message = error.to_string();
                 assert!(!message.contains('\n'), "error is not one line: {message}");
             }

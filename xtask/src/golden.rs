@@ -21,10 +21,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use viewray_compare::{Comparison, Report, ReportEntry, RgbaImage, Rules, Thresholds};
+use viewray_compare::{Comparison, Outcome, Report, ReportEntry, RgbaImage, Rules, Thresholds};
 use viewray_output::Compression;
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::LoadOptions;
 
 /// The command line of `cargo xtask golden`.
 #[derive(Debug, Default, clap::Args)]
@@ -363,7 +363,10 @@ fn check(case: &Case) -> Verdict {
 fn make(case: &Case) -> Result<Made> {
     match &case.source {
         Source::Scene(path, options) => {
-            let scene = Scene::load_with(path, *options)?;
+            let scene = viewray_scene::SceneLoader::file(path)
+                .options(*options)
+                .load()?
+                .scene;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
             Ok(Made {
@@ -414,7 +417,8 @@ pub fn write_failure_report(
     failures: &[(String, Verdict)],
     summary: &str,
 ) -> Result<PathBuf> {
-    let entries: Vec<ReportEntry<'_>> = failures
+    // Each failure's images and outcome, then the entries that show them.
+    let shown: Vec<(&str, Option<&RgbaImage>, Option<&RgbaImage>, Outcome)> = failures
         .iter()
         .filter_map(|(id, verdict)| match verdict {
             Verdict::Failed {
@@ -422,25 +426,29 @@ pub fn write_failure_report(
                 expected,
                 comparison: Some(comparison),
                 ..
-            } => Some(ReportEntry::compared(
-                id,
-                expected.as_ref()?,
-                &made.as_ref()?.pixels,
-                comparison,
+            } => Some((
+                id.as_str(),
+                Some(expected.as_ref()?),
+                Some(&made.as_ref()?.pixels),
+                Outcome::from(comparison.clone()),
             )),
             Verdict::Failed {
                 made,
                 expected,
                 reason,
                 ..
-            } => Some(ReportEntry::error(
-                id,
-                reason,
+            } => Some((
+                id.as_str(),
                 expected.as_ref(),
                 made.as_ref().map(|m| &m.pixels),
+                Outcome::Error(reason.clone()),
             )),
             _ => None,
         })
+        .collect();
+    let entries: Vec<ReportEntry<'_>> = shown
+        .iter()
+        .map(|(id, expected, made, outcome)| ReportEntry::new(id, *expected, *made, outcome))
         .collect();
     let dir = crate::target_dir(root)?.join("golden");
     // A report shows this run only: clear the images a previous run left.

@@ -68,7 +68,7 @@ pub fn icosphere(root: &Path, args: &IcosphereArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use viewray_scene::Scene;
+    use viewray_scene::SceneLoader;
 
     /// The scene and the mesh as `obj_text` writes it load back: the same triangles, the
     /// benchmark's camera.
@@ -82,7 +82,10 @@ mod tests {
         )
         .expect("an OBJ");
         std::fs::write(dir.path().join("icosphere.ron"), SCENE).expect("a scene");
-        let scene = Scene::load(&dir.path().join("icosphere.ron")).expect("a valid scene");
+        let scene = SceneLoader::file(&dir.path().join("icosphere.ron"))
+            .load()
+            .expect("a valid scene")
+            .scene;
         assert_eq!(scene.world().triangle_count(), 320);
         assert_eq!(scene.world().triangle_count(), mesh.triangles.len());
         assert_eq!(

@@ -1,6 +1,7 @@
 //! viewray's automation, written in Rust so it runs wherever cargo does: the golden check,
 //! the lecture figures, the benchmark's icosphere scene, the interop check against the
-//! real tools, the live playground driven in headless Chromium, and mutation testing.
+//! real tools, the live playground driven in headless Chromium, mutation testing, and
+//! the wheel for `pip install viewray`.
 //!
 //! `main.rs` is the `cargo xtask` command (an alias in `.cargo/config.toml`); the golden
 //! check is also the `golden` test target (`tests/golden.rs`), so plain `cargo test` runs
@@ -13,6 +14,7 @@ pub mod golden;
 pub mod icosphere;
 pub mod interop;
 pub mod mutants;
+pub mod wheel;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -43,6 +45,27 @@ pub fn workspace_root() -> PathBuf {
 /// The cargo this xtask was started by (`$CARGO`), or the one on the path.
 pub fn cargo() -> String {
     std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned())
+}
+
+/// Runs `command`, echoing it as a shell would show it, and fails unless it succeeds;
+/// the error says `what` it was for and the command.
+///
+/// # Errors
+/// When the command cannot start or exits unsuccessfully.
+pub fn run(command: &mut Command, what: &str) -> Result<()> {
+    let shown = std::iter::once(command.get_program())
+        .chain(command.get_args())
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ");
+    eprintln!("$ {shown}");
+    let status = command
+        .status()
+        .with_context(|| format!("could not {what}: cannot run `{shown}`"))?;
+    if !status.success() {
+        bail!("could not {what}: `{shown}` failed ({status})");
+    }
+    Ok(())
 }
 
 /// Where cargo puts the workspace's build outputs: `cargo metadata`'s

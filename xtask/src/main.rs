@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{browser, figures, golden, icosphere, interop, mutants, workspace_root};
+use xtask::{browser, figures, golden, icosphere, interop, mutants, wheel, workspace_root};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -19,9 +19,10 @@ struct Cli {
 enum Task {
     /// Every check CI runs: cargo fmt --check, cargo clippy (warnings are errors), cargo
     /// test (the golden check included, as the `golden` test target), the camera crate's
-    /// mutants in lines changed since main (`mutants --in-diff`), the live
-    /// playground in headless Chromium (`browser`), then the interop check against the
-    /// real tools.
+    /// mutants in lines changed since main (`mutants --in-diff`), the wheel and its
+    /// Python tests when what it is built from changed since main (`wheel --test
+    /// --in-diff`), the live playground in headless Chromium (`browser`), then the
+    /// interop check against the real tools.
     Ci,
     /// Render every scene in fixtures/scenes (and the default scene), every lecture
     /// figure and the first, middle and last frames of every built-in animation, and
@@ -48,6 +49,12 @@ enum Task {
     /// that crate's own tests, one job at a time, and print the mutants no test caught.
     /// Installs cargo-mutants from crates.io when missing. Output in mutants/ in the target directory.
     Mutants(mutants::MutantsArgs),
+    /// Build the wheel for `pip install viewray` (the Python module and the `viewray`
+    /// command, manylinux2014) with maturin into wheels/ in the target directory, and
+    /// check it with auditwheel; --test installs it into a fresh virtual environment
+    /// and runs the module's Python tests. Installs maturin, ziglang and auditwheel from
+    /// PyPI into the target directory (python/tools).
+    Wheel(wheel::WheelArgs),
 }
 
 fn main() -> ExitCode {
@@ -65,6 +72,7 @@ fn main() -> ExitCode {
         Some(Task::Interop(args)) => interop::interop(&root, &args),
         Some(Task::Browser(args)) => browser::browser(&root, &args),
         Some(Task::Mutants(args)) => mutants::mutants(&root, &args),
+        Some(Task::Wheel(args)) => wheel::wheel(&root, &args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -102,6 +110,18 @@ fn ci() -> Result<()> {
             krate: "viewray-camera".to_owned(),
             in_diff: true,
             ..mutants::MutantsArgs::default()
+        },
+    )?;
+    // The wheel takes minutes to build from nothing (two release builds linked by zig:
+    // 12 minutes on two shared cores, 7 of processor time), as CI's fresh target
+    // directory always does, so CI builds and tests it only when what it is built from
+    // changed (the module's crates, Cargo.toml, Cargo.lock, the fixtures).
+    eprintln!("$ cargo xtask wheel --test --in-diff");
+    wheel::wheel(
+        &workspace_root(),
+        &wheel::WheelArgs {
+            test: true,
+            in_diff: true,
         },
     )?;
     eprintln!("$ cargo xtask browser");
@@ -155,6 +175,7 @@ mod tests {
             "interop",
             "browser",
             "mutants",
+            "wheel",
         ] {
             assert!(
                 help.contains(&format!("\n  {command} ")),
@@ -179,6 +200,14 @@ mod tests {
             panic!("icosphere");
         };
         assert_eq!(icosphere.out, None);
+        let Some(Task::Wheel(w)) = parse(&["wheel", "--test", "--in-diff"]).unwrap().command else {
+            panic!("wheel");
+        };
+        assert!(w.test && w.in_diff);
+        let Some(Task::Wheel(w)) = parse(&["wheel"]).unwrap().command else {
+            panic!("wheel");
+        };
+        assert!(!w.test && !w.in_diff);
         let Some(Task::Mutants(m)) = parse(&["mutants"]).unwrap().command else {
             panic!("mutants");
         };

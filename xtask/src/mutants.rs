@@ -192,7 +192,7 @@ fn diff_since_base(root: &Path, krate: &str) -> Result<Option<String>> {
 /// or, where that is the current commit itself (CI's clone of `main`), its first parent:
 /// the `main` before the change landed. `None` where there is none to be had: a clone of
 /// that one commit alone.
-fn base_commit(root: &Path) -> Result<Option<String>> {
+pub(crate) fn base_commit(root: &Path) -> Result<Option<String>> {
     let head = git(root, &["rev-parse", "HEAD"])?.trim().to_owned();
     let merge_base = ["main", "origin/main"]
         .into_iter()
@@ -275,7 +275,7 @@ fn percent(part: usize, whole: usize) -> String {
 }
 
 /// Runs git in `root` and returns its standard output.
-fn git(root: &Path, args: &[&str]) -> Result<String> {
+pub(crate) fn git(root: &Path, args: &[&str]) -> Result<String> {
     let output = Command::new("git")
         .args(args)
         .current_dir(root)

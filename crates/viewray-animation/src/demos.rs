@@ -64,7 +64,10 @@ impl Demo {
     /// size or sample count.
     pub fn scene(&self, options: LoadOptions) -> Result<Scene, SceneError> {
         let (name, text) = self.scene;
-        Scene::parse_with(text, Path::new(name), options)
+        viewray_scene::SceneLoader::text(text, Path::new(name))
+            .options(options)
+            .load()
+            .map(|loaded| loaded.scene)
     }
 
     /// The time of frame `frame` of `frames`: eased, and for a looping demo spread over

@@ -104,8 +104,10 @@ const KEYED: &str = "(
 
 #[test]
 fn linear_frame_k_of_n_is_the_camera_at_k_over_n_minus_1() {
-    let (scene, animation) =
-        Scene::parse_animated(KEYED, Path::new("keyed.ron"), LoadOptions::default()).unwrap();
+    let (scene, animation) = viewray_scene::SceneLoader::text(KEYED, Path::new("keyed.ron"))
+        .load()
+        .map(|loaded| (loaded.scene, loaded.animation))
+        .unwrap();
     let movie =
         Movie::from_animation(scene, &animation.unwrap(), MovieSettings::default()).unwrap();
     assert_eq!(movie.frames(), 5);

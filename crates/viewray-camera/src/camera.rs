@@ -5,6 +5,7 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
+use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Mistake, Mistakes, Projection, sample_unit_disk_concentric};
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
@@ -88,7 +89,7 @@ impl Camera {
     /// A camera with the given pose, projection and image size.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero, and the projection's
+    /// [`CameraError::Image`] if `width` or `height` is zero, and the projection's
     /// first invalid parameter (see [`Projection::validate`]).
     pub fn new(
         frame: Frame,
@@ -96,9 +97,7 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Result<Self, CameraError> {
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         projection.validate()?;
         Ok(Self::from_parts(
             frame,
@@ -118,14 +117,16 @@ impl Camera {
         mistakes: Mistakes,
     ) -> Self {
         let pinhole = match projection {
-            Projection::Perspective(p) if !mistakes.moves_pixels() => Some(Pinhole {
-                origin: if mistakes.contains(Mistake::EyeMissing) {
-                    frame.world_from_camera_vector(DVec3::ZERO)
-                } else {
-                    frame.world_from_camera_point(DVec3::ZERO)
-                },
-                depth: p.direction(DVec2::ZERO).z * frame.w(),
-            }),
+            Projection::Perspective(p) if !mistakes.moves_pixels() && !mistakes.skips_basis() => {
+                Some(Pinhole {
+                    origin: if mistakes.contains(Mistake::EyeMissing) {
+                        frame.world_from_camera_vector(DVec3::ZERO)
+                    } else {
+                        frame.world_from_camera_point(DVec3::ZERO)
+                    },
+                    depth: p.direction(DVec2::ZERO).z * frame.w(),
+                })
+            }
             _ => None,
         };
         Self {
@@ -190,7 +191,7 @@ impl Camera {
     /// 1 x 1 viewport, with a `width x height` image.
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn canonical(width: u32, height: u32) -> Result<Self, CameraError> {
         Self::new(
             Frame::CANONICAL,
@@ -203,11 +204,9 @@ impl Camera {
     /// The same camera making an image of another size (the projection is unchanged).
     ///
     /// # Errors
-    /// [`CameraError::EmptyImage`] if `width` or `height` is zero.
+    /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         if self.mistakes.contains(Mistake::SizeMinusOne) && (width < 2 || height < 2) {
             return Err(CameraError::MistakeDoesNotFit {
                 id: Mistake::SizeMinusOne.id(),
@@ -260,6 +259,17 @@ impl Camera {
     pub fn generate_ray(&self, row: u32, col: u32, sample: CameraSample) -> Option<DRay> {
         let image = DVec2::new(f64::from(col), f64::from(row)) + sample.p_film;
         self.generate_ray_through(image, sample.p_lens)
+    }
+
+    /// The image-plane point `(u, v)` of pixel `(row, col)` at the offset `p_film` in it
+    /// ([`pixel_to_image_plane`] with this camera's size and viewport, after the pixel
+    /// mistakes of a mistaken camera); `None` for the panoramic cameras, which have no
+    /// image plane.
+    pub fn image_plane_point(&self, row: u32, col: u32, p_film: DVec2) -> Option<DVec2> {
+        let viewport = self.projection.viewport()?;
+        let image = DVec2::new(f64::from(col), f64::from(row)) + p_film;
+        let image = self.mistakes.image_point(image, self.size());
+        Some(image_to_image_plane(image, self.size(), viewport))
     }
 
     /// The viewing ray through the continuous image point `image = (x, y)` (`x` from the
@@ -343,6 +353,15 @@ impl Camera {
         let mut ray = self.projection.camera_space_ray(image, self.size(), lens)?;
         if self.mistakes.contains(Mistake::OrthoOriginFixed) {
             ray.origin = DVec3::ZERO;
+        }
+        if self.mistakes.skips_basis() {
+            // The camera's coordinates taken as the world's, from e (or 0).
+            let e = if self.mistakes.contains(Mistake::EyeMissing) {
+                DVec3::ZERO
+            } else {
+                self.frame.e()
+            };
+            return Some(DRay::new(e + ray.origin, ray.direction));
         }
         let origin = if self.mistakes.contains(Mistake::EyeMissing) {
             // The student's origin: 0 + u U + v V, without e.

@@ -1,5 +1,7 @@
 //! The one error type of the camera crate.
 
+use crate::ImageLimitError;
+
 /// Why a frame, projection or camera could not be built.
 ///
 /// Cameras are validated where they are built, so every [`crate::Camera`] that exists
@@ -41,14 +43,9 @@ pub enum CameraError {
         /// The offending value.
         value: f64,
     },
-    /// The image has no pixels.
-    #[error("the image must be at least 1 x 1 pixels, found {width} x {height}")]
-    EmptyImage {
-        /// Columns.
-        width: u32,
-        /// Rows.
-        height: u32,
-    },
+    /// The image has no pixels ([`ImageLimitError::Empty`]).
+    #[error(transparent)]
+    Image(#[from] ImageLimitError),
     /// A catalogue mistake that cannot be made in this camera (see
     /// [`crate::Mistake::fits`]; `size-minus-one` also needs two pixels each way).
     #[error("the mistake {id} cannot be made in a {family} camera{detail}")]

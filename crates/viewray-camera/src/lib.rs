@@ -1,9 +1,30 @@
 //! The lecture's cameras, made exact: camera frames, every projection family, the
 //! pixel -> viewing ray rule and its inverse, point -> pixel.
 //!
+//! # What it owns
+//!
+//! - [`Frame`] (`e`, `u`, `v`, `w` from eye, view and up; `frame`), the [`Projection`]
+//!   families and their parameters (`projection`; fields of view and physical lenses in
+//!   `lens`), [`Camera`] (a frame, a projection and an image size: [`Camera::generate_ray`]
+//!   and its block and differential forms, [`Camera::project`]; `camera`), the taxonomy
+//!   [`Preset`]s (`presets`) and the lens's sample points (`sampling`).
+//! - viewray's image limits: the largest image and the most samples per pixel, and the
+//!   one check of a size and a sample count against them ([`ImageLimits`],
+//!   [`ImageLimitError`]; `image_limits`), which scene files, the command line and the
+//!   live playground call.
+//! - The conventions below, written once for every crate.
+//!
+//! # Invariant
+//!
 //! This crate is pure: it does no I/O and never panics on user input. Invalid parameters
 //! are rejected where a value is built ([`Frame::from_eye_view_up`], [`Camera::new`]),
-//! so a [`Camera`] that exists always produces finite rays.
+//! so a [`Camera`] that exists always produces finite rays, and [`Camera::project`]
+//! inverts [`Camera::generate_ray`] for every family.
+//!
+//! # Where to start reading
+//!
+//! `camera` (the pixel -> ray rule and its inverse), then `projection` (each family's
+//! formula, the table below) and `frame`.
 //!
 //! # Conventions
 //!
@@ -87,6 +108,7 @@
 mod camera;
 mod error;
 mod frame;
+mod image_limits;
 mod lens;
 mod mistakes;
 mod presets;
@@ -97,6 +119,9 @@ pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
 pub use error::CameraError;
 pub use frame::Frame;
+pub use image_limits::{
+    ImageLimitError, ImageLimits, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
+};
 pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use mistakes::{Entry, Mistake, Mistakes};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};

@@ -21,7 +21,8 @@
 //!            and viewport-swapped
 //! ray     =  the family's rule with d, (sx, sy), L, phi after the projection mistakes
 //! world   =  origin and direction through (e; U, V, W) after the basis mistakes, the
-//!            origin without e after eye-missing
+//!            origin without e after eye-missing, the camera's coordinates taken as the
+//!            world's after basis-missing
 //! ```
 
 use std::fmt;
@@ -402,6 +403,12 @@ impl Mistakes {
         })
     }
 
+    /// Whether the rays leave out the basis (`basis-missing`): the camera's coordinates
+    /// are taken as the world's.
+    pub(crate) fn skips_basis(self) -> bool {
+        self.contains(Mistake::BasisMissing)
+    }
+
     /// The continuous image point whose correct `(u, v)` the student's formula gives at
     /// `image = (x, y)`, for an image of `size = (W, H)`: the pixel entries in the order
     /// of the module's doc.
@@ -506,13 +513,10 @@ impl Mistakes {
     /// The frame `(e; U, V, W)` the student's basis amounts to, from the right frame
     /// and the `up` vector as given; the right basis itself, to the bit, when no basis
     /// entry is in the set.
-    /// `eye-missing` is not a basis entry: the student's frame keeps `e = eye` (Problem
-    /// 2 done right) and only the rays leave it out.
+    /// `eye-missing` and `basis-missing` are not basis entries: the student's frame is
+    /// Problem 2 done right, and only the rays leave out `e` or the basis.
     pub(crate) fn frame(self, right: [DVec3; 4], up: DVec3) -> [DVec3; 4] {
         let [e, right_u, right_v, w] = right;
-        if self.contains(Mistake::BasisMissing) {
-            return [e, DVec3::X, DVec3::Y, DVec3::Z];
-        }
         let rebuilt = [
             Mistake::WView,
             Mistake::UCrossOrder,

@@ -20,6 +20,7 @@ use std::f64::consts::FRAC_PI_4;
 
 use glam::{DVec2, DVec3};
 
+use crate::image_limits::check_not_empty;
 use crate::projection::check_positive;
 use crate::{Camera, CameraError, Frame, Oblique, Orthographic, Perspective, Projection};
 
@@ -158,7 +159,7 @@ impl Preset {
     /// # Errors
     /// [`CameraError::NotPositive`] unless `size` is positive and finite,
     /// [`CameraError::NotFinite`] for a non-finite target or angle, and
-    /// [`CameraError::EmptyImage`] for a zero image size.
+    /// [`CameraError::Image`] for a zero image size.
     pub fn camera(
         &self,
         target: DVec3,
@@ -168,9 +169,7 @@ impl Preset {
     ) -> Result<Camera, CameraError> {
         crate::frame::check_finite_vector("target", target)?;
         check_positive("size", size)?;
-        if width == 0 || height == 0 {
-            return Err(CameraError::EmptyImage { width, height });
-        }
+        check_not_empty(u64::from(width), u64::from(height))?;
         let aspect = f64::from(width) / f64::from(height);
         let viewport = DVec2::new(aspect * size, size);
         let parallel_distance = PARALLEL_EYE_DISTANCE * size;

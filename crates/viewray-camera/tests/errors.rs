@@ -4,7 +4,8 @@
 use std::f64::consts::PI;
 
 use glam::{DVec2, DVec3};
-use viewray_camera::CameraError::{self, EmptyImage, NotFinite, NotPositive, OutOfRange};
+use viewray_camera::CameraError::{self, Image, NotFinite, NotPositive, OutOfRange};
+use viewray_camera::ImageLimitError::Empty;
 use viewray_camera::{
     Camera, Fisheye, Frame, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens,
 };
@@ -198,17 +199,17 @@ fn image_size_and_eye() {
     let new = |frame, width, height| Camera::new(frame, projection, width, height);
     assert_eq!(
         new(Frame::CANONICAL, 0, 3),
-        Err(EmptyImage {
+        Err(Image(Empty {
             width: 0,
             height: 3
-        })
+        }))
     );
     assert_eq!(
         new(Frame::CANONICAL, 4, 0),
-        Err(EmptyImage {
+        Err(Image(Empty {
             width: 4,
             height: 0
-        })
+        }))
     );
     // A frame is finite where it is made, so no camera has a NaN eye.
     assert_eq!(
@@ -232,16 +233,16 @@ fn image_size_and_eye() {
     assert_eq!(*resized.projection(), projection);
     assert_eq!(
         camera.with_image_size(8, 0),
-        Err(EmptyImage {
+        Err(Image(Empty {
             width: 8,
             height: 0
-        })
+        }))
     );
     assert_eq!(
         Camera::canonical(0, 0),
-        Err(EmptyImage {
+        Err(Image(Empty {
             width: 0,
             height: 0
-        })
+        }))
     );
 }

@@ -292,10 +292,12 @@ fn a_mistaken_camera_reports_its_mistaken_frame_and_projection() {
     assert_eq!(mistaken.project(p), None);
     // No mistake: the same camera.
     assert_eq!(camera.with_mistakes(Mistakes::NONE).unwrap(), camera);
-    // eye-missing leaves the rays' origin without e, not the frame: a student's
-    // Problem 2 answer keeps e = eye.
+    // eye-missing and basis-missing leave e or the basis out of the rays, not out of
+    // the frame: a student's Problem 2 answer is right.
     let no_eye = camera.with_mistakes(Mistake::EyeMissing.into()).unwrap();
     assert_eq!(no_eye.frame(), camera.frame());
+    let no_basis = camera.with_mistakes(Mistake::BasisMissing.into()).unwrap();
+    assert_eq!(no_basis.frame(), camera.frame());
 }
 
 #[test]
@@ -491,4 +493,73 @@ proptest! {
             assert_eq!(block, camera.generate_ray(r, c, sample));
         });
     }
+}
+
+/// `(u, v)` of a pixel, as the lecture computes it, at any film offset; a pixel entry
+/// moves it as the student's formula does; the panoramic cameras have none.
+#[test]
+fn the_image_plane_point_is_the_lectures_u_v() {
+    let camera = right_camera(Family::Perspective);
+    let uv = camera
+        .image_plane_point(2, 5, DVec2::new(0.25, 0.75))
+        .unwrap();
+    let expected = DVec2::new(
+        ((5.25) / 8.0 - 0.5) * VIEWPORT.x,
+        -((2.75) / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    assert!((uv - expected).length() < 1e-15, "{uv} != {expected}");
+    let corner = camera.with_mistakes(Mistake::PixelCorner.into()).unwrap();
+    let uv = corner
+        .image_plane_point(2, 5, CameraSample::CENTER.p_film)
+        .unwrap();
+    let expected = DVec2::new(
+        (5.0 / 8.0 - 0.5) * VIEWPORT.x,
+        -(2.0 / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    assert!((uv - expected).length() < 1e-15, "{uv} != {expected}");
+    let fisheye = Camera::new(
+        Frame::CANONICAL,
+        Projection::Fisheye(viewray_camera::Fisheye { fov: PI }),
+        4,
+        4,
+    )
+    .unwrap();
+    assert_eq!(fisheye.image_plane_point(1, 1, DVec2::splat(0.5)), None);
+}
+
+/// `basis-missing` in the parallel families: the camera's coordinates taken as the
+/// world's, so a ray starts at e + (u, v, 0) and runs along (0, 0, -1) (or the oblique
+/// slant in world axes).
+#[test]
+fn basis_missing_takes_the_parallel_cameras_coordinates_as_the_worlds() {
+    let (row, col) = (1, 6);
+    let (u, v) = (
+        ((6.5) / 8.0 - 0.5) * VIEWPORT.x,
+        -((1.5) / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    let ortho = right_camera(Family::Orthographic)
+        .with_mistakes(Mistake::BasisMissing.into())
+        .unwrap();
+    let ray = ortho.generate_ray(row, col, CameraSample::CENTER).unwrap();
+    assert_close(ray.origin, EYE + DVec3::new(u, v, 0.0), "ortho origin");
+    assert_close(ray.direction, DVec3::NEG_Z, "ortho direction");
+    let oblique = right_camera(Family::Oblique)
+        .with_mistakes(Mistake::BasisMissing.into())
+        .unwrap();
+    let ray = oblique
+        .generate_ray(row, col, CameraSample::CENTER)
+        .unwrap();
+    assert_close(ray.origin, EYE + DVec3::new(u, v, 0.0), "oblique origin");
+    let slant = DVec3::new(-RATIO * ANGLE.cos(), -RATIO * ANGLE.sin(), -1.0);
+    assert_close(ray.direction, slant, "oblique direction");
+    // And without the eye too: 0 + (u, v, 0).
+    let both: Mistakes = [Mistake::BasisMissing, Mistake::EyeMissing]
+        .into_iter()
+        .collect();
+    let ray = right_camera(Family::Orthographic)
+        .with_mistakes(both)
+        .unwrap()
+        .generate_ray(row, col, CameraSample::CENTER)
+        .unwrap();
+    assert_close(ray.origin, DVec3::new(u, v, 0.0), "no eye, no basis");
 }

@@ -369,14 +369,18 @@ fn preset_names_taxonomy_and_errors() {
         assert_eq!(preset.taxonomy(), path, "{name}");
     }
 
-    use viewray_camera::CameraError::{EmptyImage, NotFinite, NotPositive};
+    use viewray_camera::CameraError::{Image, NotFinite, NotPositive};
+    use viewray_camera::ImageLimitError::Empty;
     let target = DVec3::ZERO;
     for preset in Preset::ALL {
         // A zero side is an empty image, whichever side and whatever the family.
         for (width, height) in [(0, 300), (400, 0), (0, 0)] {
             assert_eq!(
                 preset.camera(target, 1.0, width, height),
-                Err(EmptyImage { width, height }),
+                Err(Image(Empty {
+                    width: u64::from(width),
+                    height: u64::from(height)
+                })),
                 "{}",
                 preset.name()
             );

@@ -7,6 +7,7 @@ use image::{RgbImage, RgbaImage};
 
 use crate::diagnosis::Diagnosis;
 use crate::flip::ErrorMap;
+use crate::outcome::Verdict;
 
 /// Which rules judged a comparison.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -146,9 +147,14 @@ impl Comparison {
         self.failures.is_empty()
     }
 
-    /// `PASS` or `FAIL`.
+    /// `PASS` or `FAIL` ([`Verdict::label`]).
     pub fn verdict(&self) -> &'static str {
-        if self.passed() { "PASS" } else { "FAIL" }
+        let verdict = if self.passed() {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        };
+        verdict.label()
     }
 
     /// The FLIP error map in the magma colour map (black: no difference; pale yellow: the

@@ -28,6 +28,9 @@
 use std::sync::OnceLock;
 
 use image::RgbImage;
+use viewray_output::srgb_to_linear;
+
+use crate::magma::magma;
 
 /// A per-pixel FLIP error map: values in [0, 1], 0 where a viewer sees no difference.
 #[derive(Clone, Debug)]
@@ -187,20 +190,14 @@ fn max_distance() -> f32 {
     hyab(lab_hunt([0.0, 1.0, 0.0]), lab_hunt([0.0, 0.0, 1.0])).powf(GQC)
 }
 
-/// The 8-bit sRGB code as FLIP reads it, `code / 255`, in linear light
-/// (`color3::sRGB2LinearRGB`), for every code.
+/// The 8-bit sRGB code as FLIP reads it, `code / 255`, in linear light, for every code.
+///
+/// FLIP's `color3::sRGB2LinearRGB` is viewray-output's [`srgb_to_linear`] operation for
+/// operation in `f32` (the same breakpoint, constants and `powf`), so the table is the
+/// same bit for bit as NVIDIA's code computes it.
 fn srgb8_to_linear_table() -> &'static [f32; 256] {
     static TABLE: OnceLock<[f32; 256]> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        std::array::from_fn(|code| {
-            let s = code as f32 / 255.0;
-            if s <= 0.040_45 {
-                s / 12.92
-            } else {
-                ((s + 0.055) / 1.055).powf(2.4)
-            }
-        })
-    })
+    TABLE.get_or_init(|| std::array::from_fn(|code| srgb_to_linear(code as f32 / 255.0)))
 }
 
 /// FLIP's separable filters at its default viewing condition.
@@ -544,13 +541,12 @@ impl ErrorMap {
         peak as f32
     }
 
-    /// The error map through FLIP's magma colour map: black where nothing differs, through
-    /// purple and orange to pale yellow at the largest error.
+    /// The error map through FLIP's magma colour map ([`magma`]): black where nothing
+    /// differs, through purple and orange to pale yellow at the largest error.
     pub(crate) fn heatmap(&self) -> RgbImage {
         let (w, h) = (self.width as u32, self.height as u32);
-        let map = nv_flip::FlipImageFloat::with_data(w, h, &self.values);
-        let colored = map.apply_color_lut(&nv_flip::magma_lut());
-        RgbImage::from_raw(w, h, colored.to_vec()).expect("the colour map keeps the image size")
+        let colored = self.values.iter().flat_map(|&v| magma(v)).collect();
+        RgbImage::from_raw(w, h, colored).expect("the colour map keeps the image size")
     }
 }
 

@@ -26,23 +26,32 @@
 //!   prepared once (its blur, its half of FLIP, its image pyramid) to judge a class of
 //!   renders against, with the same result as [`judge_with`], bit for bit.
 //!
+//! What became of a pair, compared or not and whose failure that is, is an [`Outcome`]
+//! with its [`Verdict`]; a [`Tally`] counts many. The golden check, `viewray compare` and
+//! `viewray grade` speak of pairs in these words, and their HTML pages share one skeleton
+//! ([`report_page`], [`verdict_badge`]). FLIP is NVIDIA's reference code ported bit for bit
+//! (module `flip`, its heatmap colours in `magma`); the transform behind a diagnosis is
+//! estimated in module `estimate` (start at its `estimate_search`).
+//!
 //! Images follow the camera crate's pixel convention: W columns by H rows, 0-based from
 //! the top-left, pixel (row, col) covering [col, col + 1) x [row, row + 1); x runs right
 //! and y down, so a diagnosis's move (-0.5, -0.5) is left and up.
 //!
 //! ```no_run
-//! use viewray_compare::{Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report};
+//! use viewray_compare::{
+//!     Outcome, Report, ReportEntry, Rules, Thresholds, compare, load_png, write_report,
+//! };
 //!
 //! let expected = load_png("golden/scenes/perspective.png")?;
 //! let actual = load_png("target/golden/perspective.png")?;
-//! let comparison = compare(&expected, &actual, &Thresholds::GOLDEN);
-//! if !comparison.passed() {
-//!     eprintln!("perspective: {}", comparison.reasons());
+//! let outcome = Outcome::from(compare(&expected, &actual, &Thresholds::GOLDEN));
+//! if !outcome.passed() {
+//!     eprintln!("perspective: {}", outcome.note());
 //! }
-//! let entry = ReportEntry::compared("perspective", &expected, &actual, &comparison);
+//! let entry = ReportEntry::new("perspective", Some(&expected), Some(&actual), &outcome);
 //! let report = Report {
 //!     title: "perspective against its golden image",
-//!     summary: comparison.verdict(),
+//!     summary: outcome.verdict().label(),
 //!     rules: Rules::Golden(Thresholds::GOLDEN),
 //!     entries: &[entry],
 //! };
@@ -59,6 +68,9 @@ mod geometry;
 mod golden;
 mod instructor;
 mod load;
+mod magma;
+mod outcome;
+mod page;
 mod raster;
 mod report;
 
@@ -75,7 +87,9 @@ pub use geometry::{
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{LoadError, load_png};
-pub use report::{Outcome, Report, ReportEntry, Rules, Verdict, unique_stem, write_report};
+pub use outcome::{Outcome, Tally, Verdict};
+pub use page::{report_page, verdict_badge};
+pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 
 /// Decodes PNG bytes as [`load_png`] decodes a file's: the entry point of the PNG fuzz
 /// target.

@@ -9,12 +9,14 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
-use maud::{DOCTYPE, Markup, PreEscaped, html};
+use maud::{Markup, html};
 use viewray_output::{Compression, encode_png, write_atomically};
 
 use crate::comparison::{Comparison, Metrics};
 use crate::golden::Thresholds;
 use crate::instructor::InstructorThresholds;
+use crate::outcome::{Outcome, Verdict};
+use crate::page::{report_page, verdict_badge};
 
 /// A report: what it is about, what the terminal said, the rules, and the pairs.
 #[derive(Clone, Copy, Debug)]
@@ -50,97 +52,28 @@ pub struct ReportEntry<'a> {
     /// The actual image, if it could be read.
     pub actual: Option<&'a RgbaImage>,
     /// What became of the pair.
-    pub outcome: Outcome<'a>,
-}
-
-/// What became of one pair of images.
-#[derive(Clone, Copy, Debug)]
-pub enum Outcome<'a> {
-    /// The images were compared.
-    Compared(&'a Comparison),
-    /// They could not be compared (a missing file, a PNG that does not decode): the
-    /// message says why. The golden check's word for a reference it lacks.
-    Error(&'a str),
-    /// The actual image could not be compared because it is missing or cannot be read
-    /// (the message says which): the student's failure, as `viewray compare` judges
-    /// folders.
-    Failed(&'a str),
-}
-
-/// A pair's verdict, in the words the terminal prints: `PASS`, `FAIL` or `ERROR`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Verdict {
-    /// Compared, and judged the same picture.
-    Pass,
-    /// Judged different, or the actual image is missing or unreadable.
-    Fail,
-    /// Not compared, and no one's failure: the golden check lacks a reference.
-    Error,
-}
-
-impl Verdict {
-    /// `PASS`, `FAIL` or `ERROR`.
-    pub fn label(self) -> &'static str {
-        match self {
-            Verdict::Pass => "PASS",
-            Verdict::Fail => "FAIL",
-            Verdict::Error => "ERROR",
-        }
-    }
-
-    /// `pass`, `fail` or `error`: the page's CSS class, and the JSON lines' word.
-    pub fn word(self) -> &'static str {
-        match self {
-            Verdict::Pass => "pass",
-            Verdict::Fail => "fail",
-            Verdict::Error => "error",
-        }
-    }
+    pub outcome: &'a Outcome,
 }
 
 impl<'a> ReportEntry<'a> {
-    /// An entry for a pair that was compared.
-    pub fn compared(
+    /// An entry for the pair `name`, with whichever images were read.
+    pub fn new(
         name: &'a str,
-        expected: &'a RgbaImage,
-        actual: &'a RgbaImage,
-        comparison: &'a Comparison,
-    ) -> Self {
-        Self {
-            name,
-            expected: Some(expected),
-            actual: Some(actual),
-            outcome: Outcome::Compared(comparison),
-        }
-    }
-
-    /// An entry for a pair that could not be compared, with whichever images were read.
-    pub fn error(
-        name: &'a str,
-        message: &'a str,
         expected: Option<&'a RgbaImage>,
         actual: Option<&'a RgbaImage>,
+        outcome: &'a Outcome,
     ) -> Self {
         Self {
             name,
             expected,
             actual,
-            outcome: Outcome::Error(message),
+            outcome,
         }
     }
 
-    /// The verdict: [`Verdict::Error`] for a pair that could not be compared.
-    pub fn verdict(&self) -> Verdict {
-        match self.outcome {
-            Outcome::Compared(c) if c.passed() => Verdict::Pass,
-            Outcome::Compared(_) | Outcome::Failed(_) => Verdict::Fail,
-            Outcome::Error(_) => Verdict::Error,
-        }
-    }
-
-    /// Whether this entry passed (an error never does).
-    pub fn passed(&self) -> bool {
-        self.verdict() == Verdict::Pass
+    /// The pair's verdict.
+    fn verdict(&self) -> Verdict {
+        self.outcome.verdict()
     }
 }
 
@@ -187,7 +120,7 @@ pub fn write_report(directory: impl AsRef<Path>, report: &Report<'_>) -> io::Res
                 actual.width(),
             )?;
         }
-        if let Outcome::Compared(comparison) = entry.outcome
+        if let Some(comparison) = entry.outcome.comparison()
             && let Some(heatmap) = comparison.heatmap()
         {
             let png = encode_png(&heatmap, Compression::Balanced)?;
@@ -285,35 +218,26 @@ fn page(report: &Report<'_>, sections: &[Section<'_>]) -> Markup {
             .filter(|s| s.entry.verdict() == verdict)
             .collect()
     };
-    html! {
-        (DOCTYPE)
-        html lang="en" {
-            head {
-                meta charset="utf-8";
-                title { (report.title) }
-                style { (PreEscaped(STYLE)) }
-            }
-            body {
-                h1 { (report.title) }
-                p.summary { (report.summary) }
-                @for verdict in [Verdict::Fail, Verdict::Error] {
-                    @let names = listed(verdict);
-                    @if !names.is_empty() {
-                        p.index {
-                            span class={ "verdict " (verdict.word()) } { (verdict.label()) }
-                            @for section in names {
-                                " " a href={ "#" (section.stem) } { (section.entry.name) }
-                            }
-                        }
+    let body = html! {
+        h1 { (report.title) }
+        p.summary { (report.summary) }
+        @for verdict in [Verdict::Fail, Verdict::Error] {
+            @let names = listed(verdict);
+            @if !names.is_empty() {
+                p.index {
+                    (verdict_badge(verdict))
+                    @for section in names {
+                        " " a href={ "#" (section.stem) } { (section.entry.name) }
                     }
-                }
-                (rules(report.rules))
-                @for section in sections {
-                    (entry_section(section, report.rules))
                 }
             }
         }
-    }
+        (rules(report.rules))
+        @for section in sections {
+            (entry_section(section, report.rules))
+        }
+    };
+    report_page(report.title, STYLE, body)
 }
 
 /// How the pairs were judged: the verdicts, the rule, and what each figure means.
@@ -322,14 +246,14 @@ fn rules(rules: Rules) -> Markup {
         section.rules {
             h2 { "How to read this page" }
             dl {
-                dt { span.verdict.pass { "PASS" } }
+                dt { (verdict_badge(Verdict::Pass)) }
                 dd { (match rules {
                     Rules::Instructor(_) => "The render shows the reference's picture: \
                         antialiasing and the sample count are not errors.",
                     Rules::Golden(_) => "The image matches its golden image up to \
                         last-bit floating-point noise.",
                 }) }
-                dt { span.verdict.fail { "FAIL" } }
+                dt { (verdict_badge(Verdict::Fail)) }
                 dd { (match rules {
                     Rules::Instructor(_) => "Judged different, or the render is missing, \
                         unreadable or not a PNG: the reasons are under the image.",
@@ -337,7 +261,7 @@ fn rules(rules: Rules) -> Markup {
                         under the image.",
                 }) }
                 @if let Rules::Golden(_) = rules {
-                    dt { span.verdict.error { "ERROR" } }
+                    dt { (verdict_badge(Verdict::Error)) }
                     dd { "Not compared: no golden image yet, an unreadable one, or an image \
                         that could not be made." }
                 }
@@ -510,7 +434,7 @@ fn entry_section(section: &Section<'_>, rules: Rules) -> Markup {
     html! {
         section id=(section.stem) class={ "entry " (verdict.word()) } {
             h2 {
-                span class={ "verdict " (verdict.word()) } { (verdict.label()) }
+                (verdict_badge(verdict))
                 " " (entry.name)
             }
             table.figures {
@@ -567,19 +491,16 @@ fn figure_html(picture: &Picture, rules: Rules) -> Markup {
     }
 }
 
+/// The report's own style, after the common one ([`report_page`]).
 const STYLE: &str = "
-body { font-family: system-ui, sans-serif; margin: 2em; color: #222; background: #fafafa; max-width: 90em; }
+body { margin: 2em; max-width: 90em; }
 h1 { font-size: 1.5em; }
 h2 { font-size: 1.15em; margin: 0 0 0.5em; }
-.summary { font-size: 1.1em; font-weight: bold; }
-section { background: #fff; border: 1px solid #ddd; padding: 1em; margin: 1em 0; }
+.summary { font-size: 1.1em; }
+section { padding: 1em; }
 section.entry { border-left: 6px solid #2a2; }
 section.entry.fail { border-left-color: #c22; }
 section.entry.error { border-left-color: #888; }
-.verdict { display: inline-block; padding: 0 0.4em; border-radius: 3px; color: #fff; font-weight: bold; font-size: 0.9em; }
-.verdict.pass { background: #2a2; }
-.verdict.fail { background: #c22; }
-.verdict.error { background: #777; }
 .rules dl { display: grid; grid-template-columns: max-content auto; gap: 0.3em 1em; margin: 0.5em 0; }
 .rules dt { font-weight: bold; }
 .rules dd { margin: 0; }
@@ -589,10 +510,9 @@ section.entry.error { border-left-color: #888; }
 .figures tr.misses td.value { color: #c22; font-weight: bold; }
 .figures tr.meets td.value { color: #185; }
 .figures tr.why td, .figures tr.error td { font-weight: bold; }
-.images { display: flex; flex-wrap: wrap; gap: 1em; margin-top: 0.8em; }
-figure { margin: 0; }
-figure img { image-rendering: pixelated; border: 1px solid #ccc; display: block; }
-figcaption { color: #666; font-size: 0.9em; text-align: center; }
+.images { gap: 1em; margin-top: 0.8em; }
+figure img { image-rendering: pixelated; }
+figcaption { font-size: 0.9em; }
 .ramp { display: inline-block; width: 8em; height: 0.8em; vertical-align: middle;
   background: linear-gradient(to right, #000004, #3b0f70, #8c2981, #de4968, #fe9f6d, #fcfdbf); }
 ";

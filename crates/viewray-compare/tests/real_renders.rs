@@ -9,7 +9,7 @@ use image::RgbaImage;
 use viewray_camera::{Camera, Perspective, Projection};
 use viewray_compare::{InstructorThresholds, judge};
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 const W: u32 = 160;
 const H: u32 = 120;
@@ -22,7 +22,11 @@ fn render(samples: u32, edit: impl Fn(&mut Perspective)) -> RgbaImage {
         size: Some((W, H)),
         samples: Some(samples),
     };
-    let scene = Scene::load_with(&path, options).unwrap();
+    let scene = SceneLoader::file(&path)
+        .options(options)
+        .load()
+        .unwrap()
+        .scene;
     let Projection::Perspective(mut perspective) = *scene.camera().projection() else {
         panic!("the fixture is a perspective camera");
     };

@@ -47,17 +47,23 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         Pattern::Center,
     );
     let thresholds = InstructorThresholds::default();
-    let passed = judge(&reference, &correct, &thresholds);
-    let failed = judge(&reference, &mirrored, &thresholds);
+    let passed = Outcome::from(judge(&reference, &correct, &thresholds));
+    let failed = Outcome::from(judge(&reference, &mirrored, &thresholds));
     assert!(passed.passed() && !failed.passed());
+    let missing = Outcome::Failed("missing".to_owned());
     let entries = [
-        ReportEntry::compared("correct.png", &reference, &correct, &passed),
-        ReportEntry::compared("mirrored <x>.png", &reference, &mirrored, &failed),
+        ReportEntry::new("correct.png", Some(&reference), Some(&correct), &passed),
+        ReportEntry::new(
+            "mirrored <x>.png",
+            Some(&reference),
+            Some(&mirrored),
+            &failed,
+        ),
         ReportEntry {
             name: "lonely.png",
             expected: Some(&reference),
             actual: None,
-            outcome: Outcome::Failed("missing"),
+            outcome: &missing,
         },
     ];
     let dir = tempfile::tempdir().unwrap();
@@ -198,12 +204,12 @@ fn the_report_shows_each_pair_with_its_figures_verdict_and_diagnosis() {
         "{correct_rows:?}"
     );
     let mirrored_rows = rows(&sections[1]);
-    let peak_misses = failed.metrics.unwrap().peak_flip > thresholds.max_peak_flip;
+    let peak_misses = failed.peak_flip().unwrap() > thresholds.max_peak_flip;
     assert_eq!(
         mirrored_rows[0],
         (
             "peak FLIP".to_owned(),
-            format!("{:.3}", failed.metrics.unwrap().peak_flip),
+            format!("{:.3}", failed.peak_flip().unwrap()),
             if peak_misses { "misses" } else { "meets" }.to_owned()
         )
     );
@@ -283,13 +289,13 @@ fn a_golden_report_holds_each_figure_against_the_golden_gates() {
         },
         Pattern::Grid(4),
     );
-    let comparison = compare(&reference, &moved, &Thresholds::GOLDEN);
-    assert!(!comparison.passed());
-    let entries = [ReportEntry::compared(
+    let outcome = Outcome::from(compare(&reference, &moved, &Thresholds::GOLDEN));
+    assert!(!outcome.passed());
+    let entries = [ReportEntry::new(
         "scenes/moved",
-        &reference,
-        &moved,
-        &comparison,
+        Some(&reference),
+        Some(&moved),
+        &outcome,
     )];
     let dir = tempfile::tempdir().unwrap();
     let report = Report {

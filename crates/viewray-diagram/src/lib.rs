@@ -254,11 +254,11 @@ pub fn all_figures() -> Vec<NamedFigure> {
 ///
 /// ```
 /// use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-/// # let scene = viewray_scene::Scene::parse(
+/// # let scene = viewray_scene::SceneLoader::text(
 /// #     "(camera: (eye: (0.0, 1.0, 5.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), \
 /// #      projection: Perspective(fov_y: 40.0)))",
 /// #     std::path::Path::new("scene.ron"),
-/// # ).unwrap();
+/// # ).load().unwrap().scene;
 /// let camera = scene.camera();
 /// let window = SideWindow::fit(&scene, std::slice::from_ref(camera));
 /// let figure = side_view(&scene, camera, &window, SideViewCanvas::Slide, Some((10, 20)));

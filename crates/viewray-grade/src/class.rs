@@ -4,10 +4,10 @@
 use std::io;
 
 use image::imageops::FilterType;
-use viewray_compare::{Reference, RgbImage, RgbaImage};
+use viewray_compare::{Comparison, Outcome, Reference, RgbImage, RgbaImage};
 
 use crate::folders::{ReferenceImage, Student, pair};
-use crate::outcome::{Outcome, in_order, judge_counterpart};
+use crate::judging::{in_order, judge_counterpart};
 
 /// The largest thumbnail of a report, in pixels: images are shrunk to fit, never grown.
 pub const THUMBNAIL: (u32, u32) = (240, 180);
@@ -121,10 +121,11 @@ pub fn grade_student(assignment: &Assignment, student: &Student, pictures: bool)
                 judge_counterpart(&task.reference, counterpart, &task.image.name);
             let pictures = (pictures && !outcome.passed()).then(|| Pictures {
                 actual: actual.as_ref().map(thumbnail),
-                heatmap: match &outcome {
-                    Outcome::Judged(c) => c.heatmap().as_ref().map(thumbnail),
-                    Outcome::Failed(_) => None,
-                },
+                heatmap: outcome
+                    .comparison()
+                    .and_then(Comparison::heatmap)
+                    .as_ref()
+                    .map(thumbnail),
             });
             ImageGrade {
                 outcome: outcome.without_error_map(),

@@ -5,9 +5,9 @@
 //!
 //! - [`reference_images`] and [`pair`]: a folder of reference images paired with a folder
 //!   of renders as `diff -r` pairs two trees, by exact file name. What the render's side
-//!   lacks or cannot read is the render's failure ([`Counterpart`], [`Outcome::Failed`]);
-//!   what it has besides is listed; the reference side's problems are bad input
-//!   ([`FolderError`]).
+//!   lacks or cannot read is the render's failure ([`Counterpart`],
+//!   [`viewray_compare::Outcome::Failed`]); what it has besides is listed; the reference
+//!   side's problems are bad input ([`FolderError`]).
 //! - [`submissions`], [`grade_class`]: one folder per student, each judged against the
 //!   [`Assignment`]'s references (prepared once: [`viewray_compare::Reference`]),
 //!   students in parallel (rayon), results handed on in the students' order.
@@ -23,7 +23,7 @@
 mod class;
 mod folders;
 mod gradebook;
-mod outcome;
+mod judging;
 mod report;
 
 pub use class::{
@@ -35,5 +35,5 @@ pub use folders::{
     reference_images, submissions,
 };
 pub use gradebook::{HEADER, gradebook, write_gradebook};
-pub use outcome::{Outcome, in_order, judge_counterpart, load_counterpart, unreadable};
+pub use judging::{in_order, judge_counterpart, load_counterpart, unreadable};
 pub use report::{ClassReport, write_class_report};

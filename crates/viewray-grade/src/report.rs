@@ -8,8 +8,8 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Pixel};
-use maud::{DOCTYPE, Markup, PreEscaped, html};
-use viewray_compare::{Verdict, unique_stem};
+use maud::{Markup, html};
+use viewray_compare::{Verdict, report_page, unique_stem, verdict_badge};
 use viewray_output::{Compression, encode_png, write_atomically};
 
 use crate::class::{Assignment, ClassSummary, StudentGrade, thumbnail};
@@ -132,71 +132,61 @@ fn class_page(
 ) -> Markup {
     let names: Vec<&str> = report.assignment.names().collect();
     let hardest = report.tally.hardest().map(|h| h.name.as_str());
-    html! {
-        (DOCTYPE)
-        html lang="en" {
-            head {
-                meta charset="utf-8";
-                title { (report.title) }
-                style { (PreEscaped(STYLE)) }
-            }
-            body {
-                h1 { (report.title) }
-                @for line in report.summary {
-                    p.summary { (line) }
-                }
-                p.legend {
-                    span.cell.pass { "✓" } " passed  "
-                    span.cell.fail { "✗" } " failed (hover for the diagnosis, click for the \
-                        student's page)  · " (report.rule)
-                }
-                table.grid {
-                    thead {
-                        tr {
-                            th.student { "student" }
-                            th.count { "passed" }
-                            @for (name, stem) in names.iter().zip(image_stems) {
-                                th.image title=(name) {
-                                    a href={ "reference/" (stem) ".png" } {
-                                        span.label { (stem) }
-                                    }
-                                }
-                            }
-                        }
-                        tr.rates {
-                            th.student { "passed by" }
-                            td.count {}
-                            @for tally in &report.tally.images {
-                                td class={ "rate" @if Some(tally.name.as_str()) == hardest { " hardest" } }
-                                    title={ (tally.name) ": passed by " (tally.passed) " of " (tally.total) } {
-                                    (tally.percent()) "%"
-                                }
+    let body = html! {
+        h1 { (report.title) }
+        @for line in report.summary {
+            p.summary { (line) }
+        }
+        p.legend {
+            span.cell.pass { "✓" } " passed  "
+            span.cell.fail { "✗" } " failed (hover for the diagnosis, click for the \
+                student's page)  · " (report.rule)
+        }
+        table.grid {
+            thead {
+                tr {
+                    th.student { "student" }
+                    th.count { "passed" }
+                    @for (name, stem) in names.iter().zip(image_stems) {
+                        th.image title=(name) {
+                            a href={ "reference/" (stem) ".png" } {
+                                span.label { (stem) }
                             }
                         }
                     }
-                    tbody {
-                        @for index in failures_first(report.grades) {
-                            @let grade = &report.grades[index];
-                            @let page = format!("students/{}.html", student_stems[index]);
-                            @let all = grade.passed_everything();
-                            tr class=(if all { "pass" } else { "fail" }) {
-                                th.student { a href=(page) { (grade.name) } }
-                                td.count { (grade.passed()) "/" (grade.images.len()) }
-                                @for ((image, name), stem) in grade.images.iter().zip(&names).zip(image_stems) {
-                                    @let verdict = image.outcome.verdict();
-                                    @let note = image.outcome.note();
-                                    @let hover = if note.is_empty() {
-                                        format!("{name}: {}", verdict.label())
-                                    } else {
-                                        format!("{name}: {}: {note}", verdict.label())
-                                    };
-                                    td class={ "cell " (verdict_class(verdict)) } title=(hover) {
-                                        @if verdict == Verdict::Pass {
-                                            "✓"
-                                        } @else {
-                                            a href={ (page) "#" (stem) } { "✗" }
-                                        }
-                                    }
+                }
+                tr.rates {
+                    th.student { "passed by" }
+                    td.count {}
+                    @for tally in &report.tally.images {
+                        td class={ "rate" @if Some(tally.name.as_str()) == hardest { " hardest" } }
+                            title={ (tally.name) ": passed by " (tally.passed) " of " (tally.total) } {
+                            (tally.percent()) "%"
+                        }
+                    }
+                }
+            }
+            tbody {
+                @for index in failures_first(report.grades) {
+                    @let grade = &report.grades[index];
+                    @let page = format!("students/{}.html", student_stems[index]);
+                    @let all = grade.passed_everything();
+                    tr class=(if all { "pass" } else { "fail" }) {
+                        th.student { a href=(page) { (grade.name) } }
+                        td.count { (grade.passed()) "/" (grade.images.len()) }
+                        @for ((image, name), stem) in grade.images.iter().zip(&names).zip(image_stems) {
+                            @let verdict = image.outcome.verdict();
+                            @let note = image.outcome.note();
+                            @let hover = if note.is_empty() {
+                                format!("{name}: {}", verdict.label())
+                            } else {
+                                format!("{name}: {}: {note}", verdict.label())
+                            };
+                            td class={ "cell " (verdict_class(verdict)) } title=(hover) {
+                                @if verdict == Verdict::Pass {
+                                    "✓"
+                                } @else {
+                                    a href={ (page) "#" (stem) } { "✗" }
                                 }
                             }
                         }
@@ -204,7 +194,8 @@ fn class_page(
                 }
             }
         }
-    }
+    };
+    report_page(report.title, STYLE, body)
 }
 
 /// The page of one student.
@@ -221,64 +212,56 @@ fn student_page(
         .filter(|(_, i)| i.outcome.passed())
         .map(|(n, _)| *n)
         .collect();
-    html! {
-        (DOCTYPE)
-        html lang="en" {
-            head {
-                meta charset="utf-8";
-                title { (grade.name) " - " (report.title) }
-                style { (PreEscaped(STYLE)) }
-            }
-            body {
-                p.back { a href="../index.html" { "← the class" } }
-                h1 { (grade.name) }
-                p.summary { (grade.passed()) " of " (grade.images.len()) " images passed" }
-                @for (((image, name), stem), written) in grade.images.iter().zip(&names).zip(image_stems).zip(pictures) {
-                    @if !image.outcome.passed() {
-                        section.failure id=(stem) {
-                            h2 { span.verdict.fail { "FAIL" } " " (name) }
-                            p.diagnosis { (image.outcome.note()) }
-                            @if let Some(peak) = image.outcome.peak_flip() {
-                                p.figures { "peak FLIP " (format!("{peak:.3}")) }
+    let body = html! {
+        p.back { a href="../index.html" { "← the class" } }
+        h1 { (grade.name) }
+        p.summary { (grade.passed()) " of " (grade.images.len()) " images passed" }
+        @for (((image, name), stem), written) in grade.images.iter().zip(&names).zip(image_stems).zip(pictures) {
+            @if !image.outcome.passed() {
+                section.failure id=(stem) {
+                    h2 { (verdict_badge(Verdict::Fail)) " " (name) }
+                    p.diagnosis { (image.outcome.note()) }
+                    @if let Some(peak) = image.outcome.peak_flip() {
+                        p.figures { "peak FLIP " (format!("{peak:.3}")) }
+                    }
+                    div.images {
+                        figure.expected {
+                            img src={ "../reference/" (stem) ".png" } alt={ "expected " (name) };
+                            figcaption { "expected" }
+                        }
+                        @if let Some(file) = &written.actual {
+                            figure.actual {
+                                img src=(file) alt={ "actual " (name) };
+                                figcaption { "actual" }
                             }
-                            div.images {
-                                figure.expected {
-                                    img src={ "../reference/" (stem) ".png" } alt={ "expected " (name) };
-                                    figcaption { "expected" }
-                                }
-                                @if let Some(file) = &written.actual {
-                                    figure.actual {
-                                        img src=(file) alt={ "actual " (name) };
-                                        figcaption { "actual" }
-                                    }
-                                }
-                                @if let Some(file) = &written.heatmap {
-                                    figure.difference {
-                                        img src=(file) alt={ "FLIP heatmap of " (name) };
-                                        figcaption { "FLIP heatmap" }
-                                    }
-                                }
+                        }
+                        @if let Some(file) = &written.heatmap {
+                            figure.difference {
+                                img src=(file) alt={ "FLIP heatmap of " (name) };
+                                figcaption { "FLIP heatmap" }
                             }
                         }
                     }
                 }
-                @if !passed.is_empty() {
-                    p.passed { span.verdict.pass { "PASS" } " " (passed.join(", ")) }
-                }
-                @if !grade.extra.is_empty() {
-                    p.extra { "not judged, only in the student's folder: " (crate::folders::listed(&grade.extra)) }
-                }
             }
         }
-    }
+        @if !passed.is_empty() {
+            p.passed { (verdict_badge(Verdict::Pass)) " " (passed.join(", ")) }
+        }
+        @if !grade.extra.is_empty() {
+            p.extra { "not judged, only in the student's folder: " (crate::folders::listed(&grade.extra)) }
+        }
+    };
+    let title = format!("{} - {}", grade.name, report.title);
+    report_page(&title, STYLE, body)
 }
 
-/// The pages' style sheet.
+/// The pages' own style, after the common one ([`report_page`]).
 const STYLE: &str = "
-body { font-family: system-ui, sans-serif; margin: 1.5em 2em; color: #222; background: #fafafa; }
+body { margin: 1.5em 2em; }
 h1 { font-size: 1.4em; margin: 0.3em 0; }
 h2 { font-size: 1.1em; margin: 0 0 0.4em; }
-.summary { font-weight: bold; margin: 0.2em 0; }
+.summary { margin: 0.2em 0; }
 .legend { color: #555; margin: 0.8em 0; white-space: pre-wrap; }
 a { color: inherit; }
 table.grid { border-collapse: collapse; font-size: 0.9em; }
@@ -300,14 +283,10 @@ span.cell { display: inline-block; height: 1.3em; line-height: 1.3em; }
 .grid tr.rates th.student { text-align: left; }
 .grid thead th { font-weight: normal; color: #555; }
 .grid td.rate.hardest { color: #c22; font-weight: bold; }
-section { background: #fff; border: 1px solid #ddd; border-left: 6px solid #c22; padding: 0.8em 1em; margin: 1em 0; }
-.verdict { display: inline-block; padding: 0 0.4em; border-radius: 3px; color: #fff; font-weight: bold; font-size: 0.9em; }
-.verdict.pass { background: #2a2; }
-.verdict.fail { background: #c22; }
+section { border-left: 6px solid #c22; padding: 0.8em 1em; }
 .diagnosis { font-weight: bold; margin: 0.3em 0; }
 .figures { color: #555; margin: 0.3em 0; }
-.images { display: flex; flex-wrap: wrap; gap: 0.8em; margin-top: 0.5em; }
-figure { margin: 0; }
-figure img { border: 1px solid #ccc; display: block; max-width: 240px; max-height: 180px; }
-figcaption { color: #666; font-size: 0.85em; text-align: center; }
+.images { gap: 0.8em; margin-top: 0.5em; }
+figure img { max-width: 240px; max-height: 180px; }
+figcaption { font-size: 0.85em; }
 ";

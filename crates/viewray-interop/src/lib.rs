@@ -40,7 +40,7 @@ pub mod three;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use viewray_scene::{Scene, SceneDocument};
+use viewray_scene::{FileKind, Scene, SceneDocument};
 
 /// A tool viewray exchanges scenes with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -96,43 +96,23 @@ impl Format {
         Format::ALL.into_iter().find(|f| f.name() == name)
     }
 
-    /// The format of a file to import, from its extension (`.xml`, `.pbrt`, `.json`,
-    /// `.gltf`, `.glb`) or, failing that, its first bytes.
+    /// The format of a file to import, as viewray-scene's recogniser tells its kind from
+    /// its first bytes and its name ([`FileKind::recognise`]); `None` for a file that is
+    /// no tool's scene (a viewray scene, a mesh, an image) or of a kind viewray does not
+    /// know.
     pub fn detect(path: &Path, bytes: &[u8]) -> Option<Format> {
-        let extension = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match extension.as_deref() {
-            Some("xml") => return Some(Format::Mitsuba),
-            Some("pbrt") => return Some(Format::Pbrt),
-            Some("gltf" | "glb") => return Some(Format::Gltf),
-            Some("json") => {
-                return Some(if gltf::looks_like_gltf(bytes) {
-                    Format::Gltf
-                } else {
-                    Format::Three
-                });
-            }
-            _ => {}
-        }
-        if bytes.starts_with(b"glTF") {
-            return Some(Format::Gltf);
-        }
-        let text = std::str::from_utf8(bytes).ok()?;
-        let start = text.trim_start_matches('\u{feff}').trim_start();
-        if start.starts_with('<') {
-            Some(Format::Mitsuba)
-        } else if start.starts_with('{') {
-            Some(if gltf::looks_like_gltf(bytes) {
-                Format::Gltf
-            } else {
-                Format::Three
-            })
-        } else if pbrt::looks_like_pbrt(start) {
-            Some(Format::Pbrt)
-        } else {
-            None
+        match FileKind::recognise(path, bytes)? {
+            FileKind::MitsubaXml => Some(Format::Mitsuba),
+            FileKind::Pbrt => Some(Format::Pbrt),
+            FileKind::BlenderScript => Some(Format::Blender),
+            FileKind::ThreeJson => Some(Format::Three),
+            FileKind::Gltf | FileKind::Glb => Some(Format::Gltf),
+            FileKind::Scene
+            | FileKind::ObjMesh
+            | FileKind::ObjMaterials
+            | FileKind::Png
+            | FileKind::Ppm
+            | FileKind::Exr => None,
         }
     }
 }
@@ -198,7 +178,7 @@ impl ImportError {
         Self {
             path: path.to_path_buf(),
             position,
-            message: one_line(&message.into()),
+            message: viewray_scene::one_line(&message.into()),
         }
     }
 
@@ -219,30 +199,16 @@ impl ImportError {
 }
 
 impl fmt::Display for ImportError {
+    /// Worded as a scene's errors are (viewray-scene's one rule for errors about files).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", one_line(&self.path.display().to_string()))?;
-        if let Some((line, column)) = self.position {
-            write!(f, ":{line}:{column}")?;
-        }
-        write!(f, ": {}", self.message)
+        let position = self
+            .position
+            .map(|(line, column)| viewray_scene::Position { line, column });
+        viewray_scene::write_file_error(f, &self.path, position, &self.message)
     }
 }
 
 impl std::error::Error for ImportError {}
-
-/// `text` with control characters escaped, so an error stays on one line.
-fn one_line(text: &str) -> String {
-    text.chars()
-        .flat_map(|c| {
-            let escaped: Vec<char> = if c.is_control() {
-                c.escape_default().collect()
-            } else {
-                vec![c]
-            };
-            escaped
-        })
-        .collect()
-}
 
 /// Writes `scene` for `format`. `file_name` is the main output's file name (e.g.
 /// `scene.xml`): the files it refers to are named after it.

@@ -29,7 +29,9 @@ fn every_bad_foreign_file_has_a_clear_error() {
         let format = Format::detect(path, &bytes).expect("the extension names the format");
         let result = viewray_interop::import(&bytes, path, format).and_then(|document| {
             // A camera viewray cannot use is refused when the scene is loaded.
-            viewray_scene::Scene::parse(&document.to_ron(), path)
+            viewray_scene::SceneLoader::text(&document.to_ron(), path)
+                .load()
+                .map(|loaded| loaded.scene)
                 .map(|_| ())
                 .map_err(|e| panic!("{}: imported, but does not load: {e}", path.display()))
         });

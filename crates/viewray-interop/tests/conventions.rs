@@ -14,7 +14,10 @@ fn scene(width: u32, height: u32, projection: &str) -> Scene {
           camera: (eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0), up: (0.0, 1.0, 0.0),
                    projection: {projection}))"
     );
-    Scene::parse(&text, Path::new("case.ron")).unwrap()
+    viewray_scene::SceneLoader::text(&text, Path::new("case.ron"))
+        .load()
+        .unwrap()
+        .scene
 }
 
 fn export(scene: &Scene, format: Format) -> String {
@@ -30,7 +33,10 @@ fn import(text: &str, name: &str, format: Format) -> Scene {
     let document = viewray_interop::import(text.as_bytes(), Path::new(name), format)
         .unwrap_or_else(|e| panic!("{e}"));
     let ron = document.to_ron();
-    Scene::parse(&ron, Path::new(name)).unwrap_or_else(|e| panic!("{e}\n{ron}"))
+    viewray_scene::SceneLoader::text(&ron, Path::new(name))
+        .load()
+        .unwrap_or_else(|e| panic!("{e}\n{ron}"))
+        .scene
 }
 
 #[track_caller]
@@ -179,7 +185,10 @@ fn pbrt_plain_look_at_is_imported_mirrored_so_the_picture_is_pbrts() {
             .iter()
             .any(|c| c.contains("mirrored in x"))
     );
-    let scene = Scene::parse(&document.to_ron(), Path::new("plain.pbrt")).unwrap();
+    let scene = viewray_scene::SceneLoader::text(&document.to_ron(), Path::new("plain.pbrt"))
+        .load()
+        .unwrap()
+        .scene;
     let x = scene
         .camera()
         .project(DVec3::new(-1.0, 0.0, 0.0))

@@ -25,7 +25,10 @@ fn scene(
           objects: [Sphere(center: (0.0, 0.0, 0.0), radius: 1.0)])",
         eye.x, eye.y, eye.z, view.x, view.y, view.z, up.x, up.y, up.z
     );
-    Scene::parse(&text, Path::new("case.ron")).ok()
+    viewray_scene::SceneLoader::text(&text, Path::new("case.ron"))
+        .load()
+        .map(|loaded| loaded.scene)
+        .ok()
 }
 
 /// The file name an export is written under, by format.
@@ -130,7 +133,9 @@ fn check_all_formats(scene: &Scene) -> Result<(), TestCaseError> {
             ..document
         };
         let text = document.to_ron();
-        let back = Scene::parse(&text, path)
+        let back = viewray_scene::SceneLoader::text(&text, path)
+            .load()
+            .map(|loaded| loaded.scene)
             .map_err(|e| TestCaseError::fail(format!("{format:?}: {e}\n{text}")))?;
         prop_assert_eq!(
             (back.camera().width(), back.camera().height()),
@@ -216,7 +221,10 @@ fn every_fixture_scene_survives_every_format() {
     files.sort();
     assert!(files.len() > 20);
     for file in files {
-        let scene = Scene::load(&file).unwrap();
+        let scene = viewray_scene::SceneLoader::file(&file)
+            .load()
+            .unwrap()
+            .scene;
         check_all_formats(&scene).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     }
 }

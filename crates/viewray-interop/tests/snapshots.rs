@@ -10,7 +10,10 @@ fn fixture(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures")
         .join(name);
-    Scene::load(&path).unwrap()
+    viewray_scene::SceneLoader::file(&path)
+        .load()
+        .unwrap()
+        .scene
 }
 
 fn exported(scene: &Scene, format: Format, file_name: &str) -> String {

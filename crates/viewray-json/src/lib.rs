@@ -1,27 +1,38 @@
-//! The JSON lines of `viewray frame`, `viewray rays`, `viewray project` and `viewray
-//! trace`: the numbers a student checks a homework answer against, formatted in one
-//! place so that the command line and the live playground (`viewray serve`) print the
-//! same digits.
+//! The numbers viewray prints as JSON lines, formatted in one place so that the command
+//! line (`viewray frame`, `rays`, `project`, `trace`) and the live playground print the
+//! same digits for the same camera.
 //!
-//! Numbers are printed as Rust prints an `f64` (the shortest text that reads back to the
-//! same number), with `-0` written `0`. Ray directions are not normalized: they are the
-//! lecture's formulas evaluated exactly. Pixels are named by 0-based `row`, `col`, or by
-//! the lecture's 1-based `i`, `j` ([`PixelIndices`]); the keys say which.
+//! # What it owns
 //!
-//! ```text
-//! frame:    {"e":[..],"u":[..],"v":[..],"w":[..]}
-//! rays:     {"row":R,"col":C,"u":U,"v":V,"origin":[..],"direction":[..]}
-//! project:  {"point":[..],"x":X,"y":Y,"row":R,"col":C}
-//! trace:    {"step":..,"bounce":B,..} per step, then {"row":R,"col":C,"linear":[..],"srgb8":[..]}
-//! ```
+//! - The lines: [`frame_line`] `{"e":[..],"u":[..],"v":[..],"w":[..]}`, [`ray_line`]
+//!   `{"row":R,"col":C,"u":U,"v":V,"origin":[..],"direction":[..]}` and [`project_line`]
+//!   `{"point":[..],"x":X,"y":Y,"row":R,"col":C}`.
+//! - A pixel's trace ([`trace_lines`] of viewray-render's
+//!   [`PixelTrace`](viewray_render::PixelTrace)): `{"step":..,"bounce":B,..}` per step,
+//!   then `{"row":R,"col":C,"linear":[..],"srgb8":[..]}`.
+//! - How a number is printed: [`number`] (as Rust prints an `f64`, the shortest text that
+//!   reads back to the same number, with `-0` written `0`), [`vector`], [`write_line`].
+//! - How a pixel is named ([`PixelIndices`]: 0-based `row`, `col`, or the lecture's
+//!   1-based `i`, `j`; the keys say which), and the sentence for a pixel outside the image
+//!   ([`PixelOutside`]).
 //!
-//! The trace's lines ([`trace_lines`], module `trace`) format viewray-render's
-//! [`PixelTrace`](viewray_render::PixelTrace), which is why this crate depends on the
-//! renderer's types.
+//! Ray directions are not normalized: they are the lecture's formulas evaluated exactly.
+//!
+//! # Invariant
 //!
 //! This crate knows cameras, the renderer's trace and JSON, and nothing of the command
-//! line, files or HTTP.
+//! line, files or HTTP: no sentence of it names a flag or a query parameter (a program
+//! adds its own words, as [`PixelOutside::sentence`] lets it).
+//!
+//! # Where to start reading
+//!
+//! This file holds the lines of `frame`, `rays` and `project`; `pixel` the indices and
+//! their sentence; `trace` the lines of `trace`; `judgement` the lines of `compare` and
+//! `grade`; `check` those of `check`.
 
+mod check;
+mod judgement;
+mod pixel;
 mod trace;
 
 use std::io::Write;
@@ -30,7 +41,10 @@ use glam::{DVec2, DVec3};
 use serde_json::{Map, Value, json};
 use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
 
-pub use crate::trace::{number_f32, trace_lines, vector_f32};
+pub use check::{check_summary_line, checked_line};
+pub use judgement::{class_summary_line, pair_line, pairs_summary_line, student_image_line};
+pub use pixel::{PixelIndices, PixelOutside};
+pub use trace::{number_f32, trace_lines, vector_f32};
 
 /// A number for printing: `-0` becomes `0` (a student's answer never says minus zero),
 /// by viewray-output's one rule for it.
@@ -50,83 +64,6 @@ pub fn vector(v: DVec3) -> Value {
 pub fn write_line(out: &mut impl Write, value: &Value) -> std::io::Result<()> {
     serde_json::to_writer(&mut *out, value)?;
     out.write_all(b"\n")
-}
-
-/// How a line names a pixel: 0-based `row`, `col` from the top-left, or the lecture's
-/// 1-based `i = row + 1`, `j = col + 1`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PixelIndices {
-    /// `row`, `col`, from 0.
-    #[default]
-    ZeroBased,
-    /// `i`, `j`, from 1.
-    OneBased,
-}
-
-impl PixelIndices {
-    /// [`PixelIndices::OneBased`] when `one_based`.
-    pub fn one_based_if(one_based: bool) -> PixelIndices {
-        if one_based {
-            PixelIndices::OneBased
-        } else {
-            PixelIndices::ZeroBased
-        }
-    }
-
-    /// The JSON keys of the two indices: `["row", "col"]` or `["i", "j"]`.
-    pub fn keys(self) -> [&'static str; 2] {
-        match self {
-            PixelIndices::ZeroBased => ["row", "col"],
-            PixelIndices::OneBased => ["i", "j"],
-        }
-    }
-
-    /// What is added to a 0-based index to print it: 0 or 1.
-    pub fn base(self) -> u32 {
-        match self {
-            PixelIndices::ZeroBased => 0,
-            PixelIndices::OneBased => 1,
-        }
-    }
-
-    /// The 0-based `(row, col)` of the pixel given as `(first, second)` in these
-    /// indices, if it lies in a `width x height` image.
-    ///
-    /// # Errors
-    /// A sentence naming the image and the valid ranges, for a pixel outside it:
-    /// `pixel 3,9 is outside the 4 x 3 image: row runs 0..=2 and col 0..=3 (0-based;
-    /// --one-based for the lecture's i, j)`.
-    pub fn pixel(
-        self,
-        (first, second): (i64, i64),
-        width: u32,
-        height: u32,
-    ) -> Result<(u32, u32), String> {
-        let base = i64::from(self.base());
-        let zero_based = |index: i64, size: u32| {
-            index
-                .checked_sub(base)
-                .and_then(|i| u32::try_from(i).ok())
-                .filter(|&i| i < size)
-        };
-        match (zero_based(first, height), zero_based(second, width)) {
-            (Some(row), Some(col)) => Ok((row, col)),
-            _ => {
-                let first_index = u64::from(self.base());
-                let last_row = u64::from(height) + first_index - 1;
-                let last_col = u64::from(width) + first_index - 1;
-                let [row_key, col_key] = self.keys();
-                Err(format!(
-                    "pixel {first},{second} is outside the {width} x {height} image: {row_key} \
-                     runs {first_index}..={last_row} and {col_key} {first_index}..={last_col}{}",
-                    match self {
-                        PixelIndices::OneBased => " (1-based, the lecture's i, j)",
-                        PixelIndices::ZeroBased => " (0-based; --one-based for the lecture's i, j)",
-                    }
-                ))
-            }
-        }
-    }
 }
 
 /// The line of `viewray frame`: `{"e":[..],"u":[..],"v":[..],"w":[..]}`.
@@ -264,39 +201,6 @@ mod tests {
         assert_eq!(
             vector(DVec3::new(-0.0, 1.5, -2.0)).to_string(),
             "[0.0,1.5,-2.0]"
-        );
-    }
-
-    #[test]
-    fn pixels_outside_the_image_are_named_with_the_valid_ranges() {
-        let zero = PixelIndices::ZeroBased;
-        let one = PixelIndices::OneBased;
-        assert_eq!(zero.pixel((2, 3), 4, 3), Ok((2, 3)));
-        assert_eq!(one.pixel((3, 4), 4, 3), Ok((2, 3)));
-        assert_eq!(
-            zero.pixel((3, 0), 4, 3),
-            Err(
-                "pixel 3,0 is outside the 4 x 3 image: row runs 0..=2 and col 0..=3 \
-                 (0-based; --one-based for the lecture's i, j)"
-                    .to_owned()
-            )
-        );
-        assert_eq!(
-            one.pixel((0, 1), 4, 3),
-            Err(
-                "pixel 0,1 is outside the 4 x 3 image: i runs 1..=3 and j 1..=4 \
-                 (1-based, the lecture's i, j)"
-                    .to_owned()
-            )
-        );
-        assert!(zero.pixel((i64::MIN, 0), 4, 3).is_err());
-        assert!(one.pixel((i64::MIN, 1), 4, 3).is_err());
-        assert!(zero.pixel((0, i64::MAX), 4, 3).is_err());
-        assert!(zero.pixel((i64::MAX, 0), u32::MAX, u32::MAX).is_err());
-        assert!(zero.pixel((-1, 0), 4, 3).is_err());
-        assert_eq!(
-            zero.pixel((i64::from(u32::MAX) - 1, 0), 1, u32::MAX),
-            Ok((u32::MAX - 1, 0))
         );
     }
 }

@@ -323,7 +323,7 @@ mod tests {
     use std::path::Path;
 
     use viewray_render::{RenderSettings, View, trace_pixel};
-    use viewray_scene::Scene;
+    use viewray_scene::SceneLoader;
 
     use super::*;
 
@@ -352,7 +352,7 @@ mod tests {
     fn a_trace_is_its_steps_then_the_pixel() {
         // The canonical camera, 3 x 3 pixels: the centre pixel looks at a sphere lit by a
         // point light; the corner sees the background.
-        let scene = Scene::parse(
+        let scene = SceneLoader::text(
             "(image: (width: 3, height: 3), shading: Lit,
               camera: (eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0),
                        projection: Perspective(distance: 1.0, viewport: (1.0, 1.0))),
@@ -362,7 +362,9 @@ mod tests {
               objects: [Sphere(center: (0.0, 0.0, -3.0), radius: 0.5, material: \"red\")])",
             Path::new("sphere.ron"),
         )
-        .unwrap();
+        .load()
+        .unwrap()
+        .scene;
         let view = View::of(&scene);
         let trace = trace_pixel(&scene, &view, &RenderSettings::default(), 1, 1).unwrap();
         let lines = trace_lines(scene.camera(), &trace, PixelIndices::ZeroBased);

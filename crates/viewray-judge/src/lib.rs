@@ -16,6 +16,10 @@
 //! **Invariant:** judge does no I/O and knows no command line: it takes a loaded scene
 //! and decoded pixels, and its words are the catalogue's.
 
+mod answers;
+mod numbers;
 mod picture;
 
+pub use answers::{Answer, AnswerError, read_answers};
+pub use numbers::{CheckOptions, Checker, Diagnosis, Expected, IndexHint, Judged, Report};
 pub use picture::{CameraVerdict, Explanation, PictureJudge};

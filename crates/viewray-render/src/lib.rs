@@ -93,16 +93,18 @@
 //! ```
 //! use std::path::Path;
 //! use viewray_render::{render, RenderSettings};
-//! use viewray_scene::Scene;
+//! use viewray_scene::SceneLoader;
 //!
-//! let scene = Scene::parse(
+//! let scene = SceneLoader::text(
 //!     "(image: (width: 8, height: 6), shading: Flat,
 //!       camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, -1.0),
 //!                projection: Perspective(distance: 1.0, viewport: (1.0, 0.75))),
 //!       materials: { \"red\": (color: (1.0, 0.0, 0.0)) },
 //!       objects: [Sphere(center: (0.0, 0.0, -5.0), radius: 1.0, material: \"red\")])",
 //!     Path::new("example.ron"),
-//! )?;
+//! )
+//! .load()?
+//! .scene;
 //! let rendered = render(&scene, &RenderSettings::default(), |_, _| {})?;
 //! assert_eq!(rendered.image.pixel(3, 4), glam::Vec3::new(1.0, 0.0, 0.0));
 //! assert_eq!(rendered.stats.rays, 8 * 6);

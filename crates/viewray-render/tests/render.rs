@@ -10,7 +10,10 @@ use viewray_scene::{LoadOptions, Scene};
 /// A scene from RON text.
 #[track_caller]
 fn scene(text: &str) -> Scene {
-    Scene::parse(text, Path::new("test.ron")).unwrap_or_else(|e| panic!("{e}"))
+    viewray_scene::SceneLoader::text(text, Path::new("test.ron"))
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
 }
 
 #[track_caller]
@@ -682,7 +685,11 @@ fn every_fixture_scene_renders() {
         samples: Some(2),
     };
     for path in fixture_scenes() {
-        let scene = Scene::load_with(&path, options).unwrap_or_else(|e| panic!("{e}"));
+        let scene = viewray_scene::SceneLoader::file(&path)
+            .options(options)
+            .load()
+            .unwrap_or_else(|e| panic!("{e}"))
+            .scene;
         let image = render_with(&scene, RenderSettings::default()).image;
         assert_eq!((image.width(), image.height()), (48, 36));
         let name = path.display();

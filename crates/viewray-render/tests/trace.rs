@@ -10,7 +10,7 @@ use viewray_render::{
     LightSource, PixelKind, PixelTrace, RenderSettings, Shape, StepKind, View, object_labels,
     render_view, trace_pixel,
 };
-use viewray_scene::{LoadOptions, Scene, Shading};
+use viewray_scene::{LoadOptions, Scene, SceneLoader, Shading};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
@@ -39,7 +39,11 @@ fn load(path: &Path) -> Scene {
         samples: Some(1),
         ..LoadOptions::default()
     };
-    Scene::load_with(path, options).unwrap_or_else(|e| panic!("{e}"))
+    SceneLoader::file(path)
+        .options(options)
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
 }
 
 /// The pixels to trace in an image of `labels` (what each pixel's centre ray meets,
@@ -145,7 +149,10 @@ fn a_trace_is_the_pixel_of_the_one_sample_render_in_every_scene_and_shading() {
     let settings = RenderSettings::default();
     let mut reached = Reached::default();
     let mut traced = 0;
-    let facing = Scene::parse(FACING_MIRRORS, Path::new("facing_mirrors.ron")).unwrap();
+    let facing = SceneLoader::text(FACING_MIRRORS, Path::new("facing_mirrors.ron"))
+        .load()
+        .unwrap()
+        .scene;
     let scenes = fixture_scenes()
         .into_iter()
         .map(|path| (path.display().to_string(), load(&path)))

@@ -2,7 +2,7 @@
 //! (an importer of another tool's scene) fills in, so it never spells RON itself.
 //!
 //! Every number is written with the fewest digits that read back to the same value, so
-//! `SceneDocument::to_ron` followed by [`crate::Scene::parse`] gives exactly the camera
+//! `SceneDocument::to_ron` loaded back with [`crate::SceneLoader`] gives exactly the camera
 //! that the document describes.
 
 use std::fmt::Write as _;

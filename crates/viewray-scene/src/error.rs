@@ -3,6 +3,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::FileKind;
+
 /// A scene file that could not be loaded: the file, the position when known, and a
 /// sentence saying what was found and what was expected.
 ///
@@ -13,6 +15,8 @@ pub struct SceneError {
     path: PathBuf,
     position: Option<Position>,
     message: String,
+    /// The kind of file found instead of a scene file, when it is one viewray knows.
+    found: Option<FileKind>,
 }
 
 /// A 1-based line and column in a scene file.
@@ -31,6 +35,16 @@ impl SceneError {
             path: path.to_path_buf(),
             position,
             message: one_line(&message.into()),
+            found: None,
+        }
+    }
+
+    /// The file `path` is of another `kind` than a scene file: an error saying what it is
+    /// and where it goes instead.
+    pub(crate) fn not_a_scene(path: &Path, kind: FileKind, message: String) -> Self {
+        Self {
+            found: Some(kind),
+            ..Self::at(path, None, message)
         }
     }
 
@@ -48,23 +62,45 @@ impl SceneError {
     pub fn message(&self) -> &str {
         &self.message
     }
+
+    /// The kind of file that was found where a scene file was expected, when it is
+    /// another kind viewray knows ([`FileKind::recognise`]): a program can add how to
+    /// turn it into a scene.
+    pub fn found(&self) -> Option<FileKind> {
+        self.found
+    }
 }
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", one_line(&self.path.display().to_string()))?;
-        if let Some(Position { line, column }) = self.position {
-            write!(f, ":{line}:{column}")?;
-        }
-        write!(f, ": {}", self.message)
+        write_file_error(f, &self.path, self.position, &self.message)
     }
 }
 
 impl std::error::Error for SceneError {}
 
+/// How viewray words an error about a file it reads (a scene, or another tool's file):
+/// `path:line:column: message`, the position when there is one, with the path's control
+/// characters escaped so that the error stays on one line.
+///
+/// # Errors
+/// The formatter's.
+pub fn write_file_error(
+    f: &mut fmt::Formatter<'_>,
+    path: &std::path::Path,
+    position: Option<Position>,
+    message: &str,
+) -> fmt::Result {
+    write!(f, "{}", one_line(&path.display().to_string()))?;
+    if let Some(Position { line, column }) = position {
+        write!(f, ":{line}:{column}")?;
+    }
+    write!(f, ": {message}")
+}
+
 /// `text` with control characters (a newline in a file name or a quoted string) escaped,
 /// so an error stays on one line whatever the input held.
-fn one_line(text: &str) -> String {
+pub fn one_line(text: &str) -> String {
     text.chars()
         .flat_map(|c| {
             let escaped: Vec<char> = if c.is_control() {

@@ -1,12 +1,33 @@
-//! viewray's scene files: the RON schema, loading and validation.
+//! viewray's scene files: the RON format, read into the runtime [`Scene`] the other
+//! crates render and draw, with every error placed at its file, line and column.
 //!
-//! This crate is the only one that knows RON (and, later, OBJ). It turns a scene file
-//! into a [`Scene`], the runtime value the other crates use, and rejects a bad file with
-//! one [`SceneError`] naming the file, line and column, what was found and what was
-//! expected. The serde types mirroring the file stay private.
+//! # What it owns
 //!
-//! The format is documented for users in the repository's `docs/scene-format.md`; every
-//! field but `camera` has a default, so a camera-only file is a valid scene:
+//! - The scene format: the serde types mirroring the file (private: `schema`), their
+//!   translation into viewray-camera's cameras (`camera`) and into the renderer's values
+//!   (`values`), the `animation:` section and the mixing of its keys (`animation`,
+//!   `mix`), OBJ meshes with their MTL materials (`mesh`, on tobj), and RON's errors
+//!   reworded in the format's terms (`ron_text`).
+//! - [`SceneLoader`], the one way in: a file, a reader or text, with [`LoadOptions`],
+//!   giving a [`LoadedScene`]; and [`parse_camera`], a `camera:` value on its own.
+//! - [`FileKind`], the recogniser of every kind of file viewray reads or writes (scenes,
+//!   meshes, other tools' scenes, images), so that a wrong file is named for what it is.
+//! - [`SceneDocument`], which writes a scene file from plain values, for code that makes
+//!   scenes (the importers of other tools' scenes).
+//!
+//! # Invariant
+//!
+//! No other crate knows RON or OBJ, and the serde types never leave this one. A [`Scene`]
+//! that exists is consistent ([`Scene::new`] checks its parts), and a bad file is one
+//! [`SceneError`] on one line, naming the file, the line and column where it can, what was
+//! found and what was expected; it never panics.
+//!
+//! # Where to start reading
+//!
+//! `loader` (the entry), then `load` (the file in steps: image, camera, materials, lights,
+//! objects) and `schema` (what a file may say). The format is documented for users in the
+//! repository's `docs/scene-format.md`; every field but `camera` has a default, so a
+//! camera-only file is a valid scene:
 //!
 //! ```ron
 //! (
@@ -21,30 +42,42 @@
 //! ```
 //!
 //! or with a taxonomy preset: `camera: Isometric(target: (0.0, 0.0, 0.0), size: 4.0)`.
-//! [`SceneDocument`] writes a scene file from plain values, for code that makes scenes.
-//! Angles are degrees in scene files.
+//! Angles are degrees in scene files. The image's size and samples obey viewray's
+//! limits, which viewray-camera's `ImageLimits` holds.
 
 mod animation;
+mod camera;
 mod document;
 mod error;
+mod file_kind;
 mod load;
+mod loader;
 mod mesh;
+mod mix;
 mod obj;
+mod ron_text;
 mod scene;
 mod schema;
+mod values;
 
-use std::io::Read;
 use std::path::Path;
-use std::time::{Duration, Instant};
 
-pub use animation::{Animation, CameraSpec, Ease, Key, MAX_FPS, MAX_FRAMES};
+pub use animation::{Animation, Ease, Key, MAX_FPS, MAX_FRAMES};
+pub use camera::{CameraSpec, camera_text, parse_camera};
 pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
-pub use error::{Position, SceneError};
-pub use load::{LoadOptions, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+pub use error::{Position, SceneError, one_line, write_file_error};
+pub use file_kind::FileKind;
+pub use loader::{
+    LoadOptions, LoadTimes, LoadedScene, MAX_SCENE_BYTES, SceneLoader, read_scene_file,
+    read_scene_text,
+};
 pub use obj::obj_text;
 pub use scene::{Grid, InvalidScene, Light, Material, ObjectMaterial, Scene, SceneParts, Shading};
+/// viewray's image limits, which scene files obey: re-exported from the camera crate, where
+/// the rule is written.
+pub use viewray_camera::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// Parses OBJ text as a scene's mesh would be, ignoring MTL libraries: the entry point of
 /// the OBJ fuzz target. Returns the number of triangles kept, or the error message.
@@ -54,230 +87,4 @@ pub fn fuzz_parse_obj(bytes: &[u8]) -> Result<usize, String> {
     let no_mtl = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
     let mut build_time = std::time::Duration::ZERO;
     mesh::parse_obj(bytes, no_mtl, &mut materials, &mut build_time).map(|m| m.mesh.triangle_count())
-}
-
-/// Parses `text` as the `camera:` value of a scene file, on its own, for an image of
-/// `width x height` pixels: an explicit camera `(eye: .., look_at: .., projection: ..)`
-/// or a taxonomy preset `Isometric(target: .., size: ..)`, exactly as a scene file
-/// writes it. Fields of view and presets follow the image's aspect ratio, as they do
-/// when a scene is loaded with [`LoadOptions::size`].
-///
-/// Error positions count from the start of `text` (line 1, column 1), and `name` names
-/// it (for example `camera`): `camera:1:9: unknown field ..`.
-///
-/// # Errors
-/// A [`SceneError`] if `text` is not a valid camera or the size is not one a scene
-/// file may have.
-pub fn parse_camera(
-    text: &str,
-    name: &Path,
-    width: u32,
-    height: u32,
-) -> Result<viewray_camera::Camera, SceneError> {
-    load::parse_camera_text(text, name, width, height)
-}
-
-/// The `camera:` value of the scene file `text` as written there, without the
-/// surrounding whitespace: what [`parse_camera`] reads back.
-///
-/// # Errors
-/// A [`SceneError`] if `text` is not a scene file (it is not checked any further).
-pub fn camera_text<'a>(text: &'a str, path: &Path) -> Result<&'a str, SceneError> {
-    load::camera_text(text, path)
-}
-
-/// How long loading a scene took.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct LoadTimes {
-    /// Everything: reading, parsing, loading meshes, building BVHs.
-    pub total: Duration,
-    /// The part spent building BVHs (each distinct mesh's and the world's).
-    pub build: Duration,
-}
-
-/// The largest scene file viewray reads: 16 MiB (scenes describe geometry in meshes).
-pub const MAX_SCENE_BYTES: u64 = 16 << 20;
-
-/// Reads the text of the scene file at `path` as loading it would, without parsing it:
-/// for a program that keeps the text beside the loaded scene (the live playground
-/// serves it).
-///
-/// # Errors
-/// A [`SceneError`] naming `path` for a missing file, a directory, a file that is not
-/// UTF-8 text, or one larger than [`MAX_SCENE_BYTES`].
-pub fn read_scene_file(path: &Path) -> Result<String, SceneError> {
-    let error = |message: String| SceneError::at(path, None, message);
-    let file = std::fs::File::open(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => error("no such scene file".to_owned()),
-        _ => error(format!("cannot read the scene file: {e}")),
-    })?;
-    let metadata = file
-        .metadata()
-        .map_err(|e| error(format!("cannot read the scene file: {e}")))?;
-    if metadata.is_dir() {
-        return Err(error("is a directory, not a scene file".to_owned()));
-    }
-    read_scene_text(file, path)
-}
-
-/// Reads scene text from `reader` (standard input, say) as [`read_scene_file`] reads a
-/// file, refusing text that is not UTF-8 or too large to be a scene; `path` names it in
-/// errors.
-///
-/// # Errors
-/// A [`SceneError`] naming `path`.
-pub fn read_scene_text(reader: impl Read, path: &Path) -> Result<String, SceneError> {
-    let error = |message: String| SceneError::at(path, None, message);
-    let mut text = String::new();
-    let read = reader
-        .take(MAX_SCENE_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| match e.kind() {
-            std::io::ErrorKind::InvalidData => error("is not a text file (not UTF-8)".to_owned()),
-            _ => error(format!("cannot read the scene: {e}")),
-        })?;
-    if read as u64 > MAX_SCENE_BYTES {
-        return Err(error(format!(
-            "is larger than {} MiB: too large for a scene file",
-            MAX_SCENE_BYTES >> 20
-        )));
-    }
-    Ok(text)
-}
-
-impl Scene {
-    /// Loads the scene file at `path`.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        Self::load_with(path, LoadOptions::default())
-    }
-
-    /// Loads the scene file at `path`, with `options` overriding some of its settings.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
-    pub fn load_with(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
-        Self::load_timed(path, options).map(|(scene, _)| scene)
-    }
-
-    /// Loads the scene file at `path` like [`Scene::load_with`], and says how long the
-    /// loading took and how much of that was building BVHs.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
-    pub fn load_timed(path: &Path, options: LoadOptions) -> Result<(Scene, LoadTimes), SceneError> {
-        let started = Instant::now();
-        let text = read_scene_file(path)?;
-        let (scene, _animation, build) = load::parse(&text, path, options)?;
-        Ok((
-            scene,
-            LoadTimes {
-                total: started.elapsed(),
-                build,
-            },
-        ))
-    }
-
-    /// Reads a scene from `reader` (standard input, say) like [`Scene::load_timed`];
-    /// `path` names it in error messages, and meshes are found relative to its folder:
-    /// the current folder for a bare name such as `<stdin>`.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the text cannot be read or is not a valid scene.
-    pub fn read_timed(
-        reader: impl Read,
-        path: &Path,
-        options: LoadOptions,
-    ) -> Result<(Scene, LoadTimes), SceneError> {
-        let started = Instant::now();
-        let text = read_scene_text(reader, path)?;
-        let (scene, _animation, build) = load::parse(&text, path, options)?;
-        Ok((
-            scene,
-            LoadTimes {
-                total: started.elapsed(),
-                build,
-            },
-        ))
-    }
-
-    /// Parses the scene `text`; `path` names it in error messages, and meshes are found
-    /// relative to its folder.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if `text` is not a valid scene.
-    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        Self::parse_with(text, path, LoadOptions::default())
-    }
-
-    /// Parses the scene `text` with `options` overriding some of its settings.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if `text` is not a valid scene.
-    pub fn parse_with(text: &str, path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
-        Self::parse_timed(text, path, options).map(|(scene, _)| scene)
-    }
-
-    /// Loads the scene file at `path` like [`Scene::load_with`], with its `animation:`
-    /// section when it has one (checked either way: a scene with a bad animation does not
-    /// load).
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the file cannot be read or is not a valid scene.
-    pub fn load_animated(
-        path: &Path,
-        options: LoadOptions,
-    ) -> Result<(Scene, Option<Animation>), SceneError> {
-        let text = read_scene_file(path)?;
-        Self::parse_animated(&text, path, options)
-    }
-
-    /// Reads a scene from `reader` like [`Scene::read_timed`], with its animation.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if the text cannot be read or is not a valid scene.
-    pub fn read_animated(
-        reader: impl Read,
-        path: &Path,
-        options: LoadOptions,
-    ) -> Result<(Scene, Option<Animation>), SceneError> {
-        let text = read_scene_text(reader, path)?;
-        Self::parse_animated(&text, path, options)
-    }
-
-    /// Parses the scene `text` like [`Scene::parse_with`], with its animation.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if `text` is not a valid scene.
-    pub fn parse_animated(
-        text: &str,
-        path: &Path,
-        options: LoadOptions,
-    ) -> Result<(Scene, Option<Animation>), SceneError> {
-        let (scene, animation, _) = load::parse(text, path, options)?;
-        Ok((scene, animation))
-    }
-
-    /// Parses the scene `text` like [`Scene::parse_with`], and says how long it took and
-    /// how much of that was building BVHs.
-    ///
-    /// # Errors
-    /// A [`SceneError`] if `text` is not a valid scene.
-    pub fn parse_timed(
-        text: &str,
-        path: &Path,
-        options: LoadOptions,
-    ) -> Result<(Scene, LoadTimes), SceneError> {
-        let started = Instant::now();
-        let (scene, _animation, build) = load::parse(text, path, options)?;
-        Ok((
-            scene,
-            LoadTimes {
-                total: started.elapsed(),
-                build,
-            },
-        ))
-    }
 }

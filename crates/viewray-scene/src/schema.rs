@@ -9,6 +9,12 @@ use std::collections::BTreeMap;
 use ron::value::RawValue;
 use serde::Deserialize;
 
+mod projection;
+
+pub(crate) use projection::{
+    FisheyeDef, ObliqueDef, OrthographicDef, PerspectiveDef, ProjectionDef, ThinLensDef,
+};
+
 /// A point or vector written `(x, y, z)`.
 pub(crate) type V3 = (f64, f64, f64);
 /// A pair written `(a, b)`.
@@ -244,90 +250,6 @@ pub(crate) enum SensorFitDef {
     Auto,
     Horizontal,
     Vertical,
-}
-
-/// `projection: Perspective(..) | ThinLens(..) | Orthographic(..) | Oblique(..) |
-/// Equirectangular | Fisheye(..)`.
-#[derive(Deserialize, Clone, Debug, PartialEq)]
-#[serde(deny_unknown_fields, rename = "projection")]
-pub(crate) enum ProjectionDef {
-    Perspective {
-        #[serde(default)]
-        distance: Option<f64>,
-        #[serde(default)]
-        viewport: Option<V2>,
-        #[serde(default)]
-        fov_x: Option<f64>,
-        #[serde(default)]
-        fov_y: Option<f64>,
-        #[serde(default)]
-        fov_diagonal: Option<f64>,
-        #[serde(default)]
-        fov_smaller: Option<f64>,
-        #[serde(default)]
-        fov_larger: Option<f64>,
-        #[serde(default)]
-        focal_length: Option<f64>,
-        #[serde(default)]
-        sensor: Option<V2>,
-        #[serde(default)]
-        fit: Option<SensorFitDef>,
-        #[serde(default)]
-        shift: V2,
-    },
-    ThinLens {
-        #[serde(default)]
-        distance: Option<f64>,
-        #[serde(default)]
-        viewport: Option<V2>,
-        #[serde(default)]
-        fov_x: Option<f64>,
-        #[serde(default)]
-        fov_y: Option<f64>,
-        #[serde(default)]
-        fov_diagonal: Option<f64>,
-        #[serde(default)]
-        fov_smaller: Option<f64>,
-        #[serde(default)]
-        fov_larger: Option<f64>,
-        #[serde(default)]
-        focal_length: Option<f64>,
-        #[serde(default)]
-        sensor: Option<V2>,
-        #[serde(default)]
-        fit: Option<SensorFitDef>,
-        #[serde(default)]
-        shift: V2,
-        #[serde(default)]
-        aperture: Option<f64>,
-        #[serde(default)]
-        f_number: Option<f64>,
-        focus: f64,
-    },
-    Orthographic {
-        #[serde(default)]
-        viewport: Option<V2>,
-        #[serde(default)]
-        height: Option<f64>,
-        #[serde(default)]
-        aperture: Option<f64>,
-        #[serde(default)]
-        focus: Option<f64>,
-    },
-    Oblique {
-        #[serde(default)]
-        viewport: Option<V2>,
-        #[serde(default)]
-        height: Option<f64>,
-        ratio: f64,
-        /// Degrees.
-        angle: f64,
-    },
-    Equirectangular,
-    Fisheye {
-        /// Degrees.
-        fov: f64,
-    },
 }
 
 fn default_oblique_angle() -> f64 {

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::{DVec2, DVec3};
 use viewray_camera::{Camera, Frame, Perspective, Preset, Projection, ThinLens};
-use viewray_scene::{Ease, LoadOptions, Position, Scene};
+use viewray_scene::{Ease, Position, Scene, SceneLoader};
 
 const SCENE: &str = "(
     image: (width: 64, height: 48),
@@ -19,9 +19,11 @@ const SCENE: &str = "(
 )";
 
 fn animated(text: &str) -> (Scene, viewray_scene::Animation) {
-    let (scene, animation) =
-        Scene::parse_animated(text, Path::new("anim.ron"), LoadOptions::default()).unwrap();
-    (scene, animation.expect("the scene has an animation"))
+    let loaded = SceneLoader::text(text, Path::new("anim.ron"))
+        .load()
+        .unwrap();
+    let animation = loaded.animation.expect("the scene has an animation");
+    (loaded.scene, animation)
 }
 
 #[test]
@@ -38,10 +40,16 @@ fn the_section_is_read_with_its_keys_in_place() {
     );
     // A scene without the section loads with none; the still loaders ignore it.
     let still = SCENE.split("    animation:").next().unwrap().to_owned() + ")";
-    let (_, none) =
-        Scene::parse_animated(&still, Path::new("s.ron"), LoadOptions::default()).unwrap();
+    let none = SceneLoader::text(&still, Path::new("s.ron"))
+        .load()
+        .unwrap()
+        .animation;
     assert!(none.is_none());
-    assert!(Scene::parse(SCENE, Path::new("anim.ron")).is_ok());
+    assert!(
+        SceneLoader::text(SCENE, Path::new("anim.ron"))
+            .load()
+            .is_ok()
+    );
 }
 
 #[test]
@@ -173,19 +181,18 @@ fn physical_cameras_mix_their_focal_length_and_keep_their_fit() {
         .camera(320, 240)
         .unwrap();
     // Half way: a 54.5 mm lens, as a scene file writes it.
-    let written = Scene::parse(
+    let written = SceneLoader::text(
         "(camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
                    projection: Perspective(focal_length: 54.5, fit: Horizontal)))",
         Path::new("s.ron"),
     )
-    .unwrap();
+    .load()
+    .unwrap()
+    .scene;
     assert_eq!(half, *written.camera());
-    let error = Scene::parse_animated(
-        &keyed("Horizontal", "Vertical"),
-        Path::new("fit.ron"),
-        LoadOptions::default(),
-    )
-    .unwrap_err();
+    let error = SceneLoader::text(&keyed("Horizontal", "Vertical"), Path::new("fit.ron"))
+        .load()
+        .unwrap_err();
     assert_eq!(
         error.message(),
         "animation: key 2: the keys give different `fit`: it is a choice, not a number, so \

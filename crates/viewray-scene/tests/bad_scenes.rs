@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use viewray_scene::Scene;
+use viewray_scene::{FileKind, SceneLoader};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -26,7 +26,8 @@ fn every_bad_scene_has_a_clear_error() {
     let mut report = String::new();
     for path in &paths {
         let name = path.file_name().unwrap().to_str().unwrap();
-        let error = Scene::load(path)
+        let error = SceneLoader::file(path)
+            .load()
             .err()
             .unwrap_or_else(|| panic!("{name} loaded, but it is a bad scene"));
         let message = error.to_string();
@@ -45,7 +46,9 @@ fn every_bad_scene_has_a_clear_error() {
 
 #[test]
 fn a_missing_file_is_named() {
-    let error = Scene::load(Path::new("no/such/scene.ron")).unwrap_err();
+    let error = SceneLoader::file(Path::new("no/such/scene.ron"))
+        .load()
+        .unwrap_err();
     assert!(
         error
             .to_string()
@@ -58,6 +61,42 @@ fn a_byte_order_mark_is_accepted() {
     // Windows editors may save UTF-8 with a byte-order mark in front.
     let text =
         "\u{feff}(image: (width: 4, height: 2), camera: Front(target: (0.0, 0.0, 0.0), size: 2.0))";
-    let scene = Scene::parse(text, Path::new("bom.ron")).unwrap();
+    let scene = SceneLoader::text(text, Path::new("bom.ron"))
+        .load()
+        .unwrap()
+        .scene;
     assert_eq!((scene.camera().width(), scene.camera().height()), (4, 2));
+}
+
+#[test]
+fn a_file_of_another_kind_is_named_for_what_it_is() {
+    let mesh = fixtures().join("meshes/cube.obj");
+    let error = SceneLoader::file(&mesh).load().unwrap_err();
+    assert_eq!(error.found(), Some(FileKind::ObjMesh));
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: this is an OBJ mesh; a scene file names it in `objects`",
+            mesh.display()
+        )
+    );
+    // Standard input has no name to go by: its first bytes say what it is.
+    let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR";
+    let error = SceneLoader::reader(&png[..], Path::new("<stdin>"))
+        .load()
+        .unwrap_err();
+    assert_eq!(error.found(), Some(FileKind::Png));
+    assert_eq!(
+        error.to_string(),
+        "<stdin>: this is a PNG image, not a viewray scene file"
+    );
+    // A scene file's own mistakes are a scene file's, whatever it is called.
+    let error = SceneLoader::reader(&b"(camera: Top())"[..], Path::new("camera.json"))
+        .load()
+        .unwrap_err();
+    assert_eq!(error.found(), None);
+    assert_eq!(
+        error.to_string(),
+        "camera.json:1:14: missing field `target` in `Top`"
+    );
 }

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use viewray_scene::{LoadOptions, Scene, Shading, camera_text, parse_camera};
+use viewray_scene::{LoadOptions, SceneLoader, Shading, camera_text, parse_camera};
 
 fn fixture_scenes() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
@@ -32,14 +32,14 @@ fn a_scene_files_camera_text_parses_to_the_camera_the_file_loads() {
         // At the file's own size, and at another aspect ratio (fields of view and
         // presets follow it).
         for size in [None, Some((97, 31))] {
-            let scene = Scene::load_with(
-                &path,
-                LoadOptions {
+            let scene = SceneLoader::file(&path)
+                .options(LoadOptions {
                     size,
                     samples: None,
-                },
-            )
-            .unwrap();
+                })
+                .load()
+                .unwrap()
+                .scene;
             let (width, height) = (scene.camera().width(), scene.camera().height());
             let parsed = parse_camera(camera, Path::new("camera"), width, height)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

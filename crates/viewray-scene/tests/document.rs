@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3, Vec3};
 use viewray_camera::{FovAxis, Frame, Lens, Perspective, Projection, SensorFit};
 use viewray_scene::{
     Aperture, CameraDocument, Light, Material, ObjectDocument, PerspectiveSize, ProjectionDocument,
-    Scene, SceneDocument, Shading,
+    SceneDocument, SceneLoader, Shading,
 };
 
 fn document(projection: ProjectionDocument) -> SceneDocument {
@@ -67,7 +67,10 @@ fn document(projection: ProjectionDocument) -> SceneDocument {
 fn check(projection: ProjectionDocument, expected: Projection) {
     let doc = document(projection);
     let text = doc.to_ron();
-    let scene = Scene::parse(&text, Path::new("doc.ron")).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let scene = SceneLoader::text(&text, Path::new("doc.ron"))
+        .load()
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .scene;
     let camera = scene.camera();
     assert_eq!(camera.projection(), &expected, "{text}");
     let frame = Frame::from_eye_view_up(doc.camera.eye, doc.camera.view, doc.camera.up).unwrap();

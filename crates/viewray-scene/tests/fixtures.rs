@@ -6,7 +6,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
@@ -70,7 +70,10 @@ fn every_fixture_scene_loads() {
     // `viewray render`'s built-in scene is tested like the others.
     scenes.insert(0, fixtures().join("default.ron"));
     for path in scenes {
-        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let scene = SceneLoader::file(&path)
+            .load()
+            .unwrap_or_else(|e| panic!("{e}"))
+            .scene;
         let camera = &scene.camera();
         let f = camera.frame();
         let name = path.file_stem().unwrap().to_str().unwrap();
@@ -100,25 +103,40 @@ fn size_and_samples_can_be_overridden() {
         size: Some((64, 32)),
         samples: Some(3),
     };
-    let scene = Scene::load_with(&path, options).unwrap();
+    let scene = SceneLoader::file(&path)
+        .options(options)
+        .load()
+        .unwrap()
+        .scene;
     assert_eq!((scene.camera().width(), scene.camera().height()), (64, 32));
     assert_eq!(scene.samples(), 3);
     // A field-of-view camera follows the new aspect ratio.
     let path = fixtures().join("scenes/primitives_lit.ron");
-    let scene = Scene::load_with(&path, options).unwrap();
+    let scene = SceneLoader::file(&path)
+        .options(options)
+        .load()
+        .unwrap()
+        .scene;
     let viewport = scene.camera().projection().viewport().unwrap();
     assert!((viewport.x / viewport.y - 2.0).abs() < 1e-12);
     let too_big = LoadOptions {
         size: Some((20_000, 10)),
         samples: None,
     };
-    let error = Scene::load_with(&path, too_big).unwrap_err().to_string();
+    let error = SceneLoader::file(&path)
+        .options(too_big)
+        .load()
+        .unwrap_err()
+        .to_string();
     assert!(error.contains("too large"), "{error}");
 }
 
 #[test]
 fn a_mesh_placed_twice_is_loaded_once() {
-    let scene = Scene::load(&fixtures().join("scenes/mesh_houses.ron")).unwrap();
+    let scene = SceneLoader::file(&fixtures().join("scenes/mesh_houses.ron"))
+        .load()
+        .unwrap()
+        .scene;
     let meshes: Vec<_> = scene
         .world()
         .objects()
@@ -140,8 +158,10 @@ fn the_readme_example_scene_loads() {
     let length = readme[start..].find("```").unwrap();
     // Its mesh path is relative to a file in fixtures/, as the fixtures' are.
     let path = fixtures().join("readme_example.ron");
-    let scene =
-        Scene::parse(&readme[start..start + length], &path).unwrap_or_else(|e| panic!("{e}"));
+    let scene = SceneLoader::text(&readme[start..start + length], &path)
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene;
     assert_eq!(scene.world().objects().len(), 5);
     assert_eq!(scene.lights().len(), 3);
 }
@@ -156,8 +176,10 @@ fn the_scene_format_examples_load() {
         .collect();
     assert!(blocks.len() >= 2, "the scene format shows whole scenes");
     for block in blocks {
-        let scene = Scene::parse(block, &fixtures().join("scene-format.ron"))
-            .unwrap_or_else(|e| panic!("{e}\n{block}"));
+        let scene = SceneLoader::text(block, &fixtures().join("scene-format.ron"))
+            .load()
+            .unwrap_or_else(|e| panic!("{e}\n{block}"))
+            .scene;
         assert!(scene.camera().width() > 0);
     }
 }

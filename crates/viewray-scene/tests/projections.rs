@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::DVec2;
 use viewray_camera::{FovAxis, Perspective, Projection, SensorFit, ThinLens};
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 fn projection(width: u32, height: u32, projection: &str, size: Option<(u32, u32)>) -> Projection {
     let text = format!(
@@ -16,8 +16,11 @@ fn projection(width: u32, height: u32, projection: &str, size: Option<(u32, u32)
         size,
         ..LoadOptions::default()
     };
-    let scene = Scene::parse_with(&text, Path::new("test.ron"), options)
-        .unwrap_or_else(|e| panic!("{projection}: {e}"));
+    let scene = SceneLoader::text(&text, Path::new("test.ron"))
+        .options(options)
+        .load()
+        .unwrap_or_else(|e| panic!("{projection}: {e}"))
+        .scene;
     *scene.camera().projection()
 }
 

@@ -5,12 +5,12 @@ use std::path::Path;
 use std::time::Instant;
 
 use serde_json::json;
-use viewray_camera::{Camera, CameraSample};
+use viewray_camera::{Camera, CameraSample, ImageLimits};
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
 use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
 use viewray_output::Compression;
 use viewray_render::{RenderSettings, View, render_view};
-use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, parse_camera};
+use viewray_scene::parse_camera;
 
 use crate::params::{self, BadRequest, Query};
 use crate::{Limits, ServedScene};
@@ -134,18 +134,13 @@ fn scene_size(served: &ServedScene) -> (u32, u32) {
 /// The size of a request that renders nothing (rays, frames, projections, diagrams): as
 /// large as a scene file may say.
 fn geometry_size(served: &ServedScene, query: &Query) -> Result<(u32, u32), BadRequest> {
-    params::size(query, scene_size(served), MAX_IMAGE_SIDE, MAX_IMAGE_PIXELS)
+    params::size(query, scene_size(served), ImageLimits::VIEWRAY)
 }
 
 /// `/api/render`: checks everything a render needs, before anything is allocated.
 fn render_view_of(served: &ServedScene, limits: &Limits, query: &str) -> Result<View, BadRequest> {
     let query = Query::parse(query, &RENDER, &[])?;
-    let size = params::size(
-        &query,
-        scene_size(served),
-        limits.max_side,
-        limits.max_pixels,
-    )?;
+    let size = params::size(&query, scene_size(served), limits.image())?;
     let samples = params::samples(&query, served.scene.samples(), size, limits)?;
     let shading = params::shading(&query, served.scene.shading())?;
     let camera = camera(served, limits, &query, size)?;
@@ -201,9 +196,9 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
     let indices = PixelIndices::one_based_if(one_based);
     let pixel = indices
         .pixel((first, second), width, height)
-        .map_err(|message| {
+        .map_err(|outside| {
             let name = if one_based { "i" } else { "row" };
-            BadRequest(format!("{name}: {message}"))
+            BadRequest(format!("{name}: {}", outside.sentence(Some("i=I&j=J"))))
         })?;
     Ok(json_lines(&[ray_line(
         &camera,
@@ -256,7 +251,8 @@ fn diagram(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, 
             Some(
                 PixelIndices::ZeroBased
                     .pixel((row, col), width, height)
-                    .map_err(|message| BadRequest(format!("row: {message}")))?,
+                    // This endpoint takes row and col only: no other indices to offer.
+                    .map_err(|outside| BadRequest(format!("row: {outside}")))?,
             )
         }
     };

@@ -2,10 +2,30 @@
 //! scene through whatever camera the page sends, draws that camera's side view, prints
 //! its numbers, and serves the page that drives it.
 //!
-//! The scene is loaded, and its BVHs built, once ([`ServedScene`]); every request
-//! brings a camera as the text of a scene file's `camera:` value, which is parsed alone
-//! ([`viewray_scene::parse_camera`]) and rendered through
-//! [`viewray_render::render_view`], so a new camera costs a render and nothing else.
+//! # What it owns
+//!
+//! - [`ServedScene`]: the scene file's text, its camera's text and the loaded scene
+//!   with its BVHs, loaded once; every request brings a camera as the text of a scene
+//!   file's `camera:` value, which is parsed alone ([`viewray_scene::parse_camera`]) and
+//!   rendered through [`viewray_render::render_view`], so a new camera costs a render
+//!   and nothing else.
+//! - [`Server`] (`http`: tiny_http, a fixed pool of workers, render slots), the
+//!   endpoints (`api`: each a function from path and query to status and body), the
+//!   query's parameters (`params`: each checked before anything is allocated) and the
+//!   page (`page`: HTML, CSS and JavaScript by hand, compiled in).
+//! - [`Limits`]: how much work one request may ask for, within viewray's own image
+//!   limits (viewray-camera's `ImageLimits`, which this crate only tightens).
+//!
+//! # Invariant
+//!
+//! No request reaches the file system: the scene and its meshes were read when the
+//! server started, and every answer is computed from memory with the libraries the
+//! command line uses, so the page shows the command line's numbers and pictures. This
+//! crate knows nothing of the command line: its answers name its own parameters.
+//!
+//! # Where to start reading
+//!
+//! `api` (the endpoints below), then `params` and `http`.
 //!
 //! # Endpoints (GET)
 //! `camera` is URL-encoded RON (default: the served scene's); `width`, `height`,
@@ -21,17 +41,15 @@
 //! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::side_view`]) |
 //! | `/api/scene` | the served scene's RON text |
 //!
-//! Bad parameters are `400` with `{"error": "..."}`, the command line's words, starting
-//! with the parameter's name (`width: ...`, `camera:1:9: ...`); an unknown path is
-//! `404`; a method other than GET or HEAD `405`. Sizes and samples are bounded
-//! ([`Limits`]) and checked before anything is allocated, so a 100000 x 100000 request
-//! is refused at once. Renders take one of a few render slots; a request that finds none
-//! free within [`ServeOptions::slot_wait`] (or too many requests already waiting) is
-//! `503`, so a room of laptops dragging sliders is answered or told to retry, never
-//! queued without bound. No request reaches the file system: the scene and its meshes
-//! were read when the server started.
-//!
-//! This crate owns the HTTP server and the page; it knows nothing of the command line.
+//! Bad parameters are `400` with `{"error": "..."}`, in the command line's words where
+//! they are the same and in the query's where the command line would name a flag (`i=I&j=J`
+//! for `--one-based`), starting with the parameter's name (`width: ...`, `camera:1:9:
+//! ...`); an unknown path is `404`; a method other than GET or HEAD `405`. Sizes and
+//! samples are bounded ([`Limits`]) and checked before anything is allocated, so a
+//! 100000 x 100000 request is refused at once. Renders take one of a few render slots; a
+//! request that finds none free within [`ServeOptions::slot_wait`] (or too many requests
+//! already waiting) is `503`, so a room of laptops dragging sliders is answered or told
+//! to retry, never queued without bound.
 
 mod api;
 mod http;
@@ -40,7 +58,8 @@ mod params;
 
 use std::path::Path;
 
-use viewray_scene::{Scene, SceneError};
+use viewray_camera::ImageLimits;
+use viewray_scene::{Scene, SceneError, SceneLoader};
 
 pub use crate::http::{ServeOptions, Server, Stopper};
 
@@ -77,6 +96,19 @@ impl Default for Limits {
     }
 }
 
+impl Limits {
+    /// The limits on a rendered image's size and samples, as viewray's image limits
+    /// (tightened to them when these are looser).
+    pub fn image(&self) -> ImageLimits {
+        ImageLimits {
+            max_side: self.max_side,
+            max_pixels: self.max_pixels,
+            max_samples: self.max_samples,
+        }
+        .within_viewray()
+    }
+}
+
 /// The scene a server serves, loaded once: its text, its camera's text, the runtime
 /// scene with its BVHs, and the page.
 #[derive(Debug)]
@@ -101,7 +133,7 @@ impl ServedScene {
     /// # Errors
     /// The scene's error, naming `path`, line and column.
     pub fn parse(name: &str, text: String, path: &Path) -> Result<ServedScene, SceneError> {
-        let scene = Scene::parse(&text, path)?;
+        let scene = SceneLoader::text(&text, path).load()?.scene;
         let camera_text = viewray_scene::camera_text(&text, path)?.to_owned();
         let page = page::page(name, &camera_text, &scene);
         Ok(ServedScene {

@@ -1,12 +1,14 @@
 //! A request's query parameters: decoded, checked against the endpoint's list, and
-//! turned into values with the command line's words for what is wrong.
+//! turned into values with the command line's words for what is wrong (the image limits'
+//! sentences are viewray-camera's, as the command line's are).
 //!
 //! Every error message starts with the parameter's name (`width: ...`, and for the
 //! camera the position in its text, `camera:1:9: ...`), so the page can show it next
 //! to the control that caused it.
 
 use glam::DVec3;
-use viewray_scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, Shading};
+use viewray_camera::{ImageLimitError, ImageLimits};
+use viewray_scene::Shading;
 
 use crate::Limits;
 
@@ -86,46 +88,30 @@ fn whole(name: &str, text: &str, what: &str) -> Result<u64, BadRequest> {
         .map_err(|_| BadRequest(format!("{name}: expected {what}, found `{text}`")))
 }
 
-/// The image size from `width` and `height` (each defaulting to `default`'s), within the
-/// scene format's limits and `max_side` a side.
+/// The image size from `width` and `height` (each defaulting to `default`'s), within
+/// `limits`, the parameter that is out of range named first.
 pub(crate) fn size(
     query: &Query,
     default: (u32, u32),
-    max_side: u32,
-    max_pixels: u64,
+    limits: ImageLimits,
 ) -> Result<(u32, u32), BadRequest> {
     let side = |name: &str, default: u32| match query.get(name) {
         None => Ok(u64::from(default)),
         Some(text) => whole(name, text, "a whole number of pixels"),
     };
     let (width, height) = (side("width", default.0)?, side("height", default.1)?);
-    // The parameter to blame: the one that is out of range (width when both are).
-    let blame = |bad_width: bool| if bad_width { "width" } else { "height" };
-    if width == 0 || height == 0 {
-        return Err(BadRequest(format!(
-            "{}: the image must be at least 1 x 1 pixels, found {width} x {height}",
-            blame(width == 0)
-        )));
-    }
-    let max_side = u64::from(max_side.min(MAX_IMAGE_SIDE));
-    if width > max_side || height > max_side {
-        return Err(BadRequest(format!(
-            "{}: {width} x {height} is too large: each side can be at most {max_side} pixels",
-            blame(width > max_side)
-        )));
-    }
-    let max_pixels = max_pixels.min(MAX_IMAGE_PIXELS);
-    if width * height > max_pixels {
-        return Err(BadRequest(format!(
-            "{}: {width} x {height} is too large: at most {max_pixels} pixels",
-            blame(width >= height)
-        )));
-    }
-    // Both are at most MAX_IMAGE_SIDE, which fits a u32.
-    Ok((
-        u32::try_from(width).unwrap_or(u32::MAX),
-        u32::try_from(height).unwrap_or(u32::MAX),
-    ))
+    limits.check_size(width, height).map_err(|error| {
+        // The parameter to blame: the one that is out of range (width when both are).
+        let blame_width = match error {
+            ImageLimitError::Empty { width, .. } => width == 0,
+            ImageLimitError::SideTooLarge {
+                width, max_side, ..
+            } => width > u64::from(max_side),
+            _ => width >= height,
+        };
+        let name = if blame_width { "width" } else { "height" };
+        BadRequest(format!("{name}: {error}"))
+    })
 }
 
 /// Samples per pixel from `samples` (default `default`), 1 to the limit, and at most
@@ -136,20 +122,14 @@ pub(crate) fn samples(
     (width, height): (u32, u32),
     limits: &Limits,
 ) -> Result<u32, BadRequest> {
-    let max = limits.max_samples.min(MAX_SAMPLES);
-    let wrong = || {
-        BadRequest(format!(
-            "samples: expected a whole number of samples from 1 to {max}"
-        ))
-    };
-    let samples = match query.get("samples") {
-        None => u64::from(default),
-        Some(text) => text.trim().parse::<u64>().map_err(|_| wrong())?,
-    };
-    let samples = u32::try_from(samples)
-        .ok()
-        .filter(|s| (1..=max).contains(s))
-        .ok_or_else(wrong)?;
+    // The served scene's own samples are held to the request's limit as if asked for.
+    let text = query
+        .get("samples")
+        .map_or_else(|| default.to_string(), str::to_owned);
+    let samples = limits
+        .image()
+        .parse_samples(&text)
+        .map_err(|error| BadRequest(format!("samples: {error}")))?;
     let total = u64::from(width) * u64::from(height) * u64::from(samples);
     if total > limits.max_frame_samples {
         return Err(BadRequest(format!(
@@ -258,7 +238,7 @@ mod tests {
     #[test]
     fn sizes_are_checked_before_anything_is_allocated() {
         let limits = Limits::default();
-        let check = |text: &str| size(&query(text), (640, 360), limits.max_side, limits.max_pixels);
+        let check = |text: &str| size(&query(text), (640, 360), limits.image());
         assert_eq!(check(""), Ok((640, 360)));
         assert_eq!(check("width=320&height=180"), Ok((320, 180)));
         assert_eq!(

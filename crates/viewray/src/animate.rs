@@ -6,18 +6,66 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
 use serde_json::json;
 use viewray_animation::{
     Movie, MovieSettings, all_demos, demo_by_name, write_apng, write_frames, write_gif,
 };
 use viewray_output::{Compression, MAX_GIF_SIDE};
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, LoadedScene};
 
-use crate::cli::{AnimateArgs, is_standard_stream};
 use crate::output::Output;
 use crate::render::{available_memory, gib, progress_bar, seconds, stretched_pixels};
 use crate::style;
+use crate::values::{
+    is_standard_stream, parse_fps, parse_frames, parse_samples, parse_size, parse_threads,
+};
+
+#[derive(Args, Debug)]
+pub(crate) struct AnimateArgs {
+    /// The scene file to animate (it needs an `animation:` section), or - to read it from
+    /// standard input.
+    #[arg(value_name = "SCENE", conflicts_with_all = ["demo", "list"],
+          required_unless_present_any = ["demo", "list"])]
+    pub(crate) scene: Option<PathBuf>,
+    /// Where to write: OUT.gif (looping GIF), OUT.png (animated PNG) or DIR/ (numbered
+    /// PNG frames, DIR/frame_0000.png, ...).
+    #[arg(short, long, value_name = "OUT", default_value = "viewray.gif")]
+    pub(crate) output: PathBuf,
+    /// Animate one of the lecture's demonstrations on its built-in scene.
+    #[arg(long, value_name = "NAME", conflicts_with = "list",
+          value_parser = clap::builder::PossibleValuesParser::new(viewray_animation::demo_names()))]
+    pub(crate) demo: Option<String>,
+    /// List the demonstrations, one line each, and exit.
+    #[arg(long)]
+    pub(crate) list: bool,
+    /// How many frames, instead of the animation's (1 to 10000).
+    #[arg(long, value_name = "N", value_parser = parse_frames)]
+    pub(crate) frames: Option<u32>,
+    /// Frames per second, instead of the animation's (1 to 100; a GIF plays at most 50).
+    #[arg(long, value_name = "N", value_parser = parse_fps)]
+    pub(crate) fps: Option<u32>,
+    /// The size of each picture as WIDTHxHEIGHT, instead of the scene's; fields of view
+    /// and presets follow the new aspect ratio, as for `render`.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// Samples per pixel, instead of the scene's.
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub(crate) samples: Option<u32>,
+    /// Put the side view of each frame's camera beside its picture.
+    #[arg(long)]
+    pub(crate) with_diagram: bool,
+    /// How many threads to render on (default: one per core).
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub(crate) threads: Option<usize>,
+    /// Print one JSON line of statistics on stdout:
+    /// {"frames":N,"width":W,"height":H,"render_s":..,"encode_s":..}. render_s is
+    /// rendering and laying out the frames; encode_s is choosing the palette, encoding
+    /// and writing them.
+    #[arg(long)]
+    pub(crate) stats: bool,
+}
 
 /// `viewray animate`.
 pub(crate) fn animate(args: &AnimateArgs) -> Result<()> {
@@ -95,12 +143,15 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
     let movie = match (&args.demo, &args.scene) {
         (Some(name), _) => Movie::from_demo(&demo_by_name(name)?, options, settings)?,
         (None, Some(path)) => {
-            let (scene, animation, name) = load_animated(path, options)?;
+            let LoadedScene {
+                scene, animation, ..
+            } = crate::input::load_scene(Some(path), options)?;
             let animation = animation.ok_or_else(|| {
                 anyhow!(
-                    "{name}: the scene has no `animation:` section: add one (keys of cameras \
+                    "{}: the scene has no `animation:` section: add one (keys of cameras \
                      at times in [0, 1], as docs/scene-format.md describes) or animate a \
-                     built-in demo (`viewray animate --list`)"
+                     built-in demo (`viewray animate --list`)",
+                    crate::input::scene_name(path)
                 )
             })?;
             if let Some(size) = args.size
@@ -192,21 +243,6 @@ fn animate_on_current_pool(args: &AnimateArgs) -> Result<()> {
         out.flush()?;
     }
     Ok(())
-}
-
-/// Loads an animated scene from a file or standard input; returns it with the name it
-/// goes by in messages.
-fn load_animated(
-    path: &Path,
-    options: LoadOptions,
-) -> Result<(Scene, Option<viewray_scene::Animation>, String)> {
-    if is_standard_stream(path) {
-        let name = PathBuf::from("<stdin>");
-        let (scene, animation) = Scene::read_animated(std::io::stdin().lock(), &name, options)?;
-        return Ok((scene, animation, name.display().to_string()));
-    }
-    let (scene, animation) = Scene::load_animated(path, options)?;
-    Ok((scene, animation, path.display().to_string()))
 }
 
 /// The file name of frame `k` in a folder: `frame_0000.png`.

@@ -1,37 +1,14 @@
-//! The command line: clap definitions, vector parsing and one-line usage errors.
+//! The command line's shape: [`Cli`] and its [`Command`]s (each variant's doc is the
+//! command's help), assembled from each command's arguments, which the commands' modules
+//! define; and the two commands that print the command line itself (completions, man).
 
 use std::ffi::OsString;
-use std::fmt::Display;
-use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+use std::io::{BufWriter, Write};
 
-use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
-use glam::{DVec2, DVec3};
-use viewray_render::ImageFormat;
-use viewray_scene::{MAX_FPS, MAX_FRAMES, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+use anyhow::Result;
+use clap::{Args, CommandFactory, Parser, Subcommand};
 
-/// The conventions, after the help of the commands that print numbers. Each line fits
-/// in 80 columns, so that clap does not rewrap it.
-pub(crate) const CONVENTIONS: &str = "\
-Conventions (the lecture's, made exact; docs/cameras.md in the source explains
-them with worked examples):
-
-Pixels: an image is W columns by H rows. Pixels are 0-based (row, col) from
-the top-left by default; --one-based takes and prints the lecture's 1-based
-(i, j) = (row + 1, col + 1), and the JSON keys say which: row/col or i/j.
-
-Frame: e = eye, w = -view/|view|, u = (up x w)/|up x w|, v = w x u; u points
-right, v up, w back (the camera looks along -w).
-
-Image plane, at a pixel's centre:
-
-    u = ((j - 1/2)/W - 1/2) vw,   v = -((i - 1/2)/H - 1/2) vh
-
-Perspective ray: origin e, direction u U + v V - d W, with U, V, W the frame's
-vectors; directions are not normalized.
-
-Exit codes: 0 success, 1 a comparison failed, 2 bad input or usage, other
-values internal errors.";
+use crate::commands::CONVENTIONS;
 
 /// What `--version` prints: the version, and the commit it was built from when the
 /// build could ask git.
@@ -55,7 +32,7 @@ pub(crate) enum Command {
     /// determine its colour. Without SCENE, renders the built-in default scene (`viewray
     /// scene --default` prints it). The image is the same, byte for byte, on any number
     /// of threads. A progress bar is shown on stderr when it is a terminal.
-    Render(RenderArgs),
+    Render(crate::render::RenderArgs),
     /// Render an animation to a looping GIF, an animated PNG or numbered PNG frames.
     ///
     /// SCENE is a scene file with an `animation:` section (keyframed cameras, see the
@@ -67,7 +44,7 @@ pub(crate) enum Command {
     /// (frustum, image plane, a few rays) beside its picture. A frame's pixels depend
     /// only on the scene and its number. A progress bar over the frames is shown on
     /// stderr when it is a terminal.
-    Animate(AnimateArgs),
+    Animate(crate::animate::AnimateArgs),
     /// Print the camera frame e, u, v, w of a scene, or of eye, view and up
     ///
     ///     e = eye,  w = -view/|view|,  u = (up x w)/|up x w|,  v = w x u
@@ -78,7 +55,7 @@ pub(crate) enum Command {
     ///
     ///     {"e":[..],"u":[..],"v":[..],"w":[..]}
     #[command(verbatim_doc_comment)]
-    Frame(FrameArgs),
+    Frame(crate::commands::FrameArgs),
     /// Print the viewing rays of pixels, with their image-plane points u, v
     ///
     /// Each ray goes through a point of its pixel, the centre unless --sample says
@@ -104,7 +81,7 @@ pub(crate) enum Command {
     /// have no image plane; origin and direction are null outside a fisheye's image
     /// circle. Without --pixel, every pixel, row by row, each printed as computed.
     #[command(verbatim_doc_comment)]
-    Rays(RaysArgs),
+    Rays(crate::commands::RaysArgs),
     /// Print where points appear in a scene's camera image
     ///
     /// x, y are continuous image coordinates in pixels, x from the left edge and y
@@ -128,7 +105,7 @@ pub(crate) enum Command {
     /// The pixel is null outside the image; all four are null where the point is
     /// not visible (behind a perspective eye).
     #[command(verbatim_doc_comment)]
-    Project(ProjectArgs),
+    Project(crate::commands::ProjectArgs),
     /// Print one pixel's trace, step by step, with every number
     ///
     /// For the pixel (ROW,COL, or the lecture's I,J with --one-based):
@@ -153,6 +130,28 @@ pub(crate) enum Command {
     /// --one-based, "i" and "j" instead of "row" and "col").
     #[command(verbatim_doc_comment)]
     Trace(crate::trace::TraceArgs),
+    /// Check a student's numbers: frames, viewing rays and projections, answer by answer.
+    ///
+    /// ANSWERS is what the student's program printed, in any language: viewray's own
+    /// JSON lines (the keys of `frame`, `rays`, `project`), or plain lines, numbers
+    /// apart by white space or commas, with # comments:
+    ///
+    ///     frame ex ey ez ux uy uz vx vy vz wx wy wz
+    ///     ray ROW COL ox oy oz dx dy dz
+    ///     project px py pz x y          (x y may be null null: not seen)
+    ///
+    /// Each answer is judged against the scene's camera (relative tolerance; a
+    /// direction is right up to a positive factor, so a normalized one is right, unless
+    /// --exact-direction), and printed right, or wrong with the expected value. The wrong
+    /// ones are then explained by the lecture's catalogue of mistakes: the entry (or two
+    /// entries together) that reproduces every answer, with the formula to fix; or, when
+    /// none does, what the wrong answers have in common. Pixels 1-based where 0-based
+    /// were asked (or the other way round) are named as such.
+    ///
+    /// Exit code 0 when every answer is right, 1 when any is wrong, 2 on bad input (an
+    /// answer that cannot be read, naming its line and what was expected).
+    #[command(verbatim_doc_comment)]
+    Check(crate::check::CheckArgs),
     /// Judge renders against reference images, as an instructor would.
     ///
     /// EXPECTED and ACTUAL are two PNG files, or two folders: each *.png file of
@@ -235,7 +234,7 @@ pub(crate) enum Command {
     /// without a SCENE (a camera with a field of view and a lens shift, three kinds of
     /// light, planes, triangles and spheres, plain, glossy, mirror and grid materials),
     /// ready to edit and render with `viewray render scene.ron`.
-    Scene(SceneArgs),
+    Scene(crate::commands::SceneArgs),
     /// Print the shell completion script for bash, zsh, fish, elvish or powershell.
     ///
     /// For example, in bash: `source <(viewray completions bash)`, or save it where
@@ -264,168 +263,6 @@ pub(crate) enum Command {
     Import(crate::interop::ImportArgs),
 }
 
-/// The file format of an image written to standard output, or one whose name has no
-/// .png or .exr extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(crate) enum OutputFormat {
-    /// 8-bit sRGB PNG.
-    Png,
-    /// OpenEXR of linear 32-bit floats.
-    Exr,
-}
-
-impl From<OutputFormat> for ImageFormat {
-    fn from(format: OutputFormat) -> Self {
-        match format {
-            OutputFormat::Png => ImageFormat::Png,
-            OutputFormat::Exr => ImageFormat::Exr,
-        }
-    }
-}
-
-#[derive(Args, Debug)]
-pub(crate) struct RenderArgs {
-    /// The scene file to render, or - to read it from standard input (mesh paths are
-    /// then relative to the current folder); without it, the built-in default scene.
-    pub(crate) scene: Option<PathBuf>,
-    /// Where to write the image: .png (8-bit sRGB) or .exr (linear 32-bit floats), or -
-    /// for standard output (PNG unless --format says otherwise).
-    #[arg(short, long, value_name = "OUT.png", default_value = "viewray.png")]
-    pub(crate) output: PathBuf,
-    /// The image format, when the output's extension does not say (as for -o -).
-    #[arg(long, value_name = "FORMAT")]
-    pub(crate) format: Option<OutputFormat>,
-    /// Samples per pixel, instead of the scene's (1 is the pixel centre, the lecture's
-    /// ray).
-    #[arg(long, value_name = "N", value_parser = parse_samples)]
-    pub(crate) samples: Option<u32>,
-    /// The image size as WIDTHxHEIGHT, instead of the scene's; fields of view and presets
-    /// follow the new aspect ratio, an explicit viewport does not (a warning says when
-    /// pixels are no longer square).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    pub(crate) size: Option<(u32, u32)>,
-    /// How many threads to load, build and render on (default: one per core).
-    #[arg(long, value_name = "N", value_parser = parse_threads)]
-    pub(crate) threads: Option<usize>,
-    /// Print one JSON line of statistics on stdout:
-    /// {"triangles":N,"load_s":..,"build_s":..,"render_s":..,"rays":N}. load_s is reading
-    /// and parsing the scene and its meshes; build_s is building the BVHs (timed by
-    /// building them once more, since loading builds them); render_s is tracing and
-    /// shading; rays counts primary, shadow and reflected rays.
-    #[arg(long)]
-    pub(crate) stats: bool,
-}
-
-#[derive(Args, Debug)]
-pub(crate) struct AnimateArgs {
-    /// The scene file to animate (it needs an `animation:` section), or - to read it from
-    /// standard input.
-    #[arg(value_name = "SCENE", conflicts_with_all = ["demo", "list"],
-          required_unless_present_any = ["demo", "list"])]
-    pub(crate) scene: Option<PathBuf>,
-    /// Where to write: OUT.gif (looping GIF), OUT.png (animated PNG) or DIR/ (numbered
-    /// PNG frames, DIR/frame_0000.png, ...).
-    #[arg(short, long, value_name = "OUT", default_value = "viewray.gif")]
-    pub(crate) output: PathBuf,
-    /// Animate one of the lecture's demonstrations on its built-in scene.
-    #[arg(long, value_name = "NAME", conflicts_with = "list",
-          value_parser = clap::builder::PossibleValuesParser::new(viewray_animation::demo_names()))]
-    pub(crate) demo: Option<String>,
-    /// List the demonstrations, one line each, and exit.
-    #[arg(long)]
-    pub(crate) list: bool,
-    /// How many frames, instead of the animation's (1 to 10000).
-    #[arg(long, value_name = "N", value_parser = parse_frames)]
-    pub(crate) frames: Option<u32>,
-    /// Frames per second, instead of the animation's (1 to 100; a GIF plays at most 50).
-    #[arg(long, value_name = "N", value_parser = parse_fps)]
-    pub(crate) fps: Option<u32>,
-    /// The size of each picture as WIDTHxHEIGHT, instead of the scene's; fields of view
-    /// and presets follow the new aspect ratio, as for `render`.
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    pub(crate) size: Option<(u32, u32)>,
-    /// Samples per pixel, instead of the scene's.
-    #[arg(long, value_name = "N", value_parser = parse_samples)]
-    pub(crate) samples: Option<u32>,
-    /// Put the side view of each frame's camera beside its picture.
-    #[arg(long)]
-    pub(crate) with_diagram: bool,
-    /// How many threads to render on (default: one per core).
-    #[arg(long, value_name = "N", value_parser = parse_threads)]
-    pub(crate) threads: Option<usize>,
-    /// Print one JSON line of statistics on stdout:
-    /// {"frames":N,"width":W,"height":H,"render_s":..,"encode_s":..}. render_s is
-    /// rendering and laying out the frames; encode_s is choosing the palette, encoding
-    /// and writing them.
-    #[arg(long)]
-    pub(crate) stats: bool,
-}
-
-#[derive(Args, Debug)]
-#[command(after_help = CONVENTIONS)]
-pub(crate) struct FrameArgs {
-    /// A scene file (or - for standard input) whose camera's frame to print, instead of
-    /// --eye, --view or --look-at, and --up.
-    #[arg(value_name = "SCENE", conflicts_with_all = ["eye", "view", "look_at", "up"])]
-    pub(crate) scene: Option<PathBuf>,
-    /// The eye position e.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub(crate) eye: Option<DVec3>,
-    /// The view direction (or give --look-at).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
-          conflicts_with = "look_at")]
-    pub(crate) view: Option<DVec3>,
-    /// A point to look at: view = look_at - eye.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub(crate) look_at: Option<DVec3>,
-    /// The up vector; it fixes the camera's roll and need not be perpendicular to view
-    /// [default: 0,1,0].
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub(crate) up: Option<DVec3>,
-}
-
-#[derive(Args, Debug)]
-#[command(after_help = CONVENTIONS)]
-pub(crate) struct RaysArgs {
-    /// The scene file whose camera and image size to use, or - for standard input.
-    pub(crate) scene: PathBuf,
-    /// A pixel as ROW,COL, 0-based (or I,J with --one-based); repeat the option, or list
-    /// several after it. Without it, every pixel.
-    #[arg(long, value_name = "ROW,COL", value_parser = parse_pixel, allow_hyphen_values = true)]
-    pub(crate) pixel: Vec<(i64, i64)>,
-    /// Pixels are given and printed 1-based, as the lecture's (i, j), with the JSON keys
-    /// "i" and "j" instead of "row" and "col".
-    #[arg(long)]
-    pub(crate) one_based: bool,
-    /// The point inside each pixel as OX,OY, each in [0, 1) from the pixel's top-left
-    /// corner; 0.5,0.5 is the centre, the lecture's ray.
-    #[arg(long, value_name = "OX,OY", value_parser = parse_offset, default_value = "0.5,0.5")]
-    pub(crate) sample: DVec2,
-}
-
-#[derive(Args, Debug)]
-#[command(after_help = CONVENTIONS)]
-pub(crate) struct ProjectArgs {
-    /// The scene file whose camera and image size to use, or - for standard input.
-    pub(crate) scene: PathBuf,
-    /// A world point as X,Y,Z (repeat the option, or list several after it).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
-          required = true)]
-    pub(crate) point: Vec<DVec3>,
-    /// Print the pixel 1-based, as the lecture's (i, j), with the JSON keys "i" and "j"
-    /// instead of "row" and "col" (x and y do not change).
-    #[arg(long)]
-    pub(crate) one_based: bool,
-}
-
-#[derive(Args, Debug)]
-pub(crate) struct SceneArgs {
-    /// Print the built-in default scene, the one `viewray render` renders without a
-    /// SCENE.
-    #[arg(long, required = true)]
-    pub(crate) default: bool,
-}
-
 #[derive(Args, Debug)]
 pub(crate) struct CompletionsArgs {
     /// The shell to complete for.
@@ -441,181 +278,6 @@ pub(crate) struct ManArgs {
     pub(crate) command: Option<String>,
 }
 
-/// The SCENE argument that means standard input.
-pub(crate) const STDIN: &str = "-";
-
-/// Whether a SCENE or OUT argument is `-`, standard input or output.
-pub(crate) fn is_standard_stream(path: &Path) -> bool {
-    path.as_os_str() == STDIN
-}
-
-/// Parses `text` as comma-separated finite numbers, exactly `N` of them.
-fn parse_numbers<const N: usize>(text: &str, example: &str) -> Result<[f64; N], String> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    let wrong = || format!("expected {N} numbers separated by commas, like {example}");
-    if parts.len() != N {
-        return Err(wrong());
-    }
-    let mut numbers = [0.0; N];
-    for (number, part) in numbers.iter_mut().zip(parts) {
-        *number = part.parse::<f64>().map_err(|_| wrong())?;
-        if !number.is_finite() {
-            return Err(format!("`{part}` is not a finite number"));
-        }
-    }
-    Ok(numbers)
-}
-
-fn parse_vec3(text: &str) -> Result<DVec3, String> {
-    parse_numbers::<3>(text, "0,1.5,-2").map(DVec3::from)
-}
-
-/// Parses an offset inside a pixel: two numbers in `[0, 1)`.
-fn parse_offset(text: &str) -> Result<DVec2, String> {
-    let offset = DVec2::from(parse_numbers::<2>(text, "0.5,0.5")?);
-    if !(0.0..1.0).contains(&offset.x) || !(0.0..1.0).contains(&offset.y) {
-        return Err(format!(
-            "{},{} lies outside the pixel: each offset must be in [0, 1)",
-            offset.x, offset.y
-        ));
-    }
-    Ok(offset)
-}
-
-pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {
-    let wrong = || "expected a pixel as two whole numbers ROW,COL, like 2,3".to_owned();
-    let (row, col) = text.split_once(',').ok_or_else(wrong)?;
-    let row = row.trim().parse().map_err(|_| wrong())?;
-    let col = col.trim().parse().map_err(|_| wrong())?;
-    Ok((row, col))
-}
-
-/// Parses an image size `WIDTHxHEIGHT` within the renderer's limits.
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let wrong = || "expected the size as WIDTHxHEIGHT in pixels, like 640x480".to_owned();
-    let (width, height) = text.split_once(['x', 'X']).ok_or_else(wrong)?;
-    let width: u64 = width.trim().parse().map_err(|_| wrong())?;
-    let height: u64 = height.trim().parse().map_err(|_| wrong())?;
-    if width == 0 || height == 0 {
-        return Err(format!(
-            "the image must be at least 1 x 1 pixels, found {width} x {height}"
-        ));
-    }
-    let side = u64::from(MAX_IMAGE_SIDE);
-    if width > side || height > side {
-        return Err(format!(
-            "{width} x {height} is too large: each side can be at most {side} pixels"
-        ));
-    }
-    // Both sides are at most MAX_IMAGE_SIDE (2^14), so the product cannot overflow.
-    if width * height > MAX_IMAGE_PIXELS {
-        return Err(format!(
-            "{width} x {height} is too large: at most {MAX_IMAGE_PIXELS} pixels (2^28)"
-        ));
-    }
-    // Both sides are at most MAX_IMAGE_SIDE, so they fit.
-    Ok((width as u32, height as u32))
-}
-
-/// Parses a number of samples per pixel, 1 to [`MAX_SAMPLES`].
-fn parse_samples(text: &str) -> Result<u32, String> {
-    let wrong = || format!("expected a whole number of samples from 1 to {MAX_SAMPLES}");
-    let samples: u64 = text.trim().parse().map_err(|_| wrong())?;
-    match u32::try_from(samples) {
-        Ok(samples) if (1..=MAX_SAMPLES).contains(&samples) => Ok(samples),
-        _ => Err(wrong()),
-    }
-}
-
-/// Parses a number of frames, 1 to [`MAX_FRAMES`].
-fn parse_frames(text: &str) -> Result<u32, String> {
-    let wrong = || format!("expected a whole number of frames from 1 to {MAX_FRAMES}");
-    let frames: u64 = text.trim().parse().map_err(|_| wrong())?;
-    match u32::try_from(frames) {
-        Ok(frames) if (1..=MAX_FRAMES).contains(&frames) => Ok(frames),
-        _ => Err(wrong()),
-    }
-}
-
-/// Parses a number of frames per second, 1 to [`MAX_FPS`].
-fn parse_fps(text: &str) -> Result<u32, String> {
-    let wrong = || format!("expected a whole number of frames per second from 1 to {MAX_FPS}");
-    let fps: u64 = text.trim().parse().map_err(|_| wrong())?;
-    match u32::try_from(fps) {
-        Ok(fps) if (1..=MAX_FPS).contains(&fps) => Ok(fps),
-        _ => Err(wrong()),
-    }
-}
-
-/// The most render threads `--threads` accepts.
-const MAX_THREADS: usize = 1024;
-
-/// Parses a number of threads, 1 to [`MAX_THREADS`].
-fn parse_threads(text: &str) -> Result<usize, String> {
-    let wrong = || format!("expected a whole number of threads from 1 to {MAX_THREADS}");
-    let threads: usize = text.trim().parse().map_err(|_| wrong())?;
-    if (1..=MAX_THREADS).contains(&threads) {
-        Ok(threads)
-    } else {
-        Err(wrong())
-    }
-}
-
-/// Options that take one value each time and may be followed by several:
-/// `--point 1,2,3 -4,5,6` means `--point 1,2,3 --point -4,5,6`.
-const REPEATABLE: [&str; 2] = ["--point", "--pixel"];
-
-/// Rewrites `--point A B` as `--point A --point B`, so that several values may follow one
-/// option while values starting with `-` (negative coordinates) are still values.
-pub(crate) fn expand_repeated_values(args: impl IntoIterator<Item = OsString>) -> Vec<OsString> {
-    let mut out = Vec::new();
-    let mut repeating: Option<OsString> = None;
-    let mut just_saw_option = false;
-    for arg in args {
-        let text = arg.to_str().unwrap_or_default();
-        let looks_like_value = !text.is_empty()
-            && text.contains(',')
-            && text
-                .chars()
-                .all(|c| c.is_ascii_digit() || ".,-+eE ".contains(c));
-        if REPEATABLE.contains(&text) {
-            repeating = Some(arg.clone());
-            just_saw_option = true;
-            out.push(arg);
-            continue;
-        }
-        if let Some(option) = &repeating {
-            if looks_like_value {
-                if !just_saw_option {
-                    out.push(option.clone());
-                }
-                just_saw_option = false;
-                out.push(arg);
-                continue;
-            }
-            repeating = None;
-        }
-        just_saw_option = false;
-        out.push(arg);
-    }
-    out
-}
-
-/// The options whose value is several numbers joined by commas, the format each takes
-/// and how many numbers that is.
-const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
-    ("--eye", "X,Y,Z", 3),
-    ("--view", "X,Y,Z", 3),
-    ("--look-at", "X,Y,Z", 3),
-    ("--up", "X,Y,Z", 3),
-    ("--point", "X,Y,Z", 3),
-    ("--pixel", "ROW,COL", 2),
-    ("--sample", "OX,OY", 2),
-];
-
-/// The options of `viewray frame` that describe a camera by hand.
-const FRAME_OPTIONS: [&str; 4] = ["--eye", "--view", "--look-at", "--up"];
-
 /// The subcommand named in `args` (which start with the program's name), if any.
 pub(crate) fn subcommand_in(args: &[OsString]) -> Option<String> {
     let name = args.get(1)?.to_str()?;
@@ -625,246 +287,52 @@ pub(crate) fn subcommand_in(args: &[OsString]) -> Option<String> {
         .then(|| name.to_owned())
 }
 
-/// `(see `viewray COMMAND --help`)`, the pointer every usage error ends with.
-pub(crate) fn see_help(command: Option<&str>) -> String {
-    match command {
-        Some(command) => format!("(see `viewray {command} --help`)"),
-        None => "(see `viewray --help`)".to_owned(),
-    }
+/// `viewray completions SHELL`: the shell's completion script.
+pub(crate) fn completions(args: &CompletionsArgs) -> Result<()> {
+    // Into memory first: clap_complete panics when its writer fails (as a closed pipe
+    // makes it), and a write error here is reported like any other.
+    let mut script = Vec::new();
+    clap_complete::generate(args.shell, &mut Cli::command(), "viewray", &mut script);
+    let mut out = std::io::stdout().lock();
+    out.write_all(&script)?;
+    out.flush()?;
+    Ok(())
 }
 
-/// A usage error of `viewray COMMAND`: the message and where the help is.
-pub(crate) fn usage_error(command: &str, message: impl Display) -> anyhow::Error {
-    anyhow::anyhow!("{message} {}", see_help(Some(command)))
-}
-
-/// Finds numbers separated by spaces where an option wants them joined by commas
-/// (`--eye 1 2 3`, `--pixel 1 1`), which clap would report as "unexpected argument
-/// '2'". Returns the message that says the format and what to write instead.
-pub(crate) fn spaced_number_list(args: &[OsString]) -> Option<String> {
-    let texts: Vec<&str> = args.iter().map(|a| a.to_str().unwrap_or("")).collect();
-    for (index, &arg) in texts.iter().enumerate() {
-        let Some(&(option, format, count)) = NUMBER_LIST_OPTIONS.iter().find(|o| o.0 == arg) else {
-            continue;
-        };
-        // Take the arguments after the option while they are numbers (or pieces of a
-        // list, like `1,`) and fewer than the option needs.
-        let mut numbers: Vec<&str> = Vec::new();
-        let mut taken = 0;
-        for next in &texts[index + 1..] {
-            let pieces: Vec<&str> = next.split(',').filter(|p| !p.trim().is_empty()).collect();
-            let numeric =
-                !pieces.is_empty() && pieces.iter().all(|p| p.trim().parse::<f64>().is_ok());
-            if !numeric || numbers.len() + pieces.len() > count {
-                break;
+/// `viewray man [COMMAND]`: a man page, in roff.
+pub(crate) fn man(args: &ManArgs) -> Result<()> {
+    let mut command = Cli::command();
+    // Building names the subcommands `viewray-NAME`, as their pages are called.
+    command.build();
+    let page = match &args.command {
+        None => command,
+        Some(name) => match command.find_subcommand(name) {
+            Some(subcommand) => subcommand.clone(),
+            None => {
+                let names: Vec<&str> = command
+                    .get_subcommands()
+                    .map(clap::Command::get_name)
+                    .filter(|n| *n != "help")
+                    .collect();
+                return Err(crate::usage::usage_error(
+                    "man",
+                    format!("no command `{name}`: one of {}", names.join(", ")),
+                ));
             }
-            numbers.extend(pieces);
-            taken += 1;
-            if numbers.len() == count {
-                break;
-            }
-        }
-        if taken > 1 {
-            let typed = texts[index + 1..=index + taken].join(" ");
-            return Some(format!(
-                "{option} takes {format}, {count} numbers joined by commas without spaces: \
-                 write `{option} {}`, not `{option} {typed}`",
-                numbers.join(",")
-            ));
-        }
-    }
-    None
-}
-
-/// Prints a clap error: help and version as clap formats them, usage errors as one line
-/// `error: ...` pointing to the subcommand's help, exit code 2.
-pub(crate) fn report_usage_error(error: &clap::Error, args: &[OsString]) -> ExitCode {
-    use clap::error::{ContextKind, ContextValue, ErrorKind};
-    if matches!(
-        error.kind(),
-        ErrorKind::DisplayHelp
-            | ErrorKind::DisplayVersion
-            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
-    ) {
-        let _ = error.print();
-        return if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-            ExitCode::from(crate::EXIT_BAD_INPUT)
-        } else {
-            ExitCode::SUCCESS
-        };
-    }
-    let command = subcommand_in(args);
-    let help = see_help(command.as_deref());
-    let invalid = match error.get(ContextKind::InvalidArg) {
-        Some(ContextValue::String(arg)) => Some(arg.as_str()),
-        _ => None,
+        },
     };
-    // `viewray rays --eye ..`: the camera comes from the scene; clap's tip ("use '--
-    // --eye'") would send a student the wrong way.
-    if error.kind() == ErrorKind::UnknownArgument
-        && let (Some(command @ ("rays" | "project" | "trace")), Some(arg)) =
-            (command.as_deref(), invalid)
-        && let Some(option) = FRAME_OPTIONS.iter().find(|o| arg.starts_with(**o))
-    {
-        crate::style::error(format_args!(
-            "`viewray {command}` takes its camera from a SCENE file, not from {option}; \
-             `viewray frame --eye X,Y,Z --look-at X,Y,Z` prints the frame of eye, view and \
-             up {help}"
-        ));
-        return ExitCode::from(crate::EXIT_BAD_INPUT);
-    }
-    let text = error.render().to_string();
-    let line: Vec<&str> = text
-        .lines()
-        .map(str::trim)
-        .take_while(|line| !line.starts_with("Usage:") && !line.starts_with("For more information"))
-        // clap suggests `-- --option` to pass an unknown option as a value: never what a
-        // viewray user means.
-        .filter(|line| !line.is_empty() && !line.starts_with("tip: to pass '"))
-        .collect();
-    let line = line.join(" ");
-    let line = line.strip_prefix("error: ").unwrap_or(&line);
-    crate::style::error(format_args!("{line} {help}"));
-    ExitCode::from(crate::EXIT_BAD_INPUT)
+    let mut out = BufWriter::new(std::io::stdout().lock());
+    clap_mangen::Man::new(page)
+        .source(format!("viewray {}", VERSION))
+        .manual("viewray manual")
+        .render(&mut out)?;
+    out.flush()?;
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn os(args: &[&str]) -> Vec<OsString> {
-        args.iter().map(OsString::from).collect()
-    }
-
-    fn expand(args: &[&str]) -> Vec<String> {
-        expand_repeated_values(os(args))
-            .into_iter()
-            .map(|a| a.into_string().unwrap())
-            .collect()
-    }
-
-    #[test]
-    fn several_values_after_one_option_become_repeated_options() {
-        assert_eq!(
-            expand(&[
-                "viewray",
-                "project",
-                "s.ron",
-                "--point",
-                "1,2,3",
-                "-4,5,6",
-                "--one-based"
-            ]),
-            [
-                "viewray",
-                "project",
-                "s.ron",
-                "--point",
-                "1,2,3",
-                "--point",
-                "-4,5,6",
-                "--one-based"
-            ]
-        );
-        assert_eq!(
-            expand(&["viewray", "rays", "--pixel", "0,0", "s.ron"]),
-            ["viewray", "rays", "--pixel", "0,0", "s.ron"]
-        );
-    }
-
-    #[track_caller]
-    fn check_spaced(args: &[&str], expected: Option<&str>) {
-        assert_eq!(spaced_number_list(&os(args)).as_deref(), expected);
-    }
-
-    #[test]
-    fn numbers_separated_by_spaces_are_caught_with_the_fix() {
-        check_spaced(
-            &[
-                "viewray", "frame", "--eye", "1", "2", "3", "--view", "0,0,-1",
-            ],
-            Some(
-                "--eye takes X,Y,Z, 3 numbers joined by commas without spaces: write \
-                 `--eye 1,2,3`, not `--eye 1 2 3`",
-            ),
-        );
-        check_spaced(
-            &["viewray", "rays", "s.ron", "--pixel", "1", "1"],
-            Some(
-                "--pixel takes ROW,COL, 2 numbers joined by commas without spaces: write \
-                 `--pixel 1,1`, not `--pixel 1 1`",
-            ),
-        );
-        check_spaced(
-            &["viewray", "frame", "--eye", "1,", "-2,", "3"],
-            Some(
-                "--eye takes X,Y,Z, 3 numbers joined by commas without spaces: write \
-                 `--eye 1,-2,3`, not `--eye 1, -2, 3`",
-            ),
-        );
-        // Correct lists, several values after one option, and a lone wrong value (which
-        // the option's own parser explains) are left alone.
-        check_spaced(
-            &["viewray", "project", "s", "--point", "1,2,3", "4,5,6"],
-            None,
-        );
-        check_spaced(&["viewray", "rays", "s", "--pixel", "1,1", "2,2"], None);
-        check_spaced(&["viewray", "frame", "--eye", "1", "--view", "0,0,1"], None);
-        check_spaced(&["viewray", "rays", "--pixel", "1", "s.ron"], None);
-    }
-
-    #[test]
-    fn sizes_samples_threads_and_offsets_are_checked() {
-        assert_eq!(parse_size("640x480"), Ok((640, 480)));
-        assert_eq!(parse_size("16384X16384"), Ok((16384, 16384)));
-        for bad in [
-            "0x10",
-            "10x0",
-            "100000x10",
-            "16384x16385",
-            "640",
-            "640x",
-            "axb",
-            "-1x5",
-            "99999999999999999999x1",
-        ] {
-            assert!(parse_size(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_samples("16"), Ok(16));
-        for bad in ["0", "-1", "65537", "99999999999", "x"] {
-            assert!(parse_samples(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_frames("48"), Ok(48));
-        for bad in ["0", "10001", "-3", "2.5", "x"] {
-            assert!(parse_frames(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_fps("24"), Ok(24));
-        for bad in ["0", "101", "24.0"] {
-            assert!(parse_fps(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_threads("2"), Ok(2));
-        assert!(parse_threads("0").is_err());
-        assert_eq!(parse_offset("0,0.999"), Ok(DVec2::new(0.0, 0.999)));
-        for bad in ["1,0", "0,-0.1", "0.5", "nan,0"] {
-            assert!(parse_offset(bad).is_err(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn vectors_parse_with_negative_numbers_and_spaces() {
-        assert_eq!(parse_vec3("-1, 0,5.5"), Ok(DVec3::new(-1.0, 0.0, 5.5)));
-        assert!(parse_vec3("1,2").is_err());
-        assert!(parse_vec3("1,2,x").is_err());
-        assert!(parse_vec3("1,2,inf").is_err());
-        assert_eq!(parse_pixel("2, 3"), Ok((2, 3)));
-        assert_eq!(
-            parse_pixel("-9223372036854775808,0"),
-            Ok((i64::MIN, 0)),
-            "any whole number parses; the command checks it against the image"
-        );
-        assert!(parse_pixel("2.5,3").is_err());
-        assert!(parse_pixel("9223372036854775808,0").is_err());
-    }
 
     #[test]
     fn the_clap_definitions_are_consistent() {

@@ -1,16 +1,106 @@
-//! The subcommands that print numbers and texts: frame, rays, project, scene,
-//! completions and man.
+//! The subcommands that print numbers and texts: frame, rays, project (the homework
+//! numbers, with the conventions they follow) and scene.
 
 use std::io::{BufWriter, IsTerminal, Write};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use clap::CommandFactory;
+use clap::Args;
+use glam::{DVec2, DVec3};
 use viewray_camera::{CameraSample, Frame};
 use viewray_json::{PixelIndices, project_line, ray_line};
 
-use crate::cli::{Cli, CompletionsArgs, FrameArgs, ManArgs, ProjectArgs, RaysArgs, SceneArgs};
 use crate::input::{DEFAULT_SCENE, load_scene_file};
 use crate::style;
+use crate::values::{parse_offset, parse_pixel, parse_vec3};
+
+/// The conventions, after the help of the commands that print numbers. Each line fits
+/// in 80 columns, so that clap does not rewrap it.
+pub(crate) const CONVENTIONS: &str = "\
+Conventions (the lecture's, made exact; docs/cameras.md in the source explains
+them with worked examples):
+
+Pixels: an image is W columns by H rows. Pixels are 0-based (row, col) from
+the top-left by default; --one-based takes and prints the lecture's 1-based
+(i, j) = (row + 1, col + 1), and the JSON keys say which: row/col or i/j.
+
+Frame: e = eye, w = -view/|view|, u = (up x w)/|up x w|, v = w x u; u points
+right, v up, w back (the camera looks along -w).
+
+Image plane, at a pixel's centre:
+
+    u = ((j - 1/2)/W - 1/2) vw,   v = -((i - 1/2)/H - 1/2) vh
+
+Perspective ray: origin e, direction u U + v V - d W, with U, V, W the frame's
+vectors; directions are not normalized.
+
+Exit codes: 0 success, 1 a comparison failed, 2 bad input or usage, other
+values internal errors.";
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct FrameArgs {
+    /// A scene file (or - for standard input) whose camera's frame to print, instead of
+    /// --eye, --view or --look-at, and --up.
+    #[arg(value_name = "SCENE", conflicts_with_all = ["eye", "view", "look_at", "up"])]
+    pub(crate) scene: Option<PathBuf>,
+    /// The eye position e.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) eye: Option<DVec3>,
+    /// The view direction (or give --look-at).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
+          conflicts_with = "look_at")]
+    pub(crate) view: Option<DVec3>,
+    /// A point to look at: view = look_at - eye.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) look_at: Option<DVec3>,
+    /// The up vector; it fixes the camera's roll and need not be perpendicular to view
+    /// [default: 0,1,0].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub(crate) up: Option<DVec3>,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct RaysArgs {
+    /// The scene file whose camera and image size to use, or - for standard input.
+    pub(crate) scene: PathBuf,
+    /// A pixel as ROW,COL, 0-based (or I,J with --one-based); repeat the option, or list
+    /// several after it. Without it, every pixel.
+    #[arg(long, value_name = "ROW,COL", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub(crate) pixel: Vec<(i64, i64)>,
+    /// Pixels are given and printed 1-based, as the lecture's (i, j), with the JSON keys
+    /// "i" and "j" instead of "row" and "col".
+    #[arg(long)]
+    pub(crate) one_based: bool,
+    /// The point inside each pixel as OX,OY, each in [0, 1) from the pixel's top-left
+    /// corner; 0.5,0.5 is the centre, the lecture's ray.
+    #[arg(long, value_name = "OX,OY", value_parser = parse_offset, default_value = "0.5,0.5")]
+    pub(crate) sample: DVec2,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = CONVENTIONS)]
+pub(crate) struct ProjectArgs {
+    /// The scene file whose camera and image size to use, or - for standard input.
+    pub(crate) scene: PathBuf,
+    /// A world point as X,Y,Z (repeat the option, or list several after it).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true,
+          required = true)]
+    pub(crate) point: Vec<DVec3>,
+    /// Print the pixel 1-based, as the lecture's (i, j), with the JSON keys "i" and "j"
+    /// instead of "row" and "col" (x and y do not change).
+    #[arg(long)]
+    pub(crate) one_based: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct SceneArgs {
+    /// Print the built-in default scene, the one `viewray render` renders without a
+    /// SCENE.
+    #[arg(long, required = true)]
+    pub(crate) default: bool,
+}
 
 /// `viewray frame`: the camera frame of a scene, or from eye, view (or look-at) and up.
 pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
@@ -25,7 +115,7 @@ pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
 
 /// The frame of `--eye` with `--view` or `--look-at`, and `--up`.
 fn frame_from_options(args: &FrameArgs) -> Result<Frame> {
-    let usage = |message: &str| crate::cli::usage_error("frame", message);
+    let usage = |message: &str| crate::usage::usage_error("frame", message);
     let Some(eye) = args.eye else {
         return Err(usage(
             "give the camera as a SCENE file, or as --eye X,Y,Z with --view X,Y,Z or \
@@ -77,7 +167,7 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
         .map(|&pixel| {
             indices
                 .pixel(pixel, width, height)
-                .map_err(anyhow::Error::msg)
+                .map_err(|outside| anyhow::anyhow!(outside.sentence(Some("--one-based"))))
         })
         .collect::<Result<Vec<(u32, u32)>>>()?;
     note_pixel_convention(args.one_based);
@@ -124,49 +214,6 @@ pub(crate) fn scene(args: &SceneArgs) -> Result<()> {
     debug_assert!(args.default, "clap requires --default");
     let mut out = std::io::stdout().lock();
     out.write_all(DEFAULT_SCENE.as_bytes())?;
-    out.flush()?;
-    Ok(())
-}
-
-/// `viewray completions SHELL`: the shell's completion script.
-pub(crate) fn completions(args: &CompletionsArgs) -> Result<()> {
-    // Into memory first: clap_complete panics when its writer fails (as a closed pipe
-    // makes it), and a write error here is reported like any other.
-    let mut script = Vec::new();
-    clap_complete::generate(args.shell, &mut Cli::command(), "viewray", &mut script);
-    let mut out = std::io::stdout().lock();
-    out.write_all(&script)?;
-    out.flush()?;
-    Ok(())
-}
-
-/// `viewray man [COMMAND]`: a man page, in roff.
-pub(crate) fn man(args: &ManArgs) -> Result<()> {
-    let mut command = Cli::command();
-    // Building names the subcommands `viewray-NAME`, as their pages are called.
-    command.build();
-    let page = match &args.command {
-        None => command,
-        Some(name) => match command.find_subcommand(name) {
-            Some(subcommand) => subcommand.clone(),
-            None => {
-                let names: Vec<&str> = command
-                    .get_subcommands()
-                    .map(clap::Command::get_name)
-                    .filter(|n| *n != "help")
-                    .collect();
-                return Err(crate::cli::usage_error(
-                    "man",
-                    format!("no command `{name}`: one of {}", names.join(", ")),
-                ));
-            }
-        },
-    };
-    let mut out = BufWriter::new(std::io::stdout().lock());
-    clap_mangen::Man::new(page)
-        .source(format!("viewray {}", crate::cli::VERSION))
-        .manual("viewray manual")
-        .render(&mut out)?;
     out.flush()?;
     Ok(())
 }

@@ -16,14 +16,13 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
-use serde_json::{Map, Value, json};
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Diagnosis, Expectations, InstructorThresholds, Report, ReportEntry, RgbaImage,
-    Rules, Verdict, judge_with, load_png, write_report,
+    CameraKind, Expectations, InstructorThresholds, Outcome, Report, ReportEntry, RgbaImage, Rules,
+    Tally, Verdict, judge_with, load_png, write_report,
 };
-use viewray_grade::{Counterpart, Outcome, ReferenceImage, in_order, load_counterpart};
-use viewray_scene::{LoadOptions, Scene};
+use viewray_grade::{Counterpart, ReferenceImage, in_order, load_counterpart};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 /// Exit code when a render failed.
 pub(crate) const EXIT_FAILED: u8 = 1;
@@ -156,24 +155,25 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
         size: Some((width, height)),
         samples: None,
     };
-    let scene = Scene::load_with(path, options)?;
-    // The principal point, where u + sx = 0 and v + sy = 0: x = W (1/2 - sx/vw),
-    // y = H (1/2 + sy/vh).
-    let perspective = |viewport: glam::DVec2, shift: glam::DVec2| Expectations {
-        principal_point: (0.5 - shift.x / viewport.x, 0.5 + shift.y / viewport.y),
-        shift: (shift.x, shift.y),
-        camera: CameraKind::Perspective,
+    let scene = SceneLoader::file(path).options(options).load()?.scene;
+    let projection = scene.camera().projection();
+    let Some(principal) = projection.principal_point() else {
+        return Ok(None);
     };
-    Ok(match scene.camera().projection() {
-        Projection::Perspective(p) => Some(perspective(p.viewport, p.shift)),
-        Projection::ThinLens(p) => Some(perspective(p.viewport, p.shift)),
-        Projection::Orthographic(_) | Projection::Oblique(_) => Some(Expectations {
-            principal_point: (0.5, 0.5),
-            shift: (0.0, 0.0),
-            camera: CameraKind::Parallel,
-        }),
-        Projection::Equirectangular | Projection::Fisheye(_) => None,
-    })
+    let shift = match projection {
+        Projection::Perspective(p) => p.shift,
+        Projection::ThinLens(p) => p.shift,
+        _ => glam::DVec2::ZERO,
+    };
+    Ok(Some(Expectations {
+        principal_point: (principal.x, principal.y),
+        shift: (shift.x, shift.y),
+        camera: if projection.is_parallel() {
+            CameraKind::Parallel
+        } else {
+            CameraKind::Perspective
+        },
+    }))
 }
 
 /// One pair to judge: the reference and what the ACTUAL side holds for it.
@@ -190,53 +190,12 @@ struct Judged {
     outcome: Outcome,
 }
 
-/// How the pairs fared: `passed + failed` is the number of pairs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-struct Tally {
-    passed: usize,
-    /// Judged different, or missing or unreadable.
-    failed: usize,
-    /// Of those failed, the missing or unreadable.
-    not_compared: usize,
-}
-
-impl Tally {
-    fn add(&mut self, outcome: &Outcome) {
-        match outcome {
-            Outcome::Judged(c) if c.passed() => self.passed += 1,
-            Outcome::Judged(_) => self.failed += 1,
-            Outcome::Failed(_) => {
-                self.failed += 1;
-                self.not_compared += 1;
-            }
-        }
-    }
-
-    /// 1 when a pair failed, else 0.
-    fn exit_code(self) -> ExitCode {
-        if self.failed > 0 {
-            ExitCode::from(EXIT_FAILED)
-        } else {
-            ExitCode::SUCCESS
-        }
-    }
-
-    /// The summary line, e.g. `6 images: 1 passed, 5 failed, 2 of them missing or
-    /// unreadable`.
-    fn summary(self) -> String {
-        let total = self.passed + self.failed;
-        let noun = if total == 1 { "image" } else { "images" };
-        let mut line = format!(
-            "{total} {noun}: {} passed, {} failed",
-            self.passed, self.failed
-        );
-        if self.not_compared > 0 {
-            line.push_str(&format!(
-                ", {} of them missing or unreadable",
-                self.not_compared
-            ));
-        }
-        line
+/// 1 when a pair failed, else 0.
+fn exit_code(tally: Tally) -> ExitCode {
+    if tally.failed > 0 {
+        ExitCode::from(EXIT_FAILED)
+    } else {
+        ExitCode::SUCCESS
     }
 }
 
@@ -248,7 +207,7 @@ pub(crate) fn run(args: &CompareArgs) -> ExitCode {
         Err(error) => return crate::failure(&error),
     };
     match judge_all(args, pairs, &extra) {
-        Ok(tally) => tally.exit_code(),
+        Ok(tally) => exit_code(tally),
         Err(error) => crate::failure(&error),
     }
 }
@@ -340,10 +299,8 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
         |judged| {
             tally.add(&judged.outcome);
             if args.json {
-                let mut line = Map::new();
-                line.insert("name".into(), json!(judged.name));
-                json_fields(&mut line, &judged.outcome, args.threshold);
-                viewray_json::write_line(&mut out, &Value::Object(line))?;
+                let line = viewray_json::pair_line(&judged.name, &judged.outcome, args.threshold);
+                viewray_json::write_line(&mut out, &line)?;
             } else {
                 writeln!(
                     out,
@@ -358,14 +315,7 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
     )?;
     let summary_line = format!("{} (threshold {})", tally.summary(), args.threshold);
     if args.json {
-        let summary = json!({"summary": {
-            "total": results.len(),
-            "passed": tally.passed,
-            "failed": tally.failed,
-            "missing_or_unreadable": tally.not_compared,
-            "extra": extra,
-        }});
-        viewray_json::write_line(&mut out, &summary)?;
+        viewray_json::write_line(&mut out, &viewray_json::pairs_summary_line(&tally, extra))?;
     } else {
         if !extra.is_empty() {
             writeln!(
@@ -378,19 +328,9 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
     }
     out.flush()?;
     if let Some(directory) = &args.report {
-        let messages: Vec<String> = results.iter().map(|r| r.outcome.note()).collect();
         let entries: Vec<ReportEntry<'_>> = results
             .iter()
-            .zip(&messages)
-            .map(|(r, message)| ReportEntry {
-                name: &r.name,
-                expected: r.expected.as_ref(),
-                actual: r.actual.as_ref(),
-                outcome: match &r.outcome {
-                    Outcome::Judged(comparison) => viewray_compare::Outcome::Compared(comparison),
-                    Outcome::Failed(_) => viewray_compare::Outcome::Failed(message),
-                },
-            })
+            .map(|r| ReportEntry::new(&r.name, r.expected.as_ref(), r.actual.as_ref(), &r.outcome))
             .collect();
         let title = format!(
             "viewray compare {} {}",
@@ -422,7 +362,7 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, keep_images: bool)
                 thresholds,
                 reference.expectations.as_ref(),
             );
-            (Some(actual), Outcome::Judged(Box::new(comparison)))
+            (Some(actual), Outcome::from(comparison))
         }
         Err(message) => (None, Outcome::Failed(message)),
     };
@@ -454,52 +394,4 @@ pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize) -> Str
         outcome.note()
     );
     row.trim_end().to_owned()
-}
-
-/// A FLIP figure for JSON, rounded to 4 decimals.
-fn figure(value: f32) -> Value {
-    json!((f64::from(value) * 1e4).round() / 1e4)
-}
-
-/// A pair's JSON fields after its name: verdict, figures, diagnosis, transform, reasons.
-pub(crate) fn json_fields(line: &mut Map<String, Value>, outcome: &Outcome, threshold: f32) {
-    let (metrics, diagnosis, reasons) = match outcome {
-        Outcome::Judged(c) => (
-            c.metrics,
-            c.diagnosis,
-            c.failures.iter().map(ToString::to_string).collect(),
-        ),
-        Outcome::Failed(message) => (None, None, vec![message.clone()]),
-    };
-    line.insert("verdict".into(), json!(outcome.verdict().word()));
-    line.insert(
-        "peak_flip".into(),
-        metrics.map_or(Value::Null, |m| figure(m.peak_flip)),
-    );
-    line.insert(
-        "mean_flip".into(),
-        metrics.map_or(Value::Null, |m| figure(m.mean_flip)),
-    );
-    line.insert("threshold".into(), figure(threshold));
-    line.insert(
-        "diagnosis".into(),
-        diagnosis.map_or(Value::Null, |d| json!(d.messages())),
-    );
-    line.insert(
-        "transform".into(),
-        diagnosis
-            .as_ref()
-            .and_then(Diagnosis::camera_mistake)
-            .map_or(Value::Null, |m| {
-                json!({
-                    "mirrored_left_right": m.mirrored_left_right,
-                    "upside_down": m.upside_down,
-                    "rotation": figure(m.rotation as f32),
-                    "scale": [figure(m.scale.0 as f32), figure(m.scale.1 as f32)],
-                    "about": [figure(m.about.0 as f32), figure(m.about.1 as f32)],
-                    "shift": [figure(m.shift.0 as f32), figure(m.shift.1 as f32)],
-                })
-            }),
-    );
-    line.insert("reasons".into(), json!(reasons));
 }

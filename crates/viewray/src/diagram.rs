@@ -18,7 +18,7 @@ pub(crate) struct DiagramArgs {
     pub(crate) output: PathBuf,
     /// Also draw the viewing ray of this pixel, ROW,COL (0-based from the top-left),
     /// highlighted.
-    #[arg(long, value_name = "ROW,COL", value_parser = crate::cli::parse_pixel, allow_hyphen_values = true)]
+    #[arg(long, value_name = "ROW,COL", value_parser = crate::values::parse_pixel, allow_hyphen_values = true)]
     pub(crate) pixel: Option<(i64, i64)>,
     /// The pixel is given 1-based, as the lecture's (i, j).
     #[arg(long)]

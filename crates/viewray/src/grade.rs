@@ -14,14 +14,13 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
-use serde_json::{Map, Value, json};
 use viewray_compare::{InstructorThresholds, Reference};
 use viewray_grade::{
     Assignment, ClassReport, ClassSummary, StudentGrade, Task, grade_class, listed,
     write_class_report, write_gradebook,
 };
 
-use crate::compare::{json_fields, parse_threshold, prepare, thresholds};
+use crate::compare::{parse_threshold, prepare, thresholds};
 
 #[derive(Args, Debug)]
 pub(crate) struct GradeArgs {
@@ -133,11 +132,13 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
         |grade| {
             if args.json {
                 for (name, image) in names.iter().zip(&grade.images) {
-                    let mut line = Map::new();
-                    line.insert("student".into(), json!(grade.name));
-                    line.insert("name".into(), json!(name));
-                    json_fields(&mut line, &image.outcome, args.threshold);
-                    viewray_json::write_line(&mut out, &Value::Object(line))?;
+                    let line = viewray_json::student_image_line(
+                        &grade.name,
+                        name,
+                        &image.outcome,
+                        args.threshold,
+                    );
+                    viewray_json::write_line(&mut out, &line)?;
                 }
             } else {
                 for line in student_rows(grade, &names, width) {
@@ -150,19 +151,7 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
     let summary = ClassSummary::new(&assignment, &grades);
     let lines = summary_lines(&summary, args.threshold);
     if args.json {
-        let per_image: Vec<Value> = summary
-            .images
-            .iter()
-            .map(|i| json!({"name": i.name, "passed": i.passed, "total": i.total}))
-            .collect();
-        let line = json!({"summary": {
-            "students": summary.students,
-            "images": summary.images.len(),
-            "passed_everything": summary.passed_everything,
-            "per_image": per_image,
-            "hardest": summary.hardest().map(|i| i.name.clone()),
-            "not_graded": class.other,
-        }});
+        let line = viewray_json::class_summary_line(&summary, &class.other);
         viewray_json::write_line(&mut out, &line)?;
     } else {
         if !class.other.is_empty() {

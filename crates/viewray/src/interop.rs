@@ -2,13 +2,13 @@
 //! Blender, three.js and glTF (viewray-interop does the work; this is the file I/O).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use viewray_interop::Format;
 use viewray_output::AtomicFile;
-use viewray_scene::Scene;
+use viewray_scene::{FileKind, SceneLoader};
 
 /// The largest file `viewray import` reads: 256 MiB.
 const MAX_IMPORT_BYTES: u64 = 256 << 20;
@@ -50,7 +50,10 @@ fn parse_format(text: &str) -> Result<Format, String> {
 /// `viewray export`: the scene written for another tool, atomically (nothing is written
 /// when the tool cannot express the camera).
 pub(crate) fn export(args: &ExportArgs) -> Result<()> {
-    let scene = Scene::load(&args.scene)?;
+    let scene = SceneLoader::file(&args.scene)
+        .load()
+        .map_err(crate::input::scene_error)?
+        .scene;
     let file_name = args
         .output
         .file_name()
@@ -86,6 +89,29 @@ pub(crate) fn export(args: &ExportArgs) -> Result<()> {
     Ok(())
 }
 
+/// What `viewray import` reads, for its errors.
+const IMPORTS: &str = "Mitsuba 3 XML (.xml), pbrt-v4 (.pbrt), a three.js JSON object (.json) or \
+                       glTF (.gltf, .glb)";
+
+/// Why `viewray import` does not read the file `path` of `kind` (`None`: a kind viewray
+/// does not know).
+fn not_importable(path: &Path, kind: Option<FileKind>) -> anyhow::Error {
+    let name = path.display();
+    let Some(kind) = kind else {
+        return anyhow!(
+            "{name}: cannot tell the format: expected {IMPORTS}; say which with --from"
+        );
+    };
+    match kind.not_a_scene() {
+        None => anyhow!(
+            "{name}: this is a viewray scene file already: `viewray render {name}` renders it"
+        ),
+        Some(what) => {
+            anyhow!("{name}: {what}; `viewray import` reads other tools' scenes: {IMPORTS}")
+        }
+    }
+}
+
 /// `viewray import`: another tool's file as a viewray scene, RON on stdout.
 pub(crate) fn import(args: &ImportArgs) -> Result<()> {
     use std::io::Read;
@@ -110,13 +136,8 @@ pub(crate) fn import(args: &ImportArgs) -> Result<()> {
     }
     let format = match args.from {
         Some(format) => format,
-        None => Format::detect(path, &bytes).ok_or_else(|| {
-            anyhow!(
-                "{}: cannot tell the format: expected Mitsuba 3 XML (.xml), pbrt-v4 (.pbrt), \
-                 a three.js JSON object (.json) or glTF (.gltf, .glb); say which with --from",
-                path.display()
-            )
-        })?,
+        None => Format::detect(path, &bytes)
+            .ok_or_else(|| not_importable(path, FileKind::recognise(path, &bytes)))?,
     };
     let document = viewray_interop::import(&bytes, path, format)?;
     let text = document.to_ron();
@@ -126,13 +147,15 @@ pub(crate) fn import(args: &ImportArgs) -> Result<()> {
         objects: Vec::new(),
         ..document
     };
-    Scene::parse(&camera_only.to_ron(), path).map_err(|e| {
-        anyhow!(
-            "{}: the imported scene is not valid in viewray: {}",
-            path.display(),
-            e.message()
-        )
-    })?;
+    SceneLoader::text(&camera_only.to_ron(), path)
+        .load()
+        .map_err(|e| {
+            anyhow!(
+                "{}: the imported scene is not valid in viewray: {}",
+                path.display(),
+                e.message()
+            )
+        })?;
     let mut out = std::io::stdout().lock();
     out.write_all(text.as_bytes())?;
     out.flush()?;

@@ -2,18 +2,73 @@
 //! standard output.
 
 use std::io::{Cursor, IsTerminal, Write};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use anyhow::{Result, anyhow, bail};
+use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use viewray_camera::{Camera, Projection};
 use viewray_render::{Image, ImageFormat, RenderSettings};
-use viewray_scene::LoadOptions;
+use viewray_scene::{LoadOptions, LoadedScene};
 
-use crate::cli::{RenderArgs, is_standard_stream, usage_error};
 use crate::output::Output;
 use crate::style;
+use crate::usage::usage_error;
+use crate::values::{is_standard_stream, parse_samples, parse_size, parse_threads};
+
+/// The file format of an image written to standard output, or one whose name has no
+/// .png or .exr extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum OutputFormat {
+    /// 8-bit sRGB PNG.
+    Png,
+    /// OpenEXR of linear 32-bit floats.
+    Exr,
+}
+
+impl From<OutputFormat> for ImageFormat {
+    fn from(format: OutputFormat) -> Self {
+        match format {
+            OutputFormat::Png => ImageFormat::Png,
+            OutputFormat::Exr => ImageFormat::Exr,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct RenderArgs {
+    /// The scene file to render, or - to read it from standard input (mesh paths are
+    /// then relative to the current folder); without it, the built-in default scene.
+    pub(crate) scene: Option<PathBuf>,
+    /// Where to write the image: .png (8-bit sRGB) or .exr (linear 32-bit floats), or -
+    /// for standard output (PNG unless --format says otherwise).
+    #[arg(short, long, value_name = "OUT.png", default_value = "viewray.png")]
+    pub(crate) output: PathBuf,
+    /// The image format, when the output's extension does not say (as for -o -).
+    #[arg(long, value_name = "FORMAT")]
+    pub(crate) format: Option<OutputFormat>,
+    /// Samples per pixel, instead of the scene's (1 is the pixel centre, the lecture's
+    /// ray).
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub(crate) samples: Option<u32>,
+    /// The image size as WIDTHxHEIGHT, instead of the scene's; fields of view and presets
+    /// follow the new aspect ratio, an explicit viewport does not (a warning says when
+    /// pixels are no longer square).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
+    /// How many threads to load, build and render on (default: one per core).
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub(crate) threads: Option<usize>,
+    /// Print one JSON line of statistics on stdout:
+    /// {"triangles":N,"load_s":..,"build_s":..,"render_s":..,"rays":N}. load_s is reading
+    /// and parsing the scene and its meshes; build_s is building the BVHs (timed by
+    /// building them once more, since loading builds them); render_s is tracing and
+    /// shading; rays counts primary, shadow and reflected rays.
+    #[arg(long)]
+    pub(crate) stats: bool,
+}
 
 /// `viewray render`: renders a scene (or the default one) to a PNG or EXR.
 ///
@@ -100,7 +155,11 @@ fn render_on_current_pool(args: &RenderArgs) -> Result<()> {
         size: args.size,
         samples: args.samples,
     };
-    let (scene, load_times) = crate::input::load_scene(args.scene.as_deref(), options)?;
+    let LoadedScene {
+        scene,
+        times: load_times,
+        ..
+    } = crate::input::load_scene(args.scene.as_deref(), options)?;
     if let Some(size) = args.size
         && let Some(warning) = stretched_pixels(scene.camera(), size)
     {
@@ -181,7 +240,7 @@ pub(crate) fn stretched_pixels(camera: &Camera, (width, height): (u32, u32)) -> 
     // width, or where that does not fit, the same height.
     let same_width = (f64::from(width) / viewport_aspect).round();
     let same_height = (f64::from(height) * viewport_aspect).round();
-    let side = f64::from(viewray_scene::MAX_IMAGE_SIDE);
+    let side = f64::from(viewray_camera::MAX_IMAGE_SIDE);
     let square = if (1.0..=side).contains(&same_width) {
         Some(format!("{width}x{same_width}"))
     } else if (1.0..=side).contains(&same_height) {

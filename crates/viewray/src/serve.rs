@@ -8,8 +8,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use viewray_serve::{ServeOptions, ServedScene, Server};
 
-use crate::cli::is_standard_stream;
-use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH};
+use crate::input::{DEFAULT_SCENE, DEFAULT_SCENE_PATH, STDIN_NAME, scene_error};
+use crate::values::is_standard_stream;
 
 #[derive(Args, Debug)]
 pub(crate) struct ServeArgs {
@@ -37,12 +37,13 @@ pub(crate) fn serve(args: &ServeArgs) -> Result<()> {
             Path::new(DEFAULT_SCENE_PATH),
         )?,
         Some(path) if is_standard_stream(path) => {
-            let name = Path::new("<stdin>");
-            let text = viewray_scene::read_scene_text(std::io::stdin().lock(), name)?;
+            let name = Path::new(STDIN_NAME);
+            let text = viewray_scene::read_scene_text(std::io::stdin().lock(), name)
+                .map_err(scene_error)?;
             ServedScene::parse("standard input", text, name)?
         }
         Some(path) => {
-            let text = viewray_scene::read_scene_file(path)?;
+            let text = viewray_scene::read_scene_file(path).map_err(scene_error)?;
             ServedScene::parse(&path.display().to_string(), text, path)?
         }
     };

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use tempfile::TempDir;
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_scene::Scene;
+use viewray_scene::SceneLoader;
 
 mod support;
 use support::{error_line_in as error_line, viewray_in};
@@ -48,7 +48,7 @@ fn a_scenes_side_view_is_written_as_the_library_draws_it() {
     );
 
     // The PNG is the library's figure, painted.
-    let scene = Scene::load(&scene_path).unwrap();
+    let scene = SceneLoader::file(&scene_path).load().unwrap().scene;
     let camera = scene.camera();
     let window = SideWindow::fit(&scene, std::slice::from_ref(camera));
     let figure = side_view(&scene, camera, &window, SideViewCanvas::Slide, None);

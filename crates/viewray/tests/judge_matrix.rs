@@ -88,7 +88,10 @@ fn calibration() {
     let scene = Scene::example();
     for (name, camera, size) in cameras() {
         let ron = scene.to_ron(&camera, size.0, size.1, 1);
-        let loaded = viewray_scene::Scene::parse(&ron, Path::new("student.ron")).unwrap();
+        let loaded = viewray_scene::SceneLoader::text(&ron, Path::new("student.ron"))
+            .load()
+            .unwrap()
+            .scene;
         let judge = PictureJudge::new(&loaded);
         println!("== {name}: groups {:?}", judge.entries());
         let variants: Vec<(&str, RenderOptions)> = vec![

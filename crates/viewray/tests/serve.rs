@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use tempfile::TempDir;
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_scene::{Scene, camera_text, parse_camera};
+use viewray_scene::{SceneLoader, camera_text, parse_camera};
 
 mod support;
 use support::http::{Served, get, request};
@@ -232,7 +232,10 @@ fn frames_rays_and_projections_are_the_command_lines_lines() {
 fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
     let served = Served::start(BINARY, &[]);
     let text = default_text();
-    let scene = Scene::parse(&text, Path::new("default.ron")).unwrap();
+    let scene = SceneLoader::text(&text, Path::new("default.ron"))
+        .load()
+        .unwrap()
+        .scene;
     let camera_ron =
         "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: Perspective(fov_y: 40.0))";
     let response = served.get(&format!(
@@ -340,7 +343,14 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
         "/api/rays?row=480&col=0",
         400,
         "row: pixel 480,0 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
-         (0-based; --one-based for the lecture's i, j)",
+         (0-based; i=I&j=J for the lecture's i, j)",
+    );
+    // The side view takes row and col only: the sentence offers no other indices.
+    check(
+        "/api/diagram.svg?row=0&col=640",
+        400,
+        "row: pixel 0,640 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
+         (0-based)",
     );
     check(
         "/api/project?point=1,2",

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use glam::{DVec2, DVec3};
-use viewray_scene::Scene;
+use viewray_scene::{Scene, SceneLoader};
 
 use super::report::size_of;
 
@@ -58,7 +58,10 @@ pub(super) fn cases(root: &Path) -> Result<Vec<Case>> {
             .and_then(|s| s.to_str())
             .unwrap_or("scene")
             .to_owned();
-        let scene = Scene::load(file).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let scene = SceneLoader::file(file)
+            .load()
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .scene;
         scenes.push((name, scene, true));
     }
     let world = format!(
@@ -154,7 +157,9 @@ pub(super) fn cases(root: &Path) -> Result<Vec<Case>> {
               camera: (eye: (1.5, 1.2, 6.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), projection: {projection}),
               {world})"
         );
-        let scene = Scene::parse(&text, &root.join(format!("{name}.ron")))
+        let scene = SceneLoader::text(&text, &root.join(format!("{name}.ron")))
+            .load()
+            .map(|loaded| loaded.scene)
             .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
         scenes.push((format!("camera_{name}"), scene, true));
     }

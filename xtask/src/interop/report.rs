@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 use serde_json::Value;
 use viewray_camera::Camera;
 use viewray_interop::Format;
-use viewray_scene::Scene;
+use viewray_scene::{Scene, SceneLoader};
 
 use super::TOLERANCE;
 
@@ -116,7 +116,10 @@ pub(super) fn import_camera(file: &Path, format: Format) -> Result<Camera> {
         viewray_interop::import(&bytes, file, format).map_err(|e| anyhow::anyhow!("{e}"))?;
     // Only the camera is compared: the objects would only cost time to load.
     document.objects.clear();
-    let scene = Scene::parse(&document.to_ron(), file).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let scene = SceneLoader::text(&document.to_ron(), file)
+        .load()
+        .map_err(|e| anyhow::anyhow!("{e}"))?
+        .scene;
     Ok(*scene.camera())
 }
 

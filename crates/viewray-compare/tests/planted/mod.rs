@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 use viewray_render::RenderSettings;
-use viewray_scene::{LoadOptions, Scene};
+use viewray_scene::{LoadOptions, SceneLoader};
 
 /// The samples per pixel of every reference render.
 pub const REFERENCE_SAMPLES: u32 = 16;
@@ -463,7 +463,10 @@ pub fn render_text(text: &str, path: PathBuf, size: (u32, u32), samples: u32) ->
         size: Some(size),
         samples: Some(samples),
     };
-    let scene = Scene::parse_with(text, &path, options)
+    let scene = SceneLoader::text(text, &path)
+        .options(options)
+        .load()
+        .map(|loaded| loaded.scene)
         .unwrap_or_else(|e| panic!("a planted scene does not parse: {e}"));
     let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})
         .expect("the planted scene renders");

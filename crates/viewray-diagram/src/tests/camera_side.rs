@@ -55,7 +55,10 @@ fn scene(name: &str, text: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/scenes")
         .join(format!("{name}.ron"));
-    Scene::parse(text, &path).unwrap_or_else(|e| panic!("{e}"))
+    viewray_scene::SceneLoader::text(text, &path)
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
 }
 
 /// The side view of `camera` in a window fitted to it alone.
@@ -213,7 +216,7 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
 
 /// A unit sphere at the origin, and nothing else.
 fn sphere_scene() -> Scene {
-    Scene::parse(
+    viewray_scene::SceneLoader::text(
         "(camera: (eye: (0.0, 0.0, 5.0), look_at: (0.0, 0.0, 0.0), \
          projection: Perspective(distance: 1.0, viewport: (1.0, 1.0))), \
          image: (width: 40, height: 40), \
@@ -221,6 +224,8 @@ fn sphere_scene() -> Scene {
          objects: [Sphere(center: (0.0, 0.0, 0.0), radius: 1.0, material: \"grey\")])",
         Path::new("sphere.ron"),
     )
+    .load()
+    .map(|loaded| loaded.scene)
     .unwrap()
 }
 

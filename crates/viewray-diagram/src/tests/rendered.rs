@@ -19,7 +19,10 @@ fn fixture(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/scenes")
         .join(name);
-    Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+    viewray_scene::SceneLoader::file(&path)
+        .load()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
 }
 
 /// The materials an object uses.

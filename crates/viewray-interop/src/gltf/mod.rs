@@ -31,13 +31,3 @@ mod import;
 
 pub use export::export;
 pub use import::import;
-
-/// Whether JSON `bytes` look like glTF (an `"asset"` with a `"version"`).
-pub(crate) fn looks_like_gltf(bytes: &[u8]) -> bool {
-    if bytes.starts_with(glb::MAGIC) {
-        return true;
-    }
-    serde_json::from_slice::<serde_json::Value>(bytes)
-        .ok()
-        .is_some_and(|v| v.pointer("/asset/version").is_some())
-}

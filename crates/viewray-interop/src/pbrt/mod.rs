@@ -44,28 +44,3 @@ mod parse;
 
 pub use export::export;
 pub use import::import;
-
-/// Whether `text` (after leading whitespace) starts like a pbrt file: a comment or a
-/// directive pbrt knows.
-pub(crate) fn looks_like_pbrt(text: &str) -> bool {
-    let first = text.split_whitespace().next().unwrap_or("");
-    first.starts_with('#')
-        || [
-            "LookAt",
-            "Camera",
-            "Film",
-            "Sampler",
-            "Integrator",
-            "WorldBegin",
-            "Scale",
-            "Translate",
-            "Rotate",
-            "Transform",
-            "ConcatTransform",
-            "Option",
-            "ColorSpace",
-            "PixelFilter",
-            "Identity",
-        ]
-        .contains(&first)
-}

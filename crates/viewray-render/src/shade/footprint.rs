@@ -117,7 +117,10 @@ mod tests {
                               grid: (spacing: 1.0, width: 0.1, color: (0.0, 0.0, 0.0))) }},
               objects: [Plane(point: (0.0, 0.0, 0.0), normal: (0.0, 1.0, 0.0), material: \"ground\")])"
         );
-        Scene::parse(&text, std::path::Path::new("ground.ron")).unwrap()
+        viewray_scene::SceneLoader::text(&text, std::path::Path::new("ground.ron"))
+            .load()
+            .unwrap()
+            .scene
     }
 
     /// The footprint the shader gives the sample through the centre of `pixel` for

@@ -18,7 +18,8 @@ use clap::Args;
 use viewray_json::PixelIndices;
 use viewray_render::{RenderSettings, View, trace_pixel};
 
-use crate::cli::{CONVENTIONS, parse_pixel};
+use crate::commands::CONVENTIONS;
+use crate::values::parse_pixel;
 
 #[derive(Args, Debug)]
 #[command(after_help = CONVENTIONS)]
@@ -47,7 +48,7 @@ pub(crate) fn trace(args: &TraceArgs) -> Result<()> {
     let indices = PixelIndices::one_based_if(args.one_based);
     let (row, col) = indices
         .pixel(args.pixel, camera.width(), camera.height())
-        .map_err(anyhow::Error::msg)?;
+        .map_err(|outside| anyhow::anyhow!(outside.sentence(Some("--one-based"))))?;
     crate::commands::note_pixel_convention(args.one_based);
     let view = View::of(&scene);
     // Checked just above: the pixel is in the image.

@@ -30,7 +30,7 @@ pub(crate) fn repository() -> std::path::PathBuf {
 
 /// Runs `viewray args` with `input` on its standard input.
 pub(crate) fn viewray_with_input(dir: &Path, args: &[&str], input: &[u8]) -> Output {
-    use std::io::Write;
+    use std::io::Write as _;
     let mut child = command()
         .args(args)
         .current_dir(dir)
@@ -40,10 +40,15 @@ pub(crate) fn viewray_with_input(dir: &Path, args: &[&str], input: &[u8]) -> Out
         .spawn()
         .expect("the viewray binary runs");
     let mut stdin = child.stdin.take().unwrap();
-    // The command may stop reading early (bad input): a closed pipe is no failure here.
-    let _ = stdin.write_all(input);
-    drop(stdin);
-    child.wait_with_output().expect("the viewray binary runs")
+    // Written from another thread while this one reads the output, so that a command
+    // printing as it reads cannot fill its output pipe and wait for us forever. The
+    // command may stop reading early (bad input): a closed pipe is no failure here.
+    std::thread::scope(|scope| {
+        scope.spawn(move || {
+            let _ = stdin.write_all(input);
+        });
+        child.wait_with_output().expect("the viewray binary runs")
+    })
 }
 
 /// Runs `viewray args` in the current folder.

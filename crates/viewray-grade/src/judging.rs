@@ -1,65 +1,15 @@
-//! What became of one render: judged against its reference, or failed without being
-//! compared (missing, unreadable, not a PNG).
+//! Judging one render: what the render side holds for a reference image, loaded and
+//! judged against it, or failed without being compared (missing, unreadable, not a PNG);
+//! and judging many in parallel with the results in order ([`in_order`]).
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 
 use rayon::prelude::*;
-use viewray_compare::{Comparison, LoadError, Reference, RgbaImage, Verdict, load_png};
+use viewray_compare::{LoadError, Outcome, Reference, RgbaImage, load_png};
 
 use crate::folders::Counterpart;
-
-/// What became of a render: judged, or not comparable (the student's failure).
-#[derive(Clone, Debug)]
-pub enum Outcome {
-    /// Compared with the reference.
-    Judged(Box<Comparison>),
-    /// Not compared: the render is missing or cannot be read; the sentence says which.
-    Failed(String),
-}
-
-impl Outcome {
-    /// `Pass` when the render was judged the reference's picture, else `Fail`.
-    pub fn verdict(&self) -> Verdict {
-        match self {
-            Outcome::Judged(c) if c.passed() => Verdict::Pass,
-            Outcome::Judged(_) | Outcome::Failed(_) => Verdict::Fail,
-        }
-    }
-
-    /// Whether the render passed.
-    pub fn passed(&self) -> bool {
-        self.verdict() == Verdict::Pass
-    }
-
-    /// The peak FLIP, when the images were compared with FLIP.
-    pub fn peak_flip(&self) -> Option<f32> {
-        match self {
-            Outcome::Judged(c) => c.metrics.map(|m| m.peak_flip),
-            Outcome::Failed(_) => None,
-        }
-    }
-
-    /// What a row says after the figures: the diagnosis, else why it failed, else nothing.
-    pub fn note(&self) -> String {
-        match self {
-            Outcome::Judged(c) => match c.diagnosis {
-                Some(d) => d.to_string(),
-                None => c.reasons(),
-            },
-            Outcome::Failed(message) => message.clone(),
-        }
-    }
-
-    /// This outcome without what only a report needs (the FLIP error map).
-    pub fn without_error_map(self) -> Self {
-        match self {
-            Outcome::Judged(c) => Outcome::Judged(Box::new(c.without_error_map())),
-            failed => failed,
-        }
-    }
-}
 
 /// Why a render that is a file could not be read, as its row says it: `cannot read: ...`
 /// or `not a PNG: ...` (the file's name is the row's).
@@ -93,7 +43,7 @@ pub fn judge_counterpart(
     match load_counterpart(counterpart, name) {
         Ok(actual) => {
             let comparison = reference.judge(&actual);
-            (Some(actual), Outcome::Judged(Box::new(comparison)))
+            (Some(actual), Outcome::from(comparison))
         }
         Err(message) => (None, Outcome::Failed(message)),
     }
