@@ -1,5 +1,5 @@
-//! The trace as text: the lecture's three steps as headings, each step's numbers under
-//! them, indented by mirror bounce.
+//! The trace as text for people: the lecture's three steps as headings, each step's
+//! numbers under them beside their formulas, indented by mirror bounce.
 
 use glam::{DVec3, Vec3};
 use viewray_camera::Camera;
@@ -9,8 +9,14 @@ use viewray_render::{
 };
 use viewray_scene::Shading;
 
-/// The trace as text: the lecture's three steps, then the pixel's value.
-pub(super) fn text(camera: &Camera, shading: Shading, trace: &PixelTrace) -> String {
+/// The trace `trace` of a pixel of `camera`'s image, shaded by `shading`, as text for
+/// people: the lecture's three steps (generate a viewing ray, find the closest object,
+/// determine its colour) with each number beside its formula, then the pixel's linear
+/// value and its 8-bit value, "as `render` writes it" (`render` names the one-sample
+/// render in the reader's program's words, as `viewray render --samples 1` on the
+/// command line). Numbers are rounded to three decimals (three significant digits below
+/// 0.1); [`trace_lines`](crate::trace_lines) has them exactly.
+pub fn trace_text(camera: &Camera, shading: Shading, trace: &PixelTrace, render: &str) -> String {
     let mut text = Text::default();
     let (row, col) = (trace.row, trace.col);
     text.line(
@@ -35,10 +41,7 @@ pub(super) fn text(camera: &Camera, shading: Shading, trace: &PixelTrace) -> Str
             text.line(0, format!("linear colour {}", v3(trace.value)));
             text.line(
                 0,
-                format!(
-                    "8-bit sRGB, as `viewray render --samples 1` writes it: {}",
-                    bytes(trace.rgb8)
-                ),
+                format!("8-bit sRGB, as {render} writes it: {}", bytes(trace.rgb8)),
             );
         }
         PixelKind::Data => {
@@ -46,7 +49,7 @@ pub(super) fn text(camera: &Camera, shading: Shading, trace: &PixelTrace) -> Str
             text.line(
                 0,
                 format!(
-                    "8-bit round(255 x), as `viewray render --samples 1` writes it: {}",
+                    "8-bit round(255 x), as {render} writes it: {}",
                     bytes(trace.rgb8)
                 ),
             );

@@ -1,5 +1,7 @@
-//! The JSON lines of `viewray trace`: one object per step of a pixel's trace, then the
-//! pixel's value.
+//! A pixel's trace printed: as JSON lines ([`trace_lines`], here), one object per step of
+//! the trace, then the pixel's value; and as text for people ([`trace_text`], module
+//! `text`, with `ray` for the viewing ray's numbers and `lighting` for a Lit surface's
+//! terms).
 //!
 //! ```text
 //! {"step":"viewing-ray","bounce":0,"row":R,"col":C,"x":X,"y":Y,"u":U,"v":V,"origin":[..],"direction":[..]}
@@ -26,6 +28,12 @@ use viewray_render::{
 };
 
 use crate::{PixelIndices, number, vector};
+
+mod lighting;
+mod ray;
+mod text;
+
+pub use text::trace_text;
 
 /// An `f32` for printing: the shortest decimal that reads back as the same `f32`
 /// (`0.15`, not the `0.15000000596046448` of its `f64`), `-0` written `0`; infinities

@@ -2,13 +2,8 @@
 //! indented text for a student or as JSON lines.
 //!
 //! The numbers are viewray-render's (`trace_pixel`, the renderer's own code) and the
-//! camera's; the JSON lines are viewray-json's. These modules only format the text:
-//! `text` walks the steps under the pseudocode's headings, `ray` writes the viewing
-//! ray's numbers, `lighting` a Lit surface's terms.
-
-mod lighting;
-mod ray;
-mod text;
+//! camera's; the text and the JSON lines are viewray-json's (`trace_text`,
+//! `trace_lines`), as the playground shows them.
 
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -59,7 +54,13 @@ pub(crate) fn trace(args: &TraceArgs) -> Result<()> {
             viewray_json::write_line(&mut out, &line)?;
         }
     } else {
-        out.write_all(text::text(&camera, view.shading, &trace).as_bytes())?;
+        let text = viewray_json::trace_text(
+            &camera,
+            view.shading,
+            &trace,
+            "`viewray render --samples 1`",
+        );
+        out.write_all(text.as_bytes())?;
     }
     out.flush()?;
     Ok(())

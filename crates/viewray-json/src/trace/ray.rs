@@ -101,7 +101,7 @@ impl Text {
         self.line(
             1,
             format!(
-                "frame e = {}, U = {}, V = {}, W = {}",
+                "frame e = {}, U = {}, V = {}, W = {}   (the lecture's e, u, v, w)",
                 d3(frame.e()),
                 d3(frame.u()),
                 d3(frame.v()),
