@@ -352,7 +352,25 @@ const rayChannel = new Channel((job, response, body, superseded) => {
   setError("pixel", "");
 });
 
-const channels = [renderChannel, diagramChannel, frameChannel, rayChannel];
+// The clicked pixel's trace, as `viewray trace` prints it: the lecture's pseudocode for
+// the pixel of a one-sample render, every number beside its formula (the server's text,
+// from the same code as the command line's).
+const traceChannel = new Channel((job, response, body) => {
+  if (!response.ok) return; // the ray's request shows the same pixel error
+  const [row, col] = job.meta.pixel;
+  $("trace-title").textContent = `The pixel's trace: viewray trace SCENE --pixel ${row},${col}`;
+  $("trace").textContent = body;
+  $("trace-box").hidden = false;
+});
+
+function requestTrace() {
+  if (!state.pixel) { $("trace-box").hidden = true; return; }
+  const [row, col] = state.pixel;
+  const query = cameraQuery({ shading: state.shading, row, col, format: "text" });
+  traceChannel.send(`/api/trace?${query}`, { pixel: state.pixel });
+}
+
+const channels = [renderChannel, diagramChannel, frameChannel, rayChannel, traceChannel];
 
 // The numbers exactly as the server printed them (the command line's digits).
 function rawArray(text, key) {
@@ -394,6 +412,7 @@ function request(mode) {
   if (state.pixel) {
     rayChannel.send(`/api/rays?${cameraQuery(pixel)}`, { pixel: state.pixel });
   }
+  requestTrace();
 }
 
 // ---------------------------------------------------------------------------------
@@ -953,6 +972,7 @@ function pickPixel(event) {
   const pixel = { row: state.pixel[0], col: state.pixel[1] };
   rayChannel.send(`/api/rays?${cameraQuery(pixel)}`, { pixel: state.pixel });
   diagramChannel.send(`/api/diagram.svg?${cameraQuery(pixel)}`, { blob: true });
+  requestTrace();
 }
 
 async function copyRon() {

@@ -39,6 +39,7 @@
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
 //! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
 //! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::side_view`]) |
+//! | `/api/trace?camera&width&height&shading&row&col` (or `i&j`)`[&format=text]` | the lines of `viewray trace --pixel R,C --json` for the image `/api/render` makes with one sample (with `format=text`, the trace as text) |
 //! | `/api/scene` | the served scene's RON text |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, in the command line's words where
