@@ -62,22 +62,55 @@ fn render(scene: &str, dir: &Path) -> image::RgbImage {
     image::open(&output).unwrap().to_rgb8()
 }
 
+/// The pixels to trace in `image`: the corners, the centre, an even 4 x 4 spread, and
+/// the 8 pixels whose colour differs most from their right or lower neighbour (an
+/// object's outline, a shadow's edge), earliest first where they tie.
+fn pixels_to_trace(image: &image::RgbImage) -> Vec<(u32, u32)> {
+    let (width, height) = image.dimensions();
+    let (w, h) = (width - 1, height - 1);
+    let mut pixels = vec![(0, 0), (0, w), (h, 0), (h, w), (h / 2, w / 2)];
+    for r in 0..4 {
+        for c in 0..4 {
+            pixels.push(((2 * r + 1) * height / 8, (2 * c + 1) * width / 8));
+        }
+    }
+    let difference = |a: &image::Rgb<u8>, b: &image::Rgb<u8>| -> u32 {
+        a.0.iter()
+            .zip(b.0)
+            .map(|(&x, y)| u32::from(x.abs_diff(y)))
+            .sum()
+    };
+    let mut edges: Vec<(u32, (u32, u32))> = Vec::new();
+    for row in 0..height {
+        for col in 0..width {
+            let here = image.get_pixel(col, row);
+            let right = (col < w).then(|| difference(here, image.get_pixel(col + 1, row)));
+            let below = (row < h).then(|| difference(here, image.get_pixel(col, row + 1)));
+            let most = right.unwrap_or(0).max(below.unwrap_or(0));
+            if most > 0 {
+                edges.push((most, (row, col)));
+            }
+        }
+    }
+    edges.sort_by_key(|&(most, pixel)| (std::cmp::Reverse(most), pixel));
+    pixels.extend(edges.iter().take(8).map(|&(_, pixel)| pixel));
+    pixels.sort_unstable();
+    pixels.dedup();
+    pixels
+}
+
 #[test]
 fn the_traced_value_is_what_render_writes_for_the_pixel_in_every_scene() {
-    // The renderer's own test traces thousands of pixels in every shading; this one
-    // goes through the two commands, a few pixels of every scene file.
+    // The renderer's own test traces thousands of pixels of every scene in every shading
+    // against its image in memory; this one goes through the two commands: each scene
+    // file rendered once with `viewray render --samples 1`, then about 25 of its pixels
+    // traced (a grid, the corners and the sharpest edges), in the scene's own camera and
+    // shading.
     let dir = tempfile::tempdir().unwrap();
+    let mut traced = 0;
     for scene in fixture_scenes() {
         let image = render(&scene, dir.path());
-        let (w, h) = (image.width() - 1, image.height() - 1);
-        for (row, col) in [
-            (0, 0),
-            (0, w),
-            (h, 0),
-            (h, w),
-            (h / 2, w / 2),
-            (h / 3, 2 * w / 3),
-        ] {
+        for (row, col) in pixels_to_trace(&image) {
             let pixel = format!("{row},{col}");
             let lines = json_trace(&scene, &pixel, &[]);
             let expected = image.get_pixel(col, row).0;
@@ -98,6 +131,7 @@ fn the_traced_value_is_what_render_writes_for_the_pixel_in_every_scene() {
                     .iter()
                     .all(|l| l["step"].is_string())
             );
+            traced += 1;
         }
         // The text ends with the same 8 bits.
         let text = run(&["trace", &scene, "--pixel", "0,0"]);
@@ -111,6 +145,7 @@ fn the_traced_value_is_what_render_writes_for_the_pixel_in_every_scene() {
             "{scene}: {last}"
         );
     }
+    assert!(traced > 600, "{traced} pixels traced");
 }
 
 #[test]
@@ -202,11 +237,15 @@ fn pixels_outside_the_image_and_bad_options_are_one_line() {
         &["trace", scene, "--pixel", "9223372036854775807,0"],
         &["trace", scene, "--pixel", "1,1", "2,2"],
         &["trace", scene, "--pixel", "a,b"],
+        &["trace", scene, "--pixel", "1,2,3"],
+        &["trace", scene, "--pixel", "1.5,2"],
+        &["trace", scene, "--pixel"],
         &["trace", scene, "--pixel", "1", "1"],
         &["trace", scene],
         &["trace", "--pixel", "0,0"],
         &["trace", scene, "--pixel", "0,0", "--eye", "1,2,3"],
         &["trace", "no/such/scene.ron", "--pixel", "0,0"],
+        &["trace", "fixtures/homework", "--pixel", "0,0"],
         &["trace", "fixtures/bad/empty.ron", "--pixel", "0,0"],
     ];
     let report: Vec<String> = cases
