@@ -310,12 +310,12 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
     check(
         &ortho,
         Mistake::DistanceMissing,
-        "the mistake distance-missing cannot be made in a Orthographic camera",
+        "the mistake distance-missing cannot be made in this Orthographic camera",
     );
     check(
         &right_camera(Family::Perspective),
         Mistake::ObliqueSign,
-        "the mistake oblique-sign cannot be made in a Perspective camera",
+        "the mistake oblique-sign cannot be made in this Perspective camera",
     );
     let narrow = right_camera(Family::Perspective)
         .with_image_size(1, 4)
@@ -323,7 +323,7 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
     check(
         &narrow,
         Mistake::SizeMinusOne,
-        "the mistake size-minus-one cannot be made in a Perspective camera of 1 x 4 pixels",
+        "the mistake size-minus-one cannot be made in this Perspective camera of 1 x 4 pixels",
     );
     let fine = right_camera(Family::Perspective)
         .with_mistakes(Mistake::SizeMinusOne.into())
@@ -333,6 +333,20 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
         Err(CameraError::MistakeDoesNotFit { .. })
     ));
     assert_eq!(fine.with_image_size(5, 4).unwrap().width(), 5);
+    // Two pixels each way is the least the mistake needs: one fewer either way is refused,
+    // whether the size or the mistake comes first.
+    for (width, height, fits) in [(2, 2, true), (1, 2, false), (2, 1, false)] {
+        let sized = right_camera(Family::Perspective)
+            .with_image_size(width, height)
+            .unwrap();
+        let made = sized.with_mistakes(Mistake::SizeMinusOne.into());
+        assert_eq!(made.is_ok(), fits, "{width} x {height}");
+    }
+    assert_eq!(fine.with_image_size(2, 2).unwrap().height(), 2);
+    assert!(matches!(
+        fine.with_image_size(1, 4),
+        Err(CameraError::MistakeDoesNotFit { .. })
+    ));
     let fisheye = Camera::new(
         Frame::CANONICAL,
         Projection::Fisheye(viewray_camera::Fisheye { fov: PI }),
