@@ -347,20 +347,24 @@ fn mode(shading: Shading) -> &'static str {
     }
 }
 
-/// A renderer's number (`f32`) for people.
+/// A renderer's number (`f32`) for people (see [`m`]).
 pub(super) fn n(x: f32) -> String {
-    label_significant(f64::from(x))
+    m(f64::from(x))
 }
 
-/// A camera's number (`f64`) for people.
+/// A camera's number (`f64`) for people: a label's digits (three decimals, or three
+/// significant digits below 0.1), but with the ASCII minus of the formulas beside it,
+/// since a terminal is not typeset and a student pastes these numbers into a program.
 pub(super) fn m(x: f64) -> String {
-    label_significant(x)
+    label_significant(x).replace('\u{2212}', "-")
 }
 
+/// A vector of the renderer's numbers, `(x, y, z)`.
 pub(super) fn v3(v: Vec3) -> String {
     format!("({}, {}, {})", n(v.x), n(v.y), n(v.z))
 }
 
+/// A vector of a camera's numbers, `(x, y, z)`.
 pub(super) fn d3(v: DVec3) -> String {
     format!("({}, {}, {})", m(v.x), m(v.y), m(v.z))
 }
