@@ -6,7 +6,7 @@
 // Checks: the page loads with no console errors; the render appears, refined in passes of
 // 1, 4 and 16 samples, at the size it is shown; moving a control changes the image and
 // the URL; reloading the URL restores the camera and the image; clicking a pixel shows the
-// same ray `viewray rays` prints; every family and preset renders without an error;
+// same ray `viewray rays` prints and the trace `viewray trace` prints; every family and preset renders without an error;
 // switching the projection kind keeps the picture (a thin lens focused on what the middle
 // of the picture shows, a parallel view as tall there); a refused camera leaves the page
 // on the last camera rendered (controls, numbers, picture, URL, status); the samples menu
@@ -143,6 +143,25 @@ try {
   const printed = execFileSync(viewray, ["rays", scene, "--pixel", `${state.row},${state.col}`], { encoding: "utf8" }).trim();
   rmSync(dir, { recursive: true, force: true });
   check(shown === printed, `pixel (${state.row}, ${state.col}) shows the ray viewray rays prints:\n     ${printed}`);
+
+  // The same click shows the pixel's trace, as `viewray trace` prints it for the served
+  // scene through the page's camera (the render named in the playground's words).
+  await page.waitForFunction(
+    () => /writes it: \(\d+, \d+, \d+\)\n$/.test(document.getElementById("trace").textContent));
+  const traced = await page.locator("#trace").textContent();
+  const served = await page.evaluate(() => JSON.parse(document.getElementById("served").textContent));
+  const sceneText = await page.evaluate(() => fetch("/api/scene").then((r) => r.text()));
+  check(sceneText.includes(served.camera) && state.shading === served.shading
+    && Number(state.width) === served.width && Number(state.height) === served.height,
+    "the trace's scene is the served scene with the page's camera");
+  const traceDir = mkdtempSync(join(tmpdir(), "viewray-trace-"));
+  const traceScene = join(traceDir, "scene.ron");
+  writeFileSync(traceScene, sceneText.replace(served.camera, () => state.camera));
+  const printedTrace = execFileSync(viewray, ["trace", traceScene, "--pixel", `${state.row},${state.col}`],
+    { encoding: "utf8" });
+  rmSync(traceDir, { recursive: true, force: true });
+  check(traced === printedTrace.replace("`viewray render --samples 1`", "a one-sample render"),
+    `pixel (${state.row}, ${state.col}) shows the trace viewray trace prints:\n     ${traced.split("\n").slice(-2).join("\n     ")}`);
   await page.waitForFunction(() => document.body.dataset.busy === "0");
   await page.screenshot({ path: join(out, "playground-ray-1280x800.png") });
 

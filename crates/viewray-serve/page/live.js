@@ -343,6 +343,7 @@ function request(mode) {
   }
   frameChannel.send(`/api/frame?${cameraQuery()}`, { settings: settingsOf(state) });
   if (state.pixel) rayChannel.send(`/api/rays?${cameraQuery(pixel)}`, { pixel: state.pixel });
+  requestTrace();
 }
 
 // The server refused the render of `settings` for `message`: says so beside the control

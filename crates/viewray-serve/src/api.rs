@@ -7,9 +7,9 @@ use std::time::Instant;
 use serde_json::json;
 use viewray_camera::{Camera, CameraSample, ImageLimits};
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
+use viewray_json::{PixelIndices, frame_line, project_line, ray_line, trace_lines, trace_text};
 use viewray_output::Compression;
-use viewray_render::{RenderSettings, View, render_view};
+use viewray_render::{RenderSettings, View, render_view, trace_pixel};
 use viewray_scene::parse_camera;
 
 use crate::depth::{depth_json, scene_depth};
@@ -80,6 +80,9 @@ const RAYS: [&str; 7] = ["camera", "width", "height", "row", "col", "i", "j"];
 const PROJECT: [&str; 4] = ["camera", "width", "height", "point"];
 const DIAGRAM: [&str; 7] = ["camera", "width", "height", "row", "col", "view", "canvas"];
 const DEPTH: [&str; 3] = ["camera", "width", "height"];
+const TRACE: [&str; 9] = [
+    "camera", "width", "height", "shading", "row", "col", "i", "j", "format",
+];
 const SLIDE: [&str; 8] = [
     "camera", "width", "height", "samples", "shading", "row", "col", "top",
 ];
@@ -105,14 +108,15 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
         "/api/project" => project(served, limits, query).map(Route::Now),
         "/api/diagram.svg" => diagram(served, limits, query).map(Route::Now),
         "/api/depth" => depth(served, limits, query).map(Route::Now),
+        "/api/trace" => trace(served, limits, query).map(Route::Now),
         "/api/slide.png" => slide_of(served, limits, query).map(|r| Route::Slide(Box::new(r))),
         _ => {
             return Route::Now(Reply::error(
                 404,
                 &format!(
                     "no such page: {path} (the playground serves /, /api/render, /api/frame, \
-                     /api/rays, /api/project, /api/diagram.svg, /api/depth, /api/slide.png \
-                     and /api/scene)"
+                     /api/rays, /api/project, /api/diagram.svg, /api/depth, /api/slide.png, \
+                     /api/trace and /api/scene)"
                 ),
             ));
         }
@@ -207,7 +211,22 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
     let query = Query::parse(query, &RAYS, &[])?;
     let (width, height) = geometry_size(served, &query)?;
     let camera = camera(served, limits, &query, (width, height))?;
-    let (first, second, one_based) = params::pixel(&query)?;
+    let (pixel, indices) = pixel_of(&query, (width, height))?;
+    Ok(json_lines(&[ray_line(
+        &camera,
+        pixel,
+        CameraSample::CENTER,
+        indices,
+    )]))
+}
+
+/// The pixel of `query` (`row&col`, or the lecture's `i&j`) in a `width x height` image,
+/// 0-based, and the indices it was given in.
+fn pixel_of(
+    query: &Query,
+    (width, height): (u32, u32),
+) -> Result<((u32, u32), PixelIndices), BadRequest> {
+    let (first, second, one_based) = params::pixel(query)?;
     let indices = PixelIndices::one_based_if(one_based);
     let pixel = indices
         .pixel((first, second), width, height)
@@ -215,12 +234,41 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
             let name = if one_based { "i" } else { "row" };
             BadRequest(format!("{name}: {}", outside.sentence(Some("i=I&j=J"))))
         })?;
-    Ok(json_lines(&[ray_line(
-        &camera,
-        pixel,
-        CameraSample::CENTER,
-        indices,
-    )]))
+    Ok((pixel, indices))
+}
+
+/// `/api/trace`: the pixel's trace in the image of a one-sample render of the served
+/// scene through the camera: the lines of `viewray trace --json` (or `--one-based`), or
+/// with `format=text` its text.
+fn trace(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &TRACE, &[])?;
+    // Depth shading finds the image's range of depths first, a ray per pixel: a trace
+    // is held to the size of a render.
+    let size = params::size(&query, scene_size(served), limits.image())?;
+    let shading = params::shading(&query, served.scene.shading())?;
+    let text = match query.get("format") {
+        None | Some("json") => false,
+        Some("text") => true,
+        Some(other) => {
+            return Err(BadRequest(format!(
+                "format: expected `json` (one line per step) or `text`, found `{other}`"
+            )));
+        }
+    };
+    let camera = camera(served, limits, &query, size)?;
+    let ((row, col), indices) = pixel_of(&query, size)?;
+    let view = View {
+        camera,
+        samples: 1,
+        shading,
+    };
+    let trace = trace_pixel(&served.scene, &view, &RenderSettings::default(), row, col)
+        .map_err(|outside| BadRequest(format!("row: {outside}")))?;
+    if text {
+        let text = trace_text(&camera, shading, &trace, "a one-sample render");
+        return Ok(Reply::ok("text/plain; charset=utf-8", text));
+    }
+    Ok(json_lines(&trace_lines(&camera, &trace, indices)))
 }
 
 /// `/api/project`: the lines of `viewray project --point X,Y,Z...`.

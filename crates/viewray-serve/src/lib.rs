@@ -42,6 +42,7 @@
 //! | `/api/diagram.svg?camera&width&height[&row&col][&view=top][&canvas=WxH]` | the camera's side view ([`viewray_diagram::side_view`]), or its top view, on a canvas of that size |
 //! | `/api/depth?camera&width&height` | `{"depth": D, "from": "hit"}`: how far along the view the scene lies at the picture's middle (what the centre ray hits, else the objects' middle; `null` if nothing is in front), for switching the projection kind |
 //! | `/api/slide.png?camera&width&height&samples&shading[&row&col][&top=1]` | a 1920 x 1080 slide: the render at the slide's size, the side view (and the top view), the frame's and the pixel's numbers |
+//! | `/api/trace?camera&width&height&shading&row&col` (or `i&j`)`[&format=text]` | the lines of `viewray trace --pixel R,C --json` for the image `/api/render` makes with one sample (with `format=text`, the trace as text) |
 //! | `/api/scene` | the served scene's RON text |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, in the command line's words where

@@ -1,6 +1,7 @@
 //! The pages: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
 //! together once per served scene with the scene's starting state. The playground's script
-//! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`), the lecture's in three
+//! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`) and `trace.js` (the
+//! chosen pixel's trace, a panel of its own), the lecture's in three
 //! (`lecture-math.js`: MathML and the command line's digits, `lecture-steps.js`: the steps
 //! in the lecture's order, `lecture.js`: requests, controls, keys).
 
@@ -11,11 +12,13 @@ use crate::Limits;
 
 const HTML: &str = include_str!("../page/index.html");
 const CSS: &str = include_str!("../page/page.css");
-/// The page's script in its four parts, in the order they are put together: the RON
-/// reader, the state and requests, the controls, the presenter (which starts the page).
-const SCRIPTS: [&str; 4] = [
+/// The page's script in its four parts, and the trace's panel, in the order they are put
+/// together: the RON reader, the state and requests, the trace (which the requests ask
+/// for), the controls, the presenter (which starts the page).
+const SCRIPTS: [&str; 5] = [
     include_str!("../page/ron.js"),
     include_str!("../page/live.js"),
+    include_str!("../page/trace.js"),
     include_str!("../page/page.js"),
     include_str!("../page/presenter.js"),
 ];

@@ -285,6 +285,119 @@ fn frames_rays_and_projections_are_the_command_lines_lines() {
 }
 
 #[test]
+fn a_clicked_pixels_trace_is_what_viewray_trace_prints() {
+    let dir = TempDir::new().unwrap();
+    let path = fixtures().join("homework/lit_4x4.ron");
+    let served = Served::start(BINARY, &[path.to_str().unwrap()]);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let cases = [
+        // The served camera and shading.
+        (None, None),
+        (
+            Some(
+                "(eye: (0.5, 1.0, 2.0), look_at: (0.0, -0.5, -3.0), projection: Perspective(fov_y: 50.0))",
+            ),
+            Some("Depth"),
+        ),
+        (
+            Some("Cabinet(target: (0.0, -0.5, -3.0), size: 5.0, angle: 30.0)"),
+            Some("Normals"),
+        ),
+        (
+            Some("(eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0), projection: Fisheye(fov: 200.0))"),
+            Some("Flat"),
+        ),
+    ];
+    for (k, (camera, shading)) in cases.into_iter().enumerate() {
+        let scene = dir.path().join(format!("traced{k}.ron"));
+        let mut query = "width=4&height=4".to_owned();
+        let file = match camera {
+            Some(camera) => {
+                query.push_str(&format!("&camera={}", encode(camera)));
+                with_camera(&text, camera, shading)
+            }
+            None => text.clone(),
+        };
+        if let Some(shading) = shading {
+            query.push_str(&format!("&shading={shading}"));
+        }
+        std::fs::write(&scene, file).unwrap();
+        let scene = scene.to_str().unwrap();
+        for (row, col) in [(0, 0), (1, 2), (3, 1), (3, 3)] {
+            let pixel = format!("{row},{col}");
+            let lines = served.get(&format!("/api/trace?{query}&row={row}&col={col}"));
+            assert_eq!(lines.status, 200, "{}", lines.text());
+            assert_eq!(lines.header("content-type"), Some("application/x-ndjson"));
+            assert_eq!(
+                lines.text(),
+                cli(&["trace", scene, "--pixel", &pixel, "--json"]),
+                "{camera:?} {shading:?} ({pixel})"
+            );
+            let (i, j) = (row + 1, col + 1);
+            let one_based = served.get(&format!("/api/trace?{query}&i={i}&j={j}"));
+            assert_eq!(
+                one_based.text(),
+                cli(&[
+                    "trace",
+                    scene,
+                    "--pixel",
+                    &format!("{i},{j}"),
+                    "--one-based",
+                    "--json"
+                ]),
+                "{camera:?} {shading:?} (i, j) = ({i}, {j})"
+            );
+            // The page's panel: the command line's text, which names the render in the
+            // playground's words.
+            let page = served.get(&format!(
+                "/api/trace?{query}&row={row}&col={col}&format=text"
+            ));
+            assert_eq!(page.status, 200);
+            assert_eq!(
+                page.header("content-type"),
+                Some("text/plain; charset=utf-8")
+            );
+            let printed = cli(&["trace", scene, "--pixel", &pixel]);
+            assert!(printed.contains("as `viewray render --samples 1` writes it"));
+            assert_eq!(
+                page.text(),
+                printed.replace("`viewray render --samples 1`", "a one-sample render"),
+                "{camera:?} {shading:?} ({pixel})"
+            );
+        }
+    }
+    let check = |target: &str, expected: &str| {
+        let response = served.get(target);
+        assert_eq!(response.status, 400, "{target}: {}", response.text());
+        let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+        assert_eq!(body["error"], expected, "{target}");
+    };
+    check(
+        "/api/trace?row=4&col=0",
+        "row: pixel 4,0 is outside the 4 x 4 image: row runs 0..=3 and col 0..=3 (0-based; \
+         i=I&j=J for the lecture's i, j)",
+    );
+    check(
+        "/api/trace?i=0&j=1",
+        "i: pixel 0,1 is outside the 4 x 4 image: i runs 1..=4 and j 1..=4 (1-based, the \
+         lecture's i, j)",
+    );
+    check(
+        "/api/trace",
+        "row: missing: give the pixel as row=R&col=C (0-based from the top-left) or i=I&j=J \
+         (the lecture's, 1-based)",
+    );
+    check(
+        "/api/trace?row=0&col=0&format=pdf",
+        "format: expected `json` (one line per step) or `text`, found `pdf`",
+    );
+    check(
+        "/api/trace?row=0&col=0&width=100000&height=100000",
+        "width: 100000 x 100000 is too large: each side can be at most 4096 pixels",
+    );
+}
+
+#[test]
 fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
     let served = Served::start(BINARY, &[]);
     let text = default_text();
