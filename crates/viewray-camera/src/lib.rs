@@ -153,6 +153,9 @@ pub use iris::Iris;
 pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use mistakes::{Entry, Mistake, Mistakes};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
-pub use projection::{Fisheye, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens};
+pub use projection::{
+    Fisheye, FisheyePoint, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens,
+    equirectangular_angles,
+};
 pub use sampling::{sample_regular_polygon, sample_unit_disk_concentric};
 pub use scheimpflug::{Line3, Plane3, TiltedFocus};

@@ -427,6 +427,25 @@ fn which_family_each_entry_fits() {
 }
 
 #[test]
+fn a_set_holds_each_mistake_once() {
+    for mistake in Mistake::ALL {
+        let once = Mistakes::default().with(mistake);
+        let twice = once.with(mistake);
+        assert!(twice.contains(mistake), "{mistake}");
+        assert_eq!(twice, once, "{mistake}");
+        assert_eq!(twice.len(), 1, "{mistake}");
+    }
+    let two = Mistakes::default()
+        .with(Mistake::PixelCorner)
+        .with(Mistake::VSign)
+        .with(Mistake::PixelCorner);
+    assert_eq!(
+        two.iter().collect::<Vec<_>>(),
+        [Mistake::PixelCorner, Mistake::VSign]
+    );
+}
+
+#[test]
 fn ids_are_the_catalogues_and_name_their_entry() {
     let ids: Vec<&str> = Mistake::ALL.iter().map(|m| m.id()).collect();
     assert_eq!(
