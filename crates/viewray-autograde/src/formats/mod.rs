@@ -80,7 +80,8 @@ pub(crate) fn seconds(duration: std::time::Duration) -> f64 {
     (duration.as_secs_f64() * 1000.0).round() / 1000.0
 }
 
-/// Points as a JSON number: to the millionth (no 0.30000000000000004).
+/// Points as a JSON number: to the millionth (no 0.30000000000000004), and never `-0`
+/// (the sum of no tests is -0.0 in floating point).
 pub(crate) fn points(value: f64) -> f64 {
-    (value * 1e6).round() / 1e6
+    (value * 1e6).round() / 1e6 + 0.0
 }
