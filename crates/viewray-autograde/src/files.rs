@@ -138,6 +138,10 @@ pub struct CopyLimits {
     pub entries: u64,
 }
 
+/// The folder a GitHub Classroom kit adds to the students' repository (viewray and the
+/// assignment), which is not the student's work and is not copied for their program.
+pub const KIT_FOLDER: &str = ".viewray";
+
 /// What a copy of a submission left out.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Copied {
@@ -151,7 +155,8 @@ pub struct Copied {
 
 /// Copies the submission folder `from` into the new folder `to`: regular files and
 /// folders only (symbolic links, FIFOs, devices and sockets are left out and listed;
-/// `.git` folders are skipped), at most `limits`.
+/// `.git` folders are skipped, and so is the [`KIT_FOLDER`] at its top, viewray and the
+/// assignment in a GitHub Classroom repository), at most `limits`.
 ///
 /// # Errors
 /// The submission exceeds the limits, or cannot be read or written: a sentence.
@@ -186,7 +191,7 @@ pub fn copy_submission(from: &Path, to: &Path, limits: CopyLimits) -> Result<Cop
                 continue;
             };
             if metadata.is_dir() {
-                if name == ".git" {
+                if name == ".git" || (relative.as_os_str().is_empty() && name == KIT_FOLDER) {
                     continue;
                 }
                 std::fs::create_dir(to.join(&inner))
@@ -311,6 +316,8 @@ mod tests {
         let from = dir.path().join("from");
         std::fs::create_dir_all(from.join("src/.git")).unwrap();
         std::fs::create_dir_all(from.join(".git")).unwrap();
+        std::fs::create_dir_all(from.join(".viewray/bin")).unwrap();
+        std::fs::write(from.join(".viewray/bin/viewray"), "a program").unwrap();
         std::fs::write(from.join("src/main.py"), "print(1)").unwrap();
         std::fs::write(from.join(".git/HEAD"), "ref").unwrap();
         std::os::unix::fs::symlink("/etc/passwd", from.join("passwd")).unwrap();
@@ -326,6 +333,7 @@ mod tests {
             b"print(1)"
         );
         assert!(!dir.path().join("to/.git").exists());
+        assert!(!dir.path().join("to/.viewray").exists());
         assert!(!dir.path().join("to/passwd").exists());
         let small = CopyLimits {
             bytes: 3,

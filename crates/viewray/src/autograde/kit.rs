@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
+use viewray_autograde::files::KIT_FOLDER;
 use viewray_autograde::{Assignment, HandIn, Visibility, load_assignment, points};
 
 /// The platforms a kit is made for.
@@ -33,6 +34,9 @@ pub(crate) enum Platform {
 }
 
 #[derive(Args, Debug)]
+#[command(
+    override_usage = "viewray autograde kit [OPTIONS] --for <PLATFORM> -o <OUT> <ASSIGNMENT>"
+)]
 pub(crate) struct KitArgs {
     /// The assignment file (RON).
     pub(crate) assignment: PathBuf,
@@ -70,9 +74,10 @@ pub(crate) fn kit(args: &KitArgs) -> Result<()> {
         .with_context(|| format!("cannot read the viewray program {}", binary_path.display()))?;
     let glibc = glibc_needed(&binary);
     let name = file_name(&assignment.path);
+    let kit_prefix = format!("{KIT_FOLDER}/");
     let (prefix, extra) = match args.platform {
         Platform::Gradescope => ("", gradescope_files(&assignment, &name, glibc)),
-        Platform::Github => (".viewray/", github_files(&assignment, &name, glibc)),
+        Platform::Github => (kit_prefix.as_str(), github_files(&assignment, &name, glibc)),
     };
     let assets = if args.platform == Platform::Gradescope {
         "assignment/"
@@ -300,16 +305,17 @@ fn github_files(assignment: &Assignment, name: &str, glibc: Option<(u32, u32)>) 
         .replace("{{TITLE}}", &assignment.title.replace('\n', " "))
         .replace("{{STEPS}}", &steps)
         .replace("{{ENV}}", &env)
-        .replace("{{RUNNERS}}", &runners.join(","));
+        .replace("{{RUNNERS}}", &runners.join(","))
+        .replace("{{KIT}}", KIT_FOLDER);
     let readme = format!(
         "# {title}: GitHub Classroom autograding\n\n\
          Made by `viewray autograde kit {name} --for github` ({version}).\n\n\
          ## What to do\n\n\
-         1. Copy `.github/workflows/classroom.yml` and this `.viewray/` folder into the \
+         1. Copy `.github/workflows/classroom.yml` and this `{kit}/` folder into the \
             assignment's template repository, commit and push.\n\
          2. Create the GitHub Classroom assignment from that template repository, with \
             autograding on. The workflow runs on every push: one step per test runs \
-            viewray (`.viewray/bin/viewray autograde ... --test NAME --format github`), which \
+            viewray (`{kit}/bin/viewray autograde ... --test NAME --format github`), which \
             writes the result object GitHub Classroom's autograding grader actions write, \
             with the points, partial credit included, and the diagnosis; the autograding \
             reporter action then reports the points, {max} in all, to GitHub Classroom.\n\
@@ -320,10 +326,11 @@ fn github_files(assignment: &Assignment, name: &str, glibc: Option<(u32, u32)>) 
          repository, and a test that is `after_due_date` or `hidden` only keeps its details \
          (the diagnosis, the pictures) out of the log; its points count.\n\n\
          ## viewray on GitHub's runners\n\n\
-         `.viewray/bin/viewray` is viewray itself, one program, so the workflow builds and \
+         `{kit}/bin/viewray` is viewray itself, one program, so the workflow builds and \
          downloads nothing. {glibc} GitHub's `ubuntu-latest` runner has 2.39.\n\n\
          ## Limits on students' programs\n\n{limits}\n",
         title = assignment.title,
+        kit = KIT_FOLDER,
         version = crate::cli::VERSION,
         max = points(assignment.max_score()),
         submission = submission_words(assignment),
@@ -338,7 +345,7 @@ fn github_files(assignment: &Assignment, name: &str, glibc: Option<(u32, u32)>) 
             executable: false,
         },
         KitFile {
-            path: ".viewray/README.md".to_owned(),
+            path: format!("{KIT_FOLDER}/README.md"),
             bytes: readme.into_bytes(),
             executable: false,
         },

@@ -25,7 +25,13 @@ use crate::usage::EXIT_BAD_INPUT;
 pub(crate) use kit::KitArgs;
 
 #[derive(Args, Debug)]
-#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+#[command(
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true,
+    override_usage = "viewray autograde [OPTIONS] --format <FORMAT> -o <RESULTS> <ASSIGNMENT>\n       \
+                      \x20                 <SUBMISSION>\n       \
+                      viewray autograde kit <ASSIGNMENT> --for <PLATFORM> -o <OUT>"
+)]
 pub(crate) struct AutogradeArgs {
     #[command(subcommand)]
     pub(crate) command: Option<AutogradeCommand>,
