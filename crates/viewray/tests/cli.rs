@@ -384,6 +384,7 @@ fn help_of_every_command_at_80_columns() {
         "project",
         "compare",
         "grade",
+        "autograde",
         "figure",
         "figures",
         "scene",
