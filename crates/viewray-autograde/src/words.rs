@@ -92,7 +92,7 @@ fn entry_lines(mistake: Mistake, named: bool) -> String {
     text
 }
 
-/// The appearance's verdict: a headline and a line.
+/// The appearance's verdict: a headline and a line (how far from the reference, not why).
 pub(crate) fn appearance_words(comparison: &Comparison) -> (String, String) {
     let peak = comparison
         .metrics
@@ -104,13 +104,13 @@ pub(crate) fn appearance_words(comparison: &Comparison) -> (String, String) {
             format!("appearance: like the reference ({peak})"),
         );
     }
-    let mut line = format!(
+    // The camera is the camera judge's to name (camera first): compare's own guess at a
+    // camera transform, made from the pixels alone, would contradict it when the shading
+    // differs, so the appearance says only how far it is from the reference.
+    let line = format!(
         "appearance: differs from the reference: {}",
         comparison.reasons()
     );
-    if let Some(diagnosis) = &comparison.diagnosis {
-        let _ = write!(line, "; {diagnosis}");
-    }
     (
         "the picture does not look like the reference".to_owned(),
         line,
