@@ -458,3 +458,29 @@ fn a_missing_submission_is_not_graded_and_says_so() {
         "{value:#}"
     );
 }
+
+/// The README's example (a student who left out the shift, in `alice/`) prints every
+/// line the README shows under it, so the README cannot drift from the program.
+#[test]
+fn the_readme_example_prints_what_the_readme_shows() {
+    let readme = std::fs::read_to_string(repository().join("README.md")).unwrap();
+    let command = "$ viewray autograde fixtures/autograde/homework.ron alice/ --format gradescope -o results/results.json\n";
+    let at = readme.find(command).expect("the README shows the example") + command.len();
+    let shown = readme[at..].split("```").next().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let alice = no_shift_student(dir.path());
+    let results = dir.path().join("results/results.json");
+    let output = autograde(&homework(), &alice, "gradescope", &results, &[]);
+    assert_eq!(output.status.code(), Some(1));
+    let printed = stdout(&output);
+    let lines: Vec<&str> = printed.lines().collect();
+    let mut checked = 0;
+    for line in shown.lines().filter(|l| *l != "...") {
+        assert!(
+            lines.contains(&line),
+            "the README shows {line:?}; printed:\n{printed}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked}");
+}
