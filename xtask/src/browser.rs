@@ -3,7 +3,8 @@
 //! Installs what the test needs when it is missing (Debian's `chromium`, Node.js and
 //! npm through apt-get; playwright-core, pinned by `xtask/browser/package-lock.json`,
 //! into `target/browser/node_modules`, no browser download), builds `viewray`, starts
-//! `viewray serve --port 0`, and runs `xtask/browser/playground.mjs` against it.
+//! `viewray serve --port 0`, and runs `xtask/browser/playground.mjs` (the playground) and
+//! `xtask/browser/lecture.mjs` (the lecture, `/lecture`) against it.
 //! Screenshots go to `target/browser/`.
 
 use std::io::{BufRead, BufReader};
@@ -40,29 +41,39 @@ pub fn browser(root: &Path, args: &BrowserArgs) -> Result<()> {
 
     let viewray = crate::build_executable(root, &["--package", "viewray"])?;
     let mut server = Server::start(&viewray)?;
-    // Run from beside node_modules: an ES module finds its imports from where it is.
-    let script = work.join("playground.mjs");
-    std::fs::copy(root.join("xtask/browser/playground.mjs"), &script)
-        .context("cannot copy the browser test script")?;
-    eprintln!("$ node {} {}", script.display(), server.url);
-    let status = Command::new("node")
-        .arg(&script)
-        .arg(&server.url)
-        .arg(&viewray)
-        .arg(&out)
-        .env("CHROMIUM", CHROMIUM)
-        .current_dir(&work)
-        .status()
-        .context("cannot run node")?;
-    server.stop();
-    if !status.success() {
-        bail!(
-            "the browser test failed ({status}); see {}",
-            out.join("failure.png").display()
-        );
+    for (name, failure) in SCRIPTS {
+        // Run from beside node_modules: an ES module finds its imports from where it is.
+        let script = work.join(name);
+        std::fs::copy(root.join("xtask/browser").join(name), &script)
+            .with_context(|| format!("cannot copy the browser test script {name}"))?;
+        eprintln!("$ node {} {}", script.display(), server.url);
+        let status = Command::new("node")
+            .arg(&script)
+            .arg(&server.url)
+            .arg(&viewray)
+            .arg(&out)
+            .env("CHROMIUM", CHROMIUM)
+            .current_dir(&work)
+            .status()
+            .context("cannot run node")?;
+        if !status.success() {
+            server.stop();
+            bail!(
+                "the browser test {name} failed ({status}); see {}",
+                out.join(failure).display()
+            );
+        }
     }
+    server.stop();
     Ok(())
 }
+
+/// The browser tests, each with the screenshot it leaves when it fails: the playground,
+/// then the lecture.
+const SCRIPTS: [(&str, &str); 2] = [
+    ("playground.mjs", "failure.png"),
+    ("lecture.mjs", "lecture-failure.png"),
+];
 
 /// Installs Chromium and Node.js with apt-get when they are missing.
 fn ensure_system_packages() -> Result<()> {

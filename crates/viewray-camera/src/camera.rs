@@ -156,20 +156,7 @@ impl Camera {
     /// family ([`Mistake::fits`]), or `size-minus-one` in an image one pixel wide or
     /// high.
     pub fn with_mistakes(&self, mistakes: Mistakes) -> Result<Self, CameraError> {
-        for mistake in mistakes.iter() {
-            let detail = if !mistake.fits(&self.projection) {
-                String::new()
-            } else if mistake == Mistake::SizeMinusOne && (self.width < 2 || self.height < 2) {
-                format!(" of {} x {} pixels", self.width, self.height)
-            } else {
-                continue;
-            };
-            return Err(CameraError::MistakeDoesNotFit {
-                id: mistake.id(),
-                family: self.projection.family_name(),
-                detail,
-            });
-        }
+        check_mistakes_fit(mistakes, &self.projection, self.width, self.height)?;
         let f = &self.frame;
         let [e, u, v, w] = mistakes.frame([f.e(), f.u(), f.v(), f.w()], f.up());
         Ok(Self::from_parts(
@@ -207,13 +194,7 @@ impl Camera {
     /// [`CameraError::Image`] if `width` or `height` is zero.
     pub fn with_image_size(self, width: u32, height: u32) -> Result<Self, CameraError> {
         check_not_empty(u64::from(width), u64::from(height))?;
-        if self.mistakes.contains(Mistake::SizeMinusOne) && (width < 2 || height < 2) {
-            return Err(CameraError::MistakeDoesNotFit {
-                id: Mistake::SizeMinusOne.id(),
-                family: self.projection.family_name(),
-                detail: format!(" of {width} x {height} pixels"),
-            });
-        }
+        check_mistakes_fit(self.mistakes, &self.projection, width, height)?;
         Ok(Self::from_parts(
             self.frame,
             self.projection,
@@ -495,6 +476,32 @@ pub(crate) fn image_plane_to_image(uv: DVec2, size: DVec2, viewport: DVec2) -> D
         (uv.x / viewport.x + 0.5) * size.x,
         (0.5 - uv.y / viewport.y) * size.y,
     )
+}
+
+/// Whether every one of `mistakes` can be made in a camera of `projection` making images
+/// of `width` x `height` pixels: the family must fit ([`Mistake::fits`]), and
+/// `size-minus-one`, which divides by `n - 1`, needs two pixels each way.
+fn check_mistakes_fit(
+    mistakes: Mistakes,
+    projection: &Projection,
+    width: u32,
+    height: u32,
+) -> Result<(), CameraError> {
+    for mistake in mistakes.iter() {
+        let detail = if !mistake.fits(projection) {
+            String::new()
+        } else if mistake == Mistake::SizeMinusOne && (width < 2 || height < 2) {
+            format!(" of {width} x {height} pixels")
+        } else {
+            continue;
+        };
+        return Err(CameraError::MistakeDoesNotFit {
+            id: mistake.id(),
+            family: projection.family_name(),
+            detail,
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -125,5 +125,8 @@ pub use image_limits::{
 pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use mistakes::{Entry, Mistake, Mistakes};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
-pub use projection::{Fisheye, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens};
+pub use projection::{
+    Fisheye, FisheyePoint, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens,
+    equirectangular_angles,
+};
 pub use sampling::sample_unit_disk_concentric;

@@ -299,7 +299,57 @@ impl Oblique {
     }
 }
 
+/// Where a continuous image point `(x, y)` lies on a fisheye's image: its coordinates
+/// `(a, b)` from the image centre in units of half the image's width (`b` up), its
+/// distance `r` from the centre, and the angle `theta` of its ray from the optical axis
+/// `-W`:
+///
+/// ```text
+/// a = 2x/W - 1,   b = (1 - 2y/H) H/W,   r = sqrt(a^2 + b^2),   theta = r F/2
+/// ```
+///
+/// The point has a ray only inside the image circle, `r <= 1` (`theta <= F/2`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FisheyePoint {
+    /// `a = 2x/W - 1`: across, from -1 at the left edge to 1 at the right edge.
+    pub a: f64,
+    /// `b = (1 - 2y/H) H/W`: up, in the same units as `a`.
+    pub b: f64,
+    /// `r = sqrt(a^2 + b^2)`: the distance from the centre, 1 on the image circle.
+    pub r: f64,
+    /// `theta = r F/2`: the angle between the ray and `-W`, in radians.
+    pub theta: f64,
+}
+
 impl Fisheye {
+    /// The point `image = (x, y)` of an image of `size = (W, H)` pixels on this
+    /// fisheye's image, the numbers its ray is made of (see [`FisheyePoint`]).
+    ///
+    /// ```
+    /// use std::f64::consts::{FRAC_PI_4, PI};
+    ///
+    /// use glam::DVec2;
+    /// use viewray_camera::{Fisheye, FisheyePoint};
+    ///
+    /// // A 180-degree fisheye, 4 x 2 pixels: x = 3, y = 1 is half-way to the right edge,
+    /// // its ray 45 degrees from -W.
+    /// let fisheye = Fisheye { fov: PI };
+    /// let point = fisheye.image_point(DVec2::new(3.0, 1.0), DVec2::new(4.0, 2.0));
+    /// let expected = FisheyePoint { a: 0.5, b: 0.0, r: 0.5, theta: FRAC_PI_4 };
+    /// assert_eq!(point, expected);
+    /// ```
+    pub fn image_point(&self, image: DVec2, size: DVec2) -> FisheyePoint {
+        let a = 2.0 * image.x / size.x - 1.0;
+        let b = (1.0 - 2.0 * image.y / size.y) * size.y / size.x;
+        let r = a.hypot(b);
+        FisheyePoint {
+            a,
+            b,
+            r,
+            theta: r * self.fov / 2.0,
+        }
+    }
+
     fn validate(&self) -> Result<(), CameraError> {
         check_finite("fov", self.fov)?;
         if !(self.fov > 0.0 && self.fov <= TAU) {
@@ -311,6 +361,32 @@ impl Fisheye {
         }
         Ok(())
     }
+}
+
+/// The longitude and latitude (radians) of the continuous image point `image = (x, y)`
+/// of an equirectangular image of `size = (W, H)` pixels:
+///
+/// ```text
+/// longitude = 2 pi (x/W - 1/2),   latitude = pi (1/2 - y/H)
+/// ```
+///
+/// Longitude 0 looks along `-W`, growing toward `U`; latitude grows toward `V`. The ray
+/// is `sin(longitude) cos(latitude) U + sin(latitude) V - cos(longitude) cos(latitude) W`.
+///
+/// ```
+/// use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+///
+/// use glam::DVec2;
+/// use viewray_camera::equirectangular_angles;
+///
+/// // 8 x 4 pixels: x = 6, y = 1 looks a quarter turn to the right, 45 degrees up.
+/// let angles = equirectangular_angles(DVec2::new(6.0, 1.0), DVec2::new(8.0, 4.0));
+/// assert_eq!(angles, (FRAC_PI_2, FRAC_PI_4));
+/// ```
+pub fn equirectangular_angles(image: DVec2, size: DVec2) -> (f64, f64) {
+    let longitude = TAU * (image.x / size.x - 0.5);
+    let latitude = PI * (0.5 - image.y / size.y);
+    (longitude, latitude)
 }
 
 /// A viewing ray in camera coordinates: `origin + t direction`, both relative to the
@@ -440,8 +516,7 @@ impl Projection {
                 direction: p.direction(),
             },
             Projection::Equirectangular => {
-                let longitude = TAU * (image.x / size.x - 0.5);
-                let latitude = PI * (0.5 - image.y / size.y);
+                let (longitude, latitude) = equirectangular_angles(image, size);
                 let (sin_lon, cos_lon) = longitude.sin_cos();
                 let (sin_lat, cos_lat) = latitude.sin_cos();
                 CameraSpaceRay {
@@ -450,13 +525,10 @@ impl Projection {
                 }
             }
             Projection::Fisheye(p) => {
-                let a = 2.0 * image.x / size.x - 1.0;
-                let b = (1.0 - 2.0 * image.y / size.y) * size.y / size.x;
-                let r = a.hypot(b);
+                let FisheyePoint { a, b, r, theta } = p.image_point(image, size);
                 if r > 1.0 {
                     return None;
                 }
-                let theta = r * p.fov / 2.0;
                 let (sin, cos) = theta.sin_cos();
                 // At the centre (r = 0) the direction is -W whatever a/r and b/r would be.
                 let (a_r, b_r) = if r > 0.0 { (a / r, b / r) } else { (0.0, 0.0) };

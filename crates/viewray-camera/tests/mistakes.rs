@@ -333,7 +333,15 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
         Err(CameraError::MistakeDoesNotFit { .. })
     ));
     assert_eq!(fine.with_image_size(5, 4).unwrap().width(), 5);
-    // Two pixels each way is the least the mistake needs: one fewer either way is refused.
+    // Two pixels each way is the least the mistake needs: one fewer either way is refused,
+    // whether the size or the mistake comes first.
+    for (width, height, fits) in [(2, 2, true), (1, 2, false), (2, 1, false)] {
+        let sized = right_camera(Family::Perspective)
+            .with_image_size(width, height)
+            .unwrap();
+        let made = sized.with_mistakes(Mistake::SizeMinusOne.into());
+        assert_eq!(made.is_ok(), fits, "{width} x {height}");
+    }
     assert_eq!(fine.with_image_size(2, 2).unwrap().height(), 2);
     assert!(matches!(
         fine.with_image_size(1, 4),
@@ -413,6 +421,25 @@ fn which_family_each_entry_fits() {
     assert_eq!(fits(right_camera(Family::Orthographic).projection()), ortho);
     let oblique = [&basic[..], &basis, &["oblique-sign", "oblique-as-ortho"]].concat();
     assert_eq!(fits(right_camera(Family::Oblique).projection()), oblique);
+}
+
+#[test]
+fn a_set_holds_each_mistake_once() {
+    for mistake in Mistake::ALL {
+        let once = Mistakes::default().with(mistake);
+        let twice = once.with(mistake);
+        assert!(twice.contains(mistake), "{mistake}");
+        assert_eq!(twice, once, "{mistake}");
+        assert_eq!(twice.len(), 1, "{mistake}");
+    }
+    let two = Mistakes::default()
+        .with(Mistake::PixelCorner)
+        .with(Mistake::VSign)
+        .with(Mistake::PixelCorner);
+    assert_eq!(
+        two.iter().collect::<Vec<_>>(),
+        [Mistake::PixelCorner, Mistake::VSign]
+    );
 }
 
 #[test]

@@ -9,7 +9,7 @@ use crate::side::{draw_column_rays, draw_frustum_edges, draw_image_plane, draw_s
 use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{CameraView, FigureView, SideView};
-use viewray_draw::{Anchor, Baseline, Item, Mapping, Rect, Stroke};
+use viewray_draw::{Anchor, Baseline, Item, Label, Mapping, Rect, Stroke};
 use viewray_output::number;
 
 /// The left edge of the text panel on every assumption slide.
@@ -379,15 +379,27 @@ pub(crate) fn assumption_eye() -> Diagram {
     let e = view.to_figure(eye);
     sketch.arrow(o, e, Stroke::new(style::EYE, style::LINE_REGULAR));
     draw_side_frame(&mut sketch, &view, camera.frame(), 0.5, true);
-    let to_e = (e - o).normalize_or_zero();
+    // e's coordinates left of the arrow's middle, their box's nearest corner (the lower
+    // right, the arrow rising to the right) a gap from the arrow's line.
+    let text = format!(
+        "*e* = (0, {}, {})",
+        number::label(eye.y),
+        number::label(eye.z)
+    );
+    let middle = (o + e) / 2.0;
+    let half_height = Label::new(text.as_str(), Vec2::ZERO)
+        .with_size(style::SMALL_LABEL_SIZE)
+        .bounds()
+        .height()
+        / 2.0;
+    let rise = e - o;
+    // Where the arrow's line is at the height of the label's bottom edge.
+    let line_x = middle.x + half_height * rise.x / rise.y;
+    let gap = 14.0 * rise.length() / -rise.y;
     sketch.label_at(
-        &format!(
-            "*e* = (0, {}, {})",
-            number::label(eye.y),
-            number::label(eye.z)
-        ),
-        (o + e) / 2.0 + to_e.perp() * 14.0 + Vec2::new(-6.0, 0.0),
-        (Anchor::End, Baseline::Bottom),
+        &text,
+        Vec2::new(line_x - gap, middle.y),
+        (Anchor::End, Baseline::Middle),
         style::EYE,
         style::SMALL_LABEL_SIZE,
     );

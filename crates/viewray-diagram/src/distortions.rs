@@ -64,6 +64,10 @@ fn camera(frame: Frame, perspective: Perspective, size: (u32, u32)) -> Camera {
         .expect("a valid camera")
 }
 
+/// The foreshortening figure's picture: its image size, which is its slot's on the slide,
+/// so that the pixel heights written beside it are those of the picture shown.
+const FORESHORTENING_PICTURE: (u32, u32) = (440, 330);
+
 /// The eye of the foreshortening figure, level, looking down `-z`.
 const POSTS_EYE: DVec3 = DVec3::new(0.0, 1.0, 1.5);
 
@@ -80,7 +84,8 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
         viewport: DVec2::new(1.2, 0.9),
         shift: DVec2::ZERO,
     };
-    let camera = camera(frame, perspective, (240, 180));
+    // The picture's slot is 440 x 330 figure pixels: its pixel counts are of that image.
+    let camera = camera(frame, perspective, FORESHORTENING_PICTURE);
     let frame = *camera.frame();
     let view = SideView::fit(
         (-2.3, 12.2),
@@ -139,7 +144,11 @@ pub(crate) fn distortion_foreshortening(pictures: &dyn Pictures) -> Diagram {
     );
 
     // The picture, and the heights it shows.
-    let picture = CameraView::new(camera, Rect::from_xywh(60.0, 530.0, 440.0, 330.0));
+    let (width, height) = FORESHORTENING_PICTURE;
+    let picture = CameraView::new(
+        camera,
+        Rect::from_xywh(60.0, 530.0, width as f32, height as f32),
+    );
     draw_picture(&mut sketch, &picture, PictureScene::Posts, pictures);
     sketch.label_at(
         "what the camera sees",

@@ -144,17 +144,19 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
     let cell_top = plane(EXAMPLE.0, EXAMPLE.1, DVec2::new(0.5, 0.0));
     sketch.dimension(cell_left, example);
     sketch.dimension(cell_top, example);
+    // The halves above and right of their dimensions, leaving the cell's lower half to
+    // the centre's coordinates.
     sketch.label_at(
         "½",
-        (cell_left + example) / 2.0 + Vec2::new(0.0, 8.0),
-        (Anchor::Middle, Baseline::Top),
+        (cell_left + example) / 2.0 + Vec2::new(0.0, -8.0),
+        (Anchor::Middle, Baseline::Bottom),
         style::TEXT,
         small,
     );
     sketch.label_at(
         "½",
-        (cell_top + example) / 2.0 + Vec2::new(-10.0, 0.0),
-        (Anchor::End, Baseline::Middle),
+        (cell_top + example) / 2.0 + Vec2::new(10.0, 0.0),
+        (Anchor::Start, Baseline::Middle),
         style::TEXT,
         small,
     );
@@ -165,12 +167,14 @@ pub(crate) fn pixel_to_image_plane() -> Diagram {
         SIZE,
         VIEWPORT,
     );
+    // The centre's (u, v), under it and inside its cell: a little smaller than the other
+    // small labels, so that it keeps clear of the cell's borders.
     sketch.label_at(
         &format!("({}, {})", number::label(uv.x), number::label(uv.y)),
-        example + Vec2::new(14.0, 12.0),
-        (Anchor::Start, Baseline::Top),
+        example + Vec2::new(0.0, 16.0),
+        (Anchor::Middle, Baseline::Top),
         style::HIGHLIGHT,
-        small,
+        0.85 * small,
     );
 
     // vw and vh.

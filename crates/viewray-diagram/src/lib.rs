@@ -19,9 +19,9 @@
 //!
 //! [`all_figures`] lists the figures by name for `viewray figure NAME`, `cargo xtask
 //! figures` and the golden check (`golden/figures/<name>.png`); [`figure_by_name`] finds
-//! one. [`side_view`] draws the side view of any camera over any scene, in a
-//! [`SideWindow`] on a [`SideViewCanvas`], for `viewray diagram`, the live playground and
-//! animations. This crate knows no file format and does no I/O: writing a figure is
+//! one. [`side_view`] draws the side view (or the top view) of any camera over any
+//! scene, in a [`SideWindow`] on a [`SideViewCanvas`], for `viewray diagram`, the live
+//! playground and animations. This crate knows no file format and does no I/O: writing a figure is
 //! `viewray-draw`'s.
 //!
 //! Where to start reading: `sketch` (the figure builder: the display list, and the record
@@ -242,11 +242,16 @@ pub fn all_figures() -> Vec<NamedFigure> {
 /// the eye **e** and its **v** and **w**, the image plane edge-on, the frustum's edges,
 /// and the viewing rays of five pixels of the middle column, each drawn up to the first
 /// object it hits (traced in `scene`'s world); for a thin lens, the lens and the focus
-/// plane. A caption names the projection and its parameters.
+/// plane. A caption names the projection and its parameters. Labels are placed last,
+/// each where it covers no other label and, where it can, no ray or object.
 ///
 /// `window` is [`SideWindow::fit`] to this camera alone (`viewray diagram`, the live
 /// playground) or to every camera of an animation, so that only the camera moves from
-/// frame to frame; an eye beyond the window is drawn as an arrow at its edge. `canvas`
+/// frame to frame; an eye beyond the window (farther than three times the objects' size)
+/// is drawn as an arrow at its edge, labelled with its distance from the middle of the
+/// objects. A window made by [`SideWindow::fit_top`] draws the top view instead: the
+/// plane of **u** and **w** seen from **v**'s side, **u** to the right and the view up
+/// the page, with the rays of the image's middle row. `canvas`
 /// says where the figure goes ([`SideViewCanvas`]). `camera` need not be the scene's own
 /// (a live viewer draws the camera being edited); `pixel`, a 0-based (row, col) of its
 /// image, adds that pixel's viewing ray, highlighted and labelled with the lecture's

@@ -18,21 +18,27 @@ use viewray_draw::{Color, Item, Stroke};
 pub(crate) fn viewport_edges(camera: &Camera) -> (DVec3, DVec3) {
     let w = f64::from(camera.width());
     let h = f64::from(camera.height());
+    viewport_points(camera, [DVec2::new(w / 2.0, 0.0), DVec2::new(w / 2.0, h)])
+}
+
+/// The points of a planar camera's viewport seen at the image points `image` (pixel
+/// units, through the lens centre), as [`viewport_edges`] finds them.
+pub(crate) fn viewport_points(camera: &Camera, image: [DVec2; 2]) -> (DVec3, DVec3) {
     let distance = match camera.projection() {
         Projection::Perspective(p) => Some(p.distance),
         Projection::ThinLens(p) => Some(p.distance),
         _ => None,
     };
-    let at_plane = |y: f64| {
+    let at_plane = |point: DVec2| {
         let ray = camera
-            .generate_ray_through(DVec2::new(w / 2.0, y), DVec2::splat(0.5))
+            .generate_ray_through(point, DVec2::splat(0.5))
             .expect("a planar camera has a ray at every image point");
         match distance {
             Some(d) => ray.at(d / -ray.direction.dot(camera.frame().w())),
             None => ray.origin,
         }
     };
-    (at_plane(0.0), at_plane(h))
+    (at_plane(image[0]), at_plane(image[1]))
 }
 
 /// Draws the image plane seen edge-on: a thick segment over the viewport and, when
@@ -118,7 +124,6 @@ pub(crate) fn draw_side_frame(
     // u is out of the page when it points towards the viewer of the side view (along x
     // in the lecture's figures, seen from +x). Its label goes in the quadrant between v
     // (up) and w, on the side away from -w.
-    let towards_viewer = frame.u().dot(view.towards_viewer()) > 0.0;
     if labels {
         let away = view.to_figure(frame.e() + frame.w()) - e;
         let side = if away.x <= 0.0 { -1.0 } else { 1.0 };
@@ -129,18 +134,29 @@ pub(crate) fn draw_side_frame(
             style::LABEL_SIZE,
         );
     }
+    draw_out_of_page(
+        sketch,
+        e,
+        frame.u().dot(view.towards_viewer()) > 0.0,
+        style::U_AXIS,
+    );
+}
+
+/// Draws the mark at the eye `e` of the axis perpendicular to the page: a circled dot
+/// when it points at the viewer (`towards_viewer`), a circled cross when away.
+pub(crate) fn draw_out_of_page(sketch: &mut Sketch, e: Vec2, towards_viewer: bool, color: Color) {
     sketch.push(Item::Ellipse {
         center: e,
         radii: Vec2::splat(15.0),
         rotation: 0.0,
         fill: Some(style::BACKGROUND),
-        stroke: Some(Stroke::new(style::U_AXIS, style::LINE_REGULAR)),
+        stroke: Some(Stroke::new(color, style::LINE_REGULAR)),
     });
     if towards_viewer {
-        sketch.dot(e, 5.0, style::U_AXIS);
+        sketch.dot(e, 5.0, color);
     } else {
         let d = 7.0;
-        let stroke = Stroke::new(style::U_AXIS, style::LINE_REGULAR);
+        let stroke = Stroke::new(color, style::LINE_REGULAR);
         sketch.line(e + Vec2::new(-d, -d), e + Vec2::new(d, d), stroke.clone());
         sketch.line(e + Vec2::new(-d, d), e + Vec2::new(d, -d), stroke);
     }

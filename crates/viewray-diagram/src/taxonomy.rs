@@ -17,11 +17,23 @@ pub(crate) const THUMBNAIL_IMAGE: (u32, u32) = (240, 180);
 const TARGET: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 /// The view's height at the target, world units.
 const VIEW_SIZE: f64 = 4.0;
+/// Where the one- and two-point cameras aim, and their view's height there. Their eye
+/// sits a quarter of the view above the target: aimed at the cube's middle it would be
+/// level with the cube's top, and the top face and its receding edges would vanish into
+/// the horizon. Aimed higher, with a wider view, the eye is a unit above the cube, which
+/// stands below the horizon with its converging edges in sight and clear of the frame.
+const LEVEL_TARGET: DVec3 = DVec3::new(0.0, 1.6, 0.0);
+/// The one- and two-point views' height at [`LEVEL_TARGET`], world units.
+const LEVEL_VIEW_SIZE: f64 = 5.6;
 
 /// The camera of a taxonomy thumbnail: `preset` aimed at the cube.
 pub(crate) fn taxonomy_camera(preset: &Preset) -> viewray_camera::Camera {
+    let (target, size) = match preset {
+        Preset::OnePoint | Preset::TwoPoint => (LEVEL_TARGET, LEVEL_VIEW_SIZE),
+        _ => (TARGET, VIEW_SIZE),
+    };
     preset
-        .camera(TARGET, VIEW_SIZE, THUMBNAIL_IMAGE.0, THUMBNAIL_IMAGE.1)
+        .camera(target, size, THUMBNAIL_IMAGE.0, THUMBNAIL_IMAGE.1)
         .expect("a preset camera for a fixed target and size")
 }
 

@@ -2,5 +2,6 @@
 //! cameras of their pictures.
 
 mod camera_side;
+mod figure_details;
 mod figures;
 mod rendered;

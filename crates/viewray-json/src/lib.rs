@@ -1,12 +1,16 @@
 //! The numbers viewray prints as JSON lines, formatted in one place so that the command
-//! line (`viewray frame`, `rays`, `project`) and the live playground print the same
-//! digits for the same camera.
+//! line (`viewray frame`, `rays`, `project`, `trace`) and the live playground print the
+//! same digits for the same camera.
 //!
 //! # What it owns
 //!
 //! - The lines: [`frame_line`] `{"e":[..],"u":[..],"v":[..],"w":[..]}`, [`ray_line`]
 //!   `{"row":R,"col":C,"u":U,"v":V,"origin":[..],"direction":[..]}` and [`project_line`]
 //!   `{"point":[..],"x":X,"y":Y,"row":R,"col":C}`.
+//! - A pixel's trace (viewray-render's [`PixelTrace`](viewray_render::PixelTrace)):
+//!   [`trace_lines`], `{"step":..,"bounce":B,..}` per step, then
+//!   `{"row":R,"col":C,"linear":[..],"srgb8":[..]}`; and [`trace_text`], the same numbers
+//!   for people, each beside its formula under the lecture's pseudocode.
 //! - How a number is printed: [`number`] (as Rust prints an `f64`, the shortest text that
 //!   reads back to the same number, with `-0` written `0`), [`vector`], [`write_line`].
 //! - How a pixel is named ([`PixelIndices`]: 0-based `row`, `col`, or the lecture's
@@ -17,19 +21,20 @@
 //!
 //! # Invariant
 //!
-//! This crate knows cameras and JSON, and nothing of the command line, files or HTTP: no
-//! sentence of it names a flag or a query parameter (a program adds its own words, as
-//! [`PixelOutside::sentence`] lets it).
+//! This crate knows cameras, the renderer's trace and JSON, and nothing of the command
+//! line, files or HTTP: no sentence of it names a flag or a query parameter (a program
+//! adds its own words, as [`PixelOutside::sentence`] lets it).
 //!
 //! # Where to start reading
 //!
 //! This file holds the lines of `frame`, `rays` and `project`; `pixel` the indices and
-//! their sentence; `judgement` the lines of `compare` and `grade`; `check` those of
-//! `check`.
+//! their sentence; `trace` the trace's lines and text; `judgement` the lines of `compare` and
+//! `grade`; `check` those of `check`.
 
 mod check;
 mod judgement;
 mod pixel;
+mod trace;
 
 use std::io::Write;
 
@@ -40,6 +45,7 @@ use viewray_camera::{Camera, CameraSample, Frame, pixel_to_image_plane};
 pub use check::{check_summary_line, checked_line};
 pub use judgement::{class_summary_line, pair_line, pairs_summary_line, student_image_line};
 pub use pixel::{PixelIndices, PixelOutside};
+pub use trace::{number_f32, trace_lines, trace_text, vector_f32};
 
 /// A number for printing: `-0` becomes `0` (a student's answer never says minus zero),
 /// by viewray-output's one rule for it.

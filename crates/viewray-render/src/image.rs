@@ -20,6 +20,23 @@ pub enum PixelKind {
     Data,
 }
 
+impl PixelKind {
+    /// The 8 bits per channel PNG output stores for the value `value`: sRGB-encoded
+    /// ([`linear_to_srgb8`]) for [`PixelKind::Color`], `round(255 x)` ([`unit_to_u8`])
+    /// for [`PixelKind::Data`], each channel clamped to `[0, 1]` first.
+    pub fn to_rgb8(self, value: Vec3) -> [u8; 3] {
+        value.to_array().map(self.encoder())
+    }
+
+    /// The encoding of one channel.
+    fn encoder(self) -> fn(f32) -> u8 {
+        match self {
+            PixelKind::Color => linear_to_srgb8,
+            PixelKind::Data => unit_to_u8,
+        }
+    }
+}
+
 /// The file formats an [`Image`] can be written as.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImageFormat {
@@ -137,10 +154,7 @@ impl Image {
     /// Every pixel as 8 bits per channel, as PNG output stores it: sRGB-encoded for
     /// [`PixelKind::Color`], `round(255 x)` for [`PixelKind::Data`].
     pub fn to_rgb8(&self) -> Vec<u8> {
-        match self.kind {
-            PixelKind::Color => self.to_srgb8(),
-            PixelKind::Data => self.to_bytes(unit_to_u8),
-        }
+        self.to_bytes(self.kind.encoder())
     }
 
     fn to_bytes(&self, encode: fn(f32) -> u8) -> Vec<u8> {

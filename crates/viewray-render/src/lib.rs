@@ -12,7 +12,8 @@
 //! falls; `shade` is what a ray sees (its module doc is the map: the block driver, Lit
 //! batches with their lights and mirrors, grid lines, depth); `lanes` holds four
 //! samples' vectors side by side for the lighting; `image` is the [`Image`] and its
-//! encoders.
+//! encoders; `trace` is [`trace_pixel`], one pixel's trace with every number the
+//! shading computed (for `viewray trace`), read through hooks in the shading code.
 //!
 //! # Shading
 //!
@@ -78,6 +79,10 @@
 //! lane by lane; each sample still sums its lights in order with the same numbers, so
 //! the image is the same, bit for bit, as sample by sample.
 //!
+//! [`trace_pixel`] traces one pixel of a one-sample render through that same code (its
+//! whole block and batches, as the render does) and keeps the numbers of its sample
+//! at each step, so a trace's value is always the image's.
+//!
 //! # Output
 //!
 //! [`Image`] holds linear `f32` RGB. PNG output is 8-bit with the sRGB transfer function
@@ -112,10 +117,16 @@ mod lanes;
 mod render;
 mod sampling;
 mod shade;
+mod trace;
 
 pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};
 pub use crate::labels::{BACKGROUND_LABEL, object_labels};
 pub use crate::render::{
     MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, View,
     render, render_view,
+};
+pub use crate::trace::{
+    BlinnPhong, ClosestHit, DepthValue, GridLines, HeadlightTerms, LightSource, LightTerms,
+    LitSurface, LitTerm, PixelOutside, PixelTrace, ShadowRay, Shape, Specular, Step, StepKind,
+    trace_pixel,
 };

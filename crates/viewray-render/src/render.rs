@@ -12,7 +12,10 @@ use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
 use crate::sampling::Strata;
-use crate::shade::{DepthMap, DepthRange, FilmPoint, LitScratch, RayDifferentials, Shader};
+use crate::shade::{
+    DepthMap, DepthRange, FilmPoint, LitScratch, NoRecorder, RayDifferentials, Recorder, Shader,
+    T_MIN,
+};
 
 /// The default number of mirror bounces a ray follows.
 pub const MAX_REFLECTION_DEPTH: u32 = 4;
@@ -195,83 +198,19 @@ impl TileBuffers {
     /// viewing rays of a block of neighbouring pixels go to the geometry as one packet;
     /// each pixel still adds its samples in index order, so the sums are the same as
     /// pixel by pixel.
-    fn render(
-        &mut self,
-        tile: &Tile,
-        shader: &Shader<'_>,
-        camera: &Camera,
-        strata: &Strata,
-        samples: u32,
-        spacing: f64,
-    ) -> u64 {
-        let pixel_count = tile.width as usize * tile.height as usize;
-        self.pixels.clear();
-        self.pixels.resize(pixel_count, Vec3::ZERO);
-        // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
-        // shading that may ask for film points.
-        self.differentials.clear();
-        if shader.uses_film_points() {
-            self.differentials.resize_with(pixel_count, OnceCell::new);
-        }
+    fn render(&mut self, tile: &Tile, setup: &TileSetup<'_>, samples: u32) -> u64 {
+        self.start(tile, setup.shader);
         let mut rays = 0;
         for index in 0..samples {
-            for block_row in (tile.row..tile.row + tile.height).step_by(BLOCK_SIZE as usize) {
-                for block_col in (tile.col..tile.col + tile.width).step_by(BLOCK_SIZE as usize) {
-                    // Generate the block's rays: through one sample point shared by every
-                    // pixel (one sample: the centre), the camera does a block at a time.
-                    // Written by index with the count in a local (pushes kept each
-                    // vector's length in memory, stored and loaded again for every ray).
-                    let mut count = 0;
-                    let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
-                    let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
-                    let block_rays: &mut [Ray] = &mut self.rays;
-                    let ray_pixels: &mut [u32] = &mut self.ray_pixels;
-                    let mut take = |row: u32, col: u32, ray: Option<DRay>| {
-                        let pixel = (row - tile.row) * tile.width + (col - tile.col);
-                        match ray {
-                            Some(ray) => {
-                                block_rays[count] = ray.as_ray();
-                                ray_pixels[count] = pixel;
-                                count += 1;
-                            }
-                            None => self.pixels[pixel as usize] += shader.background(),
-                        }
+            for block_row in block_starts(tile.row, tile.height) {
+                for block_col in block_starts(tile.col, tile.width) {
+                    let block = Block {
+                        tile,
+                        row: block_row,
+                        col: block_col,
+                        index,
                     };
-                    if let Some(sample) = strata.shared_sample() {
-                        camera.generate_block_rays(rows, cols, sample, take);
-                    } else {
-                        for row in rows {
-                            for col in cols.clone() {
-                                let sample = strata.camera_sample(row, col, index);
-                                take(row, col, camera.generate_ray(row, col, sample));
-                            }
-                        }
-                    }
-
-                    // Trace them together (which writes every hit, so the buffer needs
-                    // only the right length) and shade them together, each sample's
-                    // value added straight to its pixel.
-                    let (block_rays, hits) = (&self.rays[..count], &mut self.hits[..count]);
-                    shader.trace_primary(block_rays, hits);
-                    let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
-                    let pixels = &mut self.pixels;
-                    shader.shade_primaries(
-                        block_rays,
-                        hits,
-                        |i| {
-                            let pixel = ray_pixels[i];
-                            let (row, col) =
-                                (tile.row + pixel / tile.width, tile.col + pixel % tile.width);
-                            FilmPoint {
-                                pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
-                                spacing,
-                                differentials: &differentials[pixel as usize],
-                            }
-                        },
-                        &mut self.lit,
-                        |i, color| pixels[ray_pixels[i] as usize] += color,
-                        &mut rays,
-                    );
+                    rays += self.render_block(&block, setup, &mut NoRecorder);
                 }
             }
         }
@@ -284,6 +223,132 @@ impl TileBuffers {
         }
         rays
     }
+
+    /// Makes the pixels of `tile` black and their ray differentials unknown.
+    #[inline]
+    fn start(&mut self, tile: &Tile, shader: &Shader<'_>) {
+        let pixel_count = tile.width as usize * tile.height as usize;
+        self.pixels.clear();
+        self.pixels.resize(pixel_count, Vec3::ZERO);
+        // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
+        // shading that may ask for film points.
+        self.differentials.clear();
+        if shader.uses_film_points() {
+            self.differentials.resize_with(pixel_count, OnceCell::new);
+        }
+    }
+
+    /// Traces sample `block.index` of the block of pixels at `(block.row, block.col)`
+    /// (at most [`BLOCK_SIZE`] square, inside its tile) and adds each value to its
+    /// pixel; returns the number of rays traced. `recorder` is told the numbers of the
+    /// pixel it follows, if that pixel is in the block.
+    #[inline]
+    fn render_block<R: Recorder>(
+        &mut self,
+        block: &Block<'_>,
+        setup: &TileSetup<'_>,
+        recorder: &mut R,
+    ) -> u64 {
+        let &Block {
+            tile,
+            row: block_row,
+            col: block_col,
+            index,
+        } = block;
+        let &TileSetup {
+            shader,
+            camera,
+            strata,
+            spacing,
+        } = setup;
+        // Generate the block's rays: through one sample point shared by every pixel (one
+        // sample: the centre), the camera does a block at a time. Written by index with
+        // the count in a local (pushes kept each vector's length in memory, stored and
+        // loaded again for every ray).
+        let mut count = 0;
+        let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
+        let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
+        let block_rays: &mut [Ray] = &mut self.rays;
+        let ray_pixels: &mut [u32] = &mut self.ray_pixels;
+        let mut take = |row: u32, col: u32, ray: Option<DRay>| {
+            let pixel = (row - tile.row) * tile.width + (col - tile.col);
+            match ray {
+                Some(ray) => {
+                    block_rays[count] = ray.as_ray();
+                    ray_pixels[count] = pixel;
+                    count += 1;
+                }
+                None => self.pixels[pixel as usize] += shader.background(),
+            }
+        };
+        if let Some(sample) = strata.shared_sample() {
+            camera.generate_block_rays(rows, cols, sample, take);
+        } else {
+            for row in rows {
+                for col in cols.clone() {
+                    let sample = strata.camera_sample(row, col, index);
+                    take(row, col, camera.generate_ray(row, col, sample));
+                }
+            }
+        }
+
+        if R::ACTIVE
+            && let Some((row, col)) = recorder.pixel()
+        {
+            // The followed pixel's ray in the block, if the camera has one.
+            let pixel = (row - tile.row) * tile.width + (col - tile.col);
+            let position = self.ray_pixels[..count].iter().position(|&p| p == pixel);
+            recorder.follow_ray(position);
+        }
+
+        // Trace them together (which writes every hit, so the buffer needs only the
+        // right length) and shade them together, each sample's value added straight to
+        // its pixel.
+        let (block_rays, hits) = (&self.rays[..count], &mut self.hits[..count]);
+        shader.trace_primary(block_rays, hits);
+        if R::ACTIVE
+            && let Some(i) = recorder.followed_ray()
+        {
+            recorder.ray(0, &block_rays[i], T_MIN);
+        }
+        let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
+        let pixels = &mut self.pixels;
+        let mut rays = 0;
+        shader.shade_primaries(
+            block_rays,
+            hits,
+            |i| {
+                let pixel = ray_pixels[i];
+                let (row, col) = (tile.row + pixel / tile.width, tile.col + pixel % tile.width);
+                FilmPoint {
+                    pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
+                    spacing,
+                    differentials: &differentials[pixel as usize],
+                }
+            },
+            (&mut self.lit, recorder),
+            |i, color| pixels[ray_pixels[i] as usize] += color,
+            &mut rays,
+        );
+        rays
+    }
+}
+
+/// What every tile of a render shares: the shading, the camera, where samples fall, and
+/// the side of the square of film one sample stands for (`1 / sqrt(samples)` pixels).
+struct TileSetup<'a> {
+    shader: &'a Shader<'a>,
+    camera: &'a Camera,
+    strata: &'a Strata,
+    spacing: f64,
+}
+
+/// A block of a tile to trace: its top-left pixel and the sample index.
+struct Block<'a> {
+    tile: &'a Tile,
+    row: u32,
+    col: u32,
+    index: u32,
 }
 
 /// A rectangle of pixels: rows `row..row + height`, columns `col..col + width`.
@@ -323,50 +388,15 @@ fn render_on_current_pool(
     let samples = view.samples.max(1);
 
     // For depth images, find the range of depths first.
-    let mut depth_map = DepthMap::new(camera);
-    let mut rays = 0;
-    if view.shading == Shading::Depth {
-        let probe = Shader::new(scene, view, 0, depth_map);
-        // One band of block rows at a time, each block's rays traced as a packet.
-        let (range, probe_rays) = (0..height.div_ceil(BLOCK_SIZE))
-            .into_par_iter()
-            .map(|band| {
-                let mut range = DepthRange::EMPTY;
-                let (mut rays, mut hits) = (Vec::new(), Vec::new());
-                let mut count = 0;
-                let rows = band * BLOCK_SIZE..((band + 1) * BLOCK_SIZE).min(height);
-                for block_col in (0..width).step_by(BLOCK_SIZE as usize) {
-                    rays.clear();
-                    let cols = block_col..(block_col + BLOCK_SIZE).min(width);
-                    camera.generate_block_rays(
-                        rows.clone(),
-                        cols,
-                        CameraSample::CENTER,
-                        |_, _, ray| {
-                            rays.extend(ray.map(|r| r.as_ray()));
-                        },
-                    );
-                    count += rays.len() as u64;
-                    hits.clear();
-                    hits.resize(rays.len(), None);
-                    probe.trace_primary(&rays, &mut hits);
-                    for (ray, hit) in rays.iter().zip(&hits) {
-                        probe.depth_probe(ray, hit.as_ref(), &mut range);
-                    }
-                }
-                (range, count)
-            })
-            .reduce(
-                || (DepthRange::EMPTY, 0),
-                |(a, ra), (b, rb)| (a.union(b), ra + rb),
-            );
-        depth_map = depth_map.with_range(range);
-        rays += probe_rays;
-    }
-
+    let (depth_map, rays) = depth_map(scene, view);
     let shader = Shader::new(scene, view, settings.max_reflection_depth, depth_map);
-    let spacing = 1.0 / f64::from(samples).sqrt();
     let strata = Strata::new(samples).with_lens(view.camera.projection().has_lens());
+    let setup = TileSetup {
+        shader: &shader,
+        camera,
+        strata: &strata,
+        spacing: 1.0 / f64::from(samples).sqrt(),
+    };
     let total = u64::from(width) * u64::from(height);
     let done = AtomicU64::new(0);
     let traced = AtomicU64::new(0);
@@ -386,7 +416,7 @@ fn render_on_current_pool(
     tiles.par_iter().for_each_init(
         || TileBuffers::new(tile_size),
         |buffers: &mut TileBuffers, tile| {
-            let rays = buffers.render(tile, &shader, camera, &strata, samples, spacing);
+            let rays = buffers.render(tile, &setup, samples);
             let buffer = &buffers.pixels;
 
             // Copy the tile into its band of the image.
@@ -418,6 +448,118 @@ fn render_on_current_pool(
             rays: rays + traced.into_inner(),
         },
     }
+}
+
+/// The Depth map of `view`, with the range of depths its image shows (found by one
+/// centre ray per pixel, each block's rays traced as a packet) when it shades Depth, and
+/// the number of rays that took.
+fn depth_map(scene: &Scene, view: &View) -> (DepthMap, u64) {
+    let camera = &view.camera;
+    let (width, height) = (camera.width(), camera.height());
+    let depth_map = DepthMap::new(camera);
+    if view.shading != Shading::Depth {
+        return (depth_map, 0);
+    }
+    let probe = Shader::new(scene, view, 0, depth_map);
+    // One band of block rows at a time.
+    let (range, rays) = (0..height.div_ceil(BLOCK_SIZE))
+        .into_par_iter()
+        .map(|band| {
+            let mut range = DepthRange::EMPTY;
+            let (mut rays, mut hits) = (Vec::new(), Vec::new());
+            let mut count = 0;
+            let rows = band * BLOCK_SIZE..((band + 1) * BLOCK_SIZE).min(height);
+            for block_col in (0..width).step_by(BLOCK_SIZE as usize) {
+                rays.clear();
+                let cols = block_col..(block_col + BLOCK_SIZE).min(width);
+                camera.generate_block_rays(
+                    rows.clone(),
+                    cols,
+                    CameraSample::CENTER,
+                    |_, _, ray| {
+                        rays.extend(ray.map(|r| r.as_ray()));
+                    },
+                );
+                count += rays.len() as u64;
+                hits.clear();
+                hits.resize(rays.len(), None);
+                probe.trace_primary(&rays, &mut hits);
+                for (ray, hit) in rays.iter().zip(&hits) {
+                    probe.depth_probe(ray, hit.as_ref(), &mut range);
+                }
+            }
+            (range, count)
+        })
+        .reduce(
+            || (DepthRange::EMPTY, 0),
+            |(a, ra), (b, rb)| (a.union(b), ra + rb),
+        );
+    (depth_map.with_range(range), rays)
+}
+
+/// Traces pixel `(row, col)` of `view`'s one-sample image as [`render_view`] renders it,
+/// telling `recorder` its numbers, and returns the pixel's value: the same bits the
+/// image holds. The pixel must be in the image.
+///
+/// `start(recorder, ray, background)` is called first with the pixel's viewing ray, as
+/// the camera generates it for the pixel alone (the same bits as in its block: see
+/// [`Camera::generate_block_rays`]), and the value of a pixel that sees nothing.
+pub(crate) fn trace_pixel_with<R: Recorder>(
+    scene: &Scene,
+    view: &View,
+    settings: &RenderSettings,
+    (row, col): (u32, u32),
+    (recorder, start): (&mut R, impl FnOnce(&mut R, Option<DRay>, Vec3)),
+) -> Vec3 {
+    let view = View {
+        samples: 1,
+        ..*view
+    };
+    let camera = &view.camera;
+    let (depth_map, _) = depth_map(scene, &view);
+    let shader = Shader::new(scene, &view, settings.max_reflection_depth, depth_map);
+    let strata = Strata::new(1).with_lens(camera.projection().has_lens());
+    // One sample is shared by every pixel. (Not `camera_sample`: a second caller, cold as
+    // it is, stops the compiler inlining it into the render loop.)
+    let sample = strata.shared_sample().unwrap_or_default();
+    let ray = camera.generate_ray(row, col, sample);
+    start(recorder, ray, shader.background());
+    let setup = TileSetup {
+        shader: &shader,
+        camera,
+        strata: &strata,
+        spacing: 1.0,
+    };
+    // The tile that holds the pixel, and its block, as the render splits the image.
+    let size = settings.tile_size.max(1);
+    let tile = tiles(camera.width(), camera.height(), size)
+        .into_iter()
+        .find(|t| {
+            (t.row..t.row + t.height).contains(&row) && (t.col..t.col + t.width).contains(&col)
+        })
+        .expect("the tiles cover the image, and the pixel is in it");
+    let start_of = |start, len, at| {
+        block_starts(start, len)
+            .take_while(|&s| s <= at)
+            .last()
+            .unwrap_or(start)
+    };
+    let block = Block {
+        tile: &tile,
+        row: start_of(tile.row, tile.height, row),
+        col: start_of(tile.col, tile.width, col),
+        index: 0,
+    };
+    let mut buffers = TileBuffers::new(size);
+    buffers.start(&tile, &shader);
+    buffers.render_block(&block, &setup, recorder);
+    buffers.pixels[((row - tile.row) * tile.width + (col - tile.col)) as usize]
+}
+
+/// Where the blocks of a tile's rows (or columns) `start..start + len` start.
+#[inline]
+fn block_starts(start: u32, len: u32) -> std::iter::StepBy<std::ops::Range<u32>> {
+    (start..start + len).step_by(BLOCK_SIZE as usize)
 }
 
 #[cfg(test)]

@@ -7,12 +7,14 @@ use std::time::Instant;
 use serde_json::json;
 use viewray_camera::{Camera, CameraSample, ImageLimits};
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_json::{PixelIndices, frame_line, project_line, ray_line};
+use viewray_json::{PixelIndices, frame_line, project_line, ray_line, trace_lines, trace_text};
 use viewray_output::Compression;
-use viewray_render::{RenderSettings, View, render_view};
+use viewray_render::{RenderSettings, View, render_view, trace_pixel};
 use viewray_scene::parse_camera;
 
+use crate::depth::{depth_json, scene_depth};
 use crate::params::{self, BadRequest, Query};
+use crate::slide::{SlideRequest, picture_size};
 use crate::{Limits, ServedScene};
 
 /// What to send back.
@@ -29,7 +31,7 @@ pub(crate) struct Reply {
 }
 
 impl Reply {
-    fn ok(content_type: &'static str, body: impl Into<Vec<u8>>) -> Reply {
+    pub(crate) fn ok(content_type: &'static str, body: impl Into<Vec<u8>>) -> Reply {
         Reply {
             status: 200,
             content_type,
@@ -67,6 +69,8 @@ pub(crate) enum Route {
     Now(Reply),
     /// A render, its parameters valid and within the limits.
     Render(View),
+    /// A slide: a render with the views and numbers around it.
+    Slide(Box<SlideRequest>),
 }
 
 /// The parameters of each endpoint.
@@ -74,7 +78,14 @@ const RENDER: [&str; 5] = ["camera", "width", "height", "samples", "shading"];
 const FRAME: [&str; 3] = ["camera", "width", "height"];
 const RAYS: [&str; 7] = ["camera", "width", "height", "row", "col", "i", "j"];
 const PROJECT: [&str; 4] = ["camera", "width", "height", "point"];
-const DIAGRAM: [&str; 5] = ["camera", "width", "height", "row", "col"];
+const DIAGRAM: [&str; 7] = ["camera", "width", "height", "row", "col", "view", "canvas"];
+const DEPTH: [&str; 3] = ["camera", "width", "height"];
+const TRACE: [&str; 9] = [
+    "camera", "width", "height", "shading", "row", "col", "i", "j", "format",
+];
+const SLIDE: [&str; 8] = [
+    "camera", "width", "height", "samples", "shading", "row", "col", "top",
+];
 
 /// Routes a `GET` of `path` with `query` (the text after `?`, possibly empty).
 pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &str) -> Route {
@@ -82,6 +93,10 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
         "/" => Ok(Route::Now(Reply::ok(
             "text/html; charset=utf-8",
             served.page.as_bytes(),
+        ))),
+        "/lecture" => Ok(Route::Now(Reply::ok(
+            "text/html; charset=utf-8",
+            served.lecture.as_bytes(),
         ))),
         "/api/scene" => Ok(Route::Now(Reply::ok(
             "text/plain; charset=utf-8",
@@ -92,12 +107,16 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
         "/api/rays" => rays(served, limits, query).map(Route::Now),
         "/api/project" => project(served, limits, query).map(Route::Now),
         "/api/diagram.svg" => diagram(served, limits, query).map(Route::Now),
+        "/api/depth" => depth(served, limits, query).map(Route::Now),
+        "/api/trace" => trace(served, limits, query).map(Route::Now),
+        "/api/slide.png" => slide_of(served, limits, query).map(|r| Route::Slide(Box::new(r))),
         _ => {
             return Route::Now(Reply::error(
                 404,
                 &format!(
                     "no such page: {path} (the playground serves /, /api/render, /api/frame, \
-                     /api/rays, /api/project, /api/diagram.svg and /api/scene)"
+                     /api/rays, /api/project, /api/diagram.svg, /api/depth, /api/slide.png, \
+                     /api/trace and /api/scene)"
                 ),
             ));
         }
@@ -192,7 +211,22 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
     let query = Query::parse(query, &RAYS, &[])?;
     let (width, height) = geometry_size(served, &query)?;
     let camera = camera(served, limits, &query, (width, height))?;
-    let (first, second, one_based) = params::pixel(&query)?;
+    let (pixel, indices) = pixel_of(&query, (width, height))?;
+    Ok(json_lines(&[ray_line(
+        &camera,
+        pixel,
+        CameraSample::CENTER,
+        indices,
+    )]))
+}
+
+/// The pixel of `query` (`row&col`, or the lecture's `i&j`) in a `width x height` image,
+/// 0-based, and the indices it was given in.
+fn pixel_of(
+    query: &Query,
+    (width, height): (u32, u32),
+) -> Result<((u32, u32), PixelIndices), BadRequest> {
+    let (first, second, one_based) = params::pixel(query)?;
     let indices = PixelIndices::one_based_if(one_based);
     let pixel = indices
         .pixel((first, second), width, height)
@@ -200,12 +234,41 @@ fn rays(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, Bad
             let name = if one_based { "i" } else { "row" };
             BadRequest(format!("{name}: {}", outside.sentence(Some("i=I&j=J"))))
         })?;
-    Ok(json_lines(&[ray_line(
-        &camera,
-        pixel,
-        CameraSample::CENTER,
-        indices,
-    )]))
+    Ok((pixel, indices))
+}
+
+/// `/api/trace`: the pixel's trace in the image of a one-sample render of the served
+/// scene through the camera: the lines of `viewray trace --json` (or `--one-based`), or
+/// with `format=text` its text.
+fn trace(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &TRACE, &[])?;
+    // Depth shading finds the image's range of depths first, a ray per pixel: a trace
+    // is held to the size of a render.
+    let size = params::size(&query, scene_size(served), limits.image())?;
+    let shading = params::shading(&query, served.scene.shading())?;
+    let text = match query.get("format") {
+        None | Some("json") => false,
+        Some("text") => true,
+        Some(other) => {
+            return Err(BadRequest(format!(
+                "format: expected `json` (one line per step) or `text`, found `{other}`"
+            )));
+        }
+    };
+    let camera = camera(served, limits, &query, size)?;
+    let ((row, col), indices) = pixel_of(&query, size)?;
+    let view = View {
+        camera,
+        samples: 1,
+        shading,
+    };
+    let trace = trace_pixel(&served.scene, &view, &RenderSettings::default(), row, col)
+        .map_err(|outside| BadRequest(format!("row: {outside}")))?;
+    if text {
+        let text = trace_text(&camera, shading, &trace, "a one-sample render");
+        return Ok(Reply::ok("text/plain; charset=utf-8", text));
+    }
+    Ok(json_lines(&trace_lines(&camera, &trace, indices)))
 }
 
 /// `/api/project`: the lines of `viewray project --point X,Y,Z...`.
@@ -239,33 +302,102 @@ fn project(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, 
     Ok(json_lines(&lines))
 }
 
-/// `/api/diagram.svg`: the side view of the camera over the served scene.
+/// The chosen pixel of a diagram or a slide: `row` and `col` (0-based) if given.
+fn optional_pixel(
+    query: &Query,
+    (width, height): (u32, u32),
+) -> Result<Option<(u32, u32)>, BadRequest> {
+    match (query.get("row"), query.get("col")) {
+        (None, None) => Ok(None),
+        _ => {
+            let (row, col, _) = params::pixel(query)?;
+            Ok(Some(
+                PixelIndices::ZeroBased
+                    .pixel((row, col), width, height)
+                    // These endpoints take row and col only: no other indices to offer.
+                    .map_err(|outside| BadRequest(format!("row: {outside}")))?,
+            ))
+        }
+    }
+}
+
+/// `/api/diagram.svg`: the side view of the camera over the served scene, or with
+/// `view=top` its top view, on a 1000 x 600 panel (800 x 800 for the top view) or one of
+/// the size `canvas=WxH` says.
 fn diagram(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
     let query = Query::parse(query, &DIAGRAM, &[])?;
     let (width, height) = geometry_size(served, &query)?;
     let camera = camera(served, limits, &query, (width, height))?;
-    let pixel = match (query.get("row"), query.get("col")) {
-        (None, None) => None,
-        _ => {
-            let (row, col, _) = params::pixel(&query)?;
-            Some(
-                PixelIndices::ZeroBased
-                    .pixel((row, col), width, height)
-                    // This endpoint takes row and col only: no other indices to offer.
-                    .map_err(|outside| BadRequest(format!("row: {outside}")))?,
-            )
+    let pixel = optional_pixel(&query, (width, height))?;
+    let sized = params::canvas(&query)?;
+    let (window, canvas) = match query.get("view") {
+        None | Some("side") => (
+            SideWindow::fit(&served.scene, &[camera]),
+            sized.unwrap_or(SideViewCanvas::Panel),
+        ),
+        Some("top") => (
+            SideWindow::fit_top(&served.scene, &[camera]),
+            sized.unwrap_or(SideViewCanvas::Square),
+        ),
+        Some(other) => {
+            return Err(BadRequest(format!(
+                "view: expected `side` or `top`, found `{other}`"
+            )));
         }
     };
-    let window = SideWindow::fit(&served.scene, &[camera]);
-    let figure = side_view(
-        &served.scene,
-        &camera,
-        &window,
-        SideViewCanvas::Panel,
-        pixel,
-    );
+    let figure = side_view(&served.scene, &camera, &window, canvas, pixel);
     let svg = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
     Ok(Reply::ok("image/svg+xml", svg))
+}
+
+/// `/api/depth`: how far the scene lies along the camera's view at the picture's middle
+/// ([`scene_depth`]).
+fn depth(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
+    let query = Query::parse(query, &DEPTH, &[])?;
+    let size = geometry_size(served, &query)?;
+    let camera = camera(served, limits, &query, size)?;
+    Ok(json_lines(&[depth_json(scene_depth(
+        &served.scene,
+        &camera,
+    ))]))
+}
+
+/// `/api/slide.png`: checks a slide's parameters (the camera at `width x height`, as
+/// `/api/frame` does, samples and shading as a render's, the pixel and `top`); the render
+/// is made at the slide's picture size, with the samples asked for or as many as the
+/// frame limit allows there.
+fn slide_of(
+    served: &ServedScene,
+    limits: &Limits,
+    query: &str,
+) -> Result<SlideRequest, BadRequest> {
+    let query = Query::parse(query, &SLIDE, &[])?;
+    let size = geometry_size(served, &query)?;
+    let samples = params::samples_per_pixel(&query, served.scene.samples(), limits)?;
+    let shading = params::shading(&query, served.scene.shading())?;
+    let camera = camera(served, limits, &query, size)?;
+    let pixel = optional_pixel(&query, size)?;
+    let top = match query.get("top") {
+        None | Some("0") => false,
+        Some("1") => true,
+        Some(other) => {
+            return Err(BadRequest(format!("top: expected 0 or 1, found `{other}`")));
+        }
+    };
+    let (width, height) = picture_size(size);
+    let pixels = u64::from(width) * u64::from(height);
+    let most = u32::try_from(limits.max_frame_samples / pixels.max(1)).unwrap_or(u32::MAX);
+    let picture = self::camera(served, limits, &query, (width, height))?;
+    Ok(SlideRequest {
+        view: View {
+            camera: picture,
+            samples: samples.min(most.max(1)),
+            shading,
+        },
+        camera,
+        pixel,
+        top,
+    })
 }
 
 /// `lines` as JSON lines, each ended by a newline, as the command line prints them.

@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 use tiny_http::{Header, Method, Request, Response};
 
 use crate::api::{self, Reply, Route};
+use crate::slide;
 use crate::{Limits, ServedScene};
 
 /// How a server answers: its limits and how much it does at once.
@@ -172,10 +173,14 @@ fn answer(shared: &Shared, request: Request) {
                 .acquire(shared.options.slot_wait, shared.options.max_waiting)
             {
                 Some(_slot) => api::render(&shared.served, &view),
-                None => Reply::error(
-                    503,
-                    "the server is busy rendering for others: try again in a moment",
-                ),
+                None => busy(),
+            },
+            Route::Slide(request) => match shared
+                .slots
+                .acquire(shared.options.slot_wait, shared.options.max_waiting)
+            {
+                Some(_slot) => slide::slide(&shared.served, &request),
+                None => busy(),
             },
         }
     } else {
@@ -205,6 +210,14 @@ fn answer(shared: &Shared, request: Request) {
     }
     // A client that went away cannot be told anything.
     let _ = request.respond(response);
+}
+
+/// The answer to a render that found no free slot in time.
+fn busy() -> Reply {
+    Reply::error(
+        503,
+        "the server is busy rendering for others: try again in a moment",
+    )
 }
 
 /// A header from ASCII name and value (all of ours are).

@@ -34,11 +34,15 @@
 //! | path | reply |
 //! |---|---|
 //! | `/` | the page (HTML, CSS and JavaScript compiled in; the URL fragment holds its state) |
+//! | `/lecture` | the lecture as live steps, each with its render, views, controls and formulas (MathML, the command line's digits); the URL fragment names the step and the camera |
 //! | `/api/render?camera&width&height&samples&shading` | `image/png`: pixel for pixel what `viewray render` writes for the scene with that camera and settings |
 //! | `/api/frame?camera` | the line of `viewray frame` |
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
 //! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
-//! | `/api/diagram.svg?camera&width&height[&row&col]` | the camera's side view ([`viewray_diagram::side_view`]) |
+//! | `/api/diagram.svg?camera&width&height[&row&col][&view=top][&canvas=WxH]` | the camera's side view ([`viewray_diagram::side_view`]), or its top view, on a canvas of that size |
+//! | `/api/depth?camera&width&height` | `{"depth": D, "from": "hit"}`: how far along the view the scene lies at the picture's middle (what the centre ray hits, else the objects' middle; `null` if nothing is in front), for switching the projection kind |
+//! | `/api/slide.png?camera&width&height&samples&shading[&row&col][&top=1]` | a 1920 x 1080 slide: the render at the slide's size, the side view (and the top view), the frame's and the pixel's numbers |
+//! | `/api/trace?camera&width&height&shading&row&col` (or `i&j`)`[&format=text]` | the lines of `viewray trace --pixel R,C --json` for the image `/api/render` makes with one sample (with `format=text`, the trace as text) |
 //! | `/api/scene` | the served scene's RON text |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, in the command line's words where
@@ -52,9 +56,11 @@
 //! to retry, never queued without bound.
 
 mod api;
+mod depth;
 mod http;
 mod page;
 mod params;
+mod slide;
 
 use std::path::Path;
 
@@ -124,6 +130,8 @@ pub struct ServedScene {
     scene: Scene,
     /// The page, with the scene's starting state in it.
     page: String,
+    /// The lecture, with the scene's camera in it.
+    lecture: String,
 }
 
 impl ServedScene {
@@ -136,12 +144,14 @@ impl ServedScene {
         let scene = SceneLoader::text(&text, path).load()?.scene;
         let camera_text = viewray_scene::camera_text(&text, path)?.to_owned();
         let page = page::page(name, &camera_text, &scene);
+        let lecture = page::lecture(name, &camera_text);
         Ok(ServedScene {
             name: name.to_owned(),
             text,
             camera_text,
             scene,
             page,
+            lecture,
         })
     }
 

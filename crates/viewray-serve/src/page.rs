@@ -1,5 +1,9 @@
-//! The page: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
-//! together once per served scene with the scene's starting state.
+//! The pages: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
+//! together once per served scene with the scene's starting state. The playground's script
+//! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`) and `trace.js` (the
+//! chosen pixel's trace, a panel of its own), the lecture's in three
+//! (`lecture-math.js`: MathML and the command line's digits, `lecture-steps.js`: the steps
+//! in the lecture's order, `lecture.js`: requests, controls, keys).
 
 use serde_json::json;
 use viewray_scene::{Scene, Shading};
@@ -8,7 +12,38 @@ use crate::Limits;
 
 const HTML: &str = include_str!("../page/index.html");
 const CSS: &str = include_str!("../page/page.css");
-const JS: &str = include_str!("../page/page.js");
+/// The page's script in its four parts, and the trace's panel, in the order they are put
+/// together: the RON reader, the state and requests, the trace (which the requests ask
+/// for), the controls, the presenter (which starts the page).
+const SCRIPTS: [&str; 5] = [
+    include_str!("../page/ron.js"),
+    include_str!("../page/live.js"),
+    include_str!("../page/trace.js"),
+    include_str!("../page/page.js"),
+    include_str!("../page/presenter.js"),
+];
+
+const LECTURE_HTML: &str = include_str!("../page/lecture.html");
+const LECTURE_CSS: &str = include_str!("../page/lecture.css");
+/// The lecture's script in its three parts, in the order they are put together.
+const LECTURE_SCRIPTS: [&str; 3] = [
+    include_str!("../page/lecture-math.js"),
+    include_str!("../page/lecture-steps.js"),
+    include_str!("../page/lecture.js"),
+];
+
+/// The lecture (`/lecture`) for the scene called `name` whose camera is `camera_text`:
+/// the first step follows one pixel through the served scene's camera; the others make
+/// their own cameras, written for the default scene's objects around the origin.
+pub(crate) fn lecture(name: &str, camera_text: &str) -> String {
+    let state = json!({ "scene": name, "camera": camera_text });
+    let state = state.to_string().replace("</", "<\\/");
+    LECTURE_HTML
+        .replace("/*STYLE*/", LECTURE_CSS)
+        .replace("/*SCRIPT*/", &LECTURE_SCRIPTS.join("\n"))
+        .replace("{/*STATE*/}", &state)
+        .replace("<!--SCENE-->", &escape_html(name))
+}
 
 /// The page for the scene called `name` whose camera is `camera_text`: the served
 /// scene's camera, size, samples and shading are the state a page without a URL
@@ -34,7 +69,7 @@ pub(crate) fn page(name: &str, camera_text: &str, scene: &Scene) -> String {
     // Inside <script>, "</" could end the element: JSON allows writing it "<\/".
     let state = state.to_string().replace("</", "<\\/");
     HTML.replace("/*STYLE*/", CSS)
-        .replace("/*SCRIPT*/", JS)
+        .replace("/*SCRIPT*/", &SCRIPTS.join("\n"))
         .replace("{/*STATE*/}", &state)
         .replace("<!--SCENE-->", &escape_html(name))
 }

@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 use viewray_camera::{ImageLimitError, ImageLimits};
+use viewray_diagram::SideViewCanvas;
 use viewray_scene::Shading;
 
 use crate::Limits;
@@ -114,6 +115,22 @@ pub(crate) fn size(
     })
 }
 
+/// Samples per pixel from `samples` (default `default`), 1 to the limit.
+pub(crate) fn samples_per_pixel(
+    query: &Query,
+    default: u32,
+    limits: &Limits,
+) -> Result<u32, BadRequest> {
+    // The served scene's own samples are held to the request's limit as if asked for.
+    let text = query
+        .get("samples")
+        .map_or_else(|| default.to_string(), str::to_owned);
+    limits
+        .image()
+        .parse_samples(&text)
+        .map_err(|error| BadRequest(format!("samples: {error}")))
+}
+
 /// Samples per pixel from `samples` (default `default`), 1 to the limit, and at most
 /// `limits.max_frame_samples` for the whole `width x height` frame.
 pub(crate) fn samples(
@@ -122,14 +139,7 @@ pub(crate) fn samples(
     (width, height): (u32, u32),
     limits: &Limits,
 ) -> Result<u32, BadRequest> {
-    // The served scene's own samples are held to the request's limit as if asked for.
-    let text = query
-        .get("samples")
-        .map_or_else(|| default.to_string(), str::to_owned);
-    let samples = limits
-        .image()
-        .parse_samples(&text)
-        .map_err(|error| BadRequest(format!("samples: {error}")))?;
+    let samples = samples_per_pixel(query, default, limits)?;
     let total = u64::from(width) * u64::from(height) * u64::from(samples);
     if total > limits.max_frame_samples {
         return Err(BadRequest(format!(
@@ -139,6 +149,34 @@ pub(crate) fn samples(
         )));
     }
     Ok(samples)
+}
+
+/// The smallest and largest side of a diagram's canvas, `canvas=WxH`, in pixels.
+const CANVAS_SIDES: (u32, u32) = (300, 4000);
+
+/// The canvas a diagram is drawn on when `canvas=WxH` is given: a panel of that size.
+pub(crate) fn canvas(query: &Query) -> Result<Option<SideViewCanvas>, BadRequest> {
+    let Some(text) = query.get("canvas") else {
+        return Ok(None);
+    };
+    let (low, high) = CANVAS_SIDES;
+    let wrong = || {
+        BadRequest(format!(
+            "canvas: expected WIDTHxHEIGHT in pixels, each from {low} to {high}, found `{text}`"
+        ))
+    };
+    let (width, height) = text.split_once('x').ok_or_else(wrong)?;
+    let side = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|side| (low..=high).contains(side))
+            .ok_or_else(wrong)
+    };
+    Ok(Some(SideViewCanvas::Fitted {
+        width: side(width)?,
+        height: side(height)?,
+    }))
 }
 
 /// The shading named by `shading`, or `default`.
@@ -278,6 +316,36 @@ mod tests {
             "samples: 2048 x 2048 at 1024 samples per pixel is too much for one frame: at \
              most 67108864 samples in all (pixels x samples)"
         );
+    }
+
+    #[test]
+    fn a_diagrams_canvas_is_a_bounded_size() {
+        let canvas_of = |text: &str| {
+            let query = Query::parse(text, &["canvas"], &[]).unwrap();
+            canvas(&query)
+        };
+        assert_eq!(canvas_of(""), Ok(None));
+        assert_eq!(
+            canvas_of("canvas=1700x600"),
+            Ok(Some(SideViewCanvas::Fitted {
+                width: 1700,
+                height: 600
+            }))
+        );
+        for bad in [
+            "canvas=1700",
+            "canvas=299x600",
+            "canvas=600x4001",
+            "canvas=axb",
+        ] {
+            assert!(
+                canvas_of(bad)
+                    .unwrap_err()
+                    .0
+                    .starts_with("canvas: expected WIDTHxHEIGHT in pixels, each from 300 to 4000"),
+                "{bad}"
+            );
+        }
     }
 
     #[test]

@@ -106,6 +106,30 @@ pub(crate) enum Command {
     /// not visible (behind a perspective eye).
     #[command(verbatim_doc_comment)]
     Project(crate::commands::ProjectArgs),
+    /// Print one pixel's trace, step by step, with every number
+    ///
+    /// For the pixel (ROW,COL, or the lecture's I,J with --one-based):
+    ///
+    ///   generate a viewing ray for the pixel: u, v (or a panoramic camera's
+    ///     angles), each with its formula, and the ray's origin and direction;
+    ///   find the closest object it intersects: each object tested (hit at t, or
+    ///     miss), then the closest (object, t, point, normal);
+    ///   determine the colour of the object: the shading's terms, for Lit the
+    ///     ambient light, each light's diffuse and specular with its shadow ray
+    ///     (blocked or not), and a mirror's reflected ray traced the same way;
+    ///
+    /// then the linear colour and the 8-bit value `viewray render --samples 1`
+    /// writes for the pixel (always the same: the numbers are the renderer's own).
+    /// With --json, one JSON line per step,
+    ///
+    ///     {"step":"viewing-ray","bounce":0,"row":R,"col":C,..,"origin":[..],..}
+    ///     {"step":"test","bounce":0,"object":K,"shape":"Sphere","t":T}
+    ///     ...
+    ///
+    /// and last {"row":R,"col":C,"linear":[r,g,b],"srgb8":[r,g,b]} (with
+    /// --one-based, "i" and "j" instead of "row" and "col").
+    #[command(verbatim_doc_comment)]
+    Trace(crate::trace::TraceArgs),
     /// Check a student's numbers: frames, viewing rays and projections, answer by answer.
     ///
     /// ANSWERS is what the student's program printed, in any language: viewray's own

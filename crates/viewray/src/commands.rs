@@ -138,7 +138,7 @@ fn frame_from_options(args: &FrameArgs) -> Result<Frame> {
 
 /// Says on a terminal which pixel convention the numbers follow (JSON lines on stdout
 /// carry it in their keys).
-fn note_pixel_convention(one_based: bool) {
+pub(crate) fn note_pixel_convention(one_based: bool) {
     if !std::io::stderr().is_terminal() {
         return;
     }

@@ -1,18 +1,18 @@
-//! The `viewray` command: render scenes, print camera frames, viewing rays and
-//! projections so students can check homework numbers, compare renders, and draw the
-//! lecture's figures.
+//! The `viewray` command: render scenes, print camera frames, viewing rays, projections
+//! and one pixel's trace so students can check homework numbers, compare renders, and
+//! draw the lecture's figures.
 //!
 //! # What it owns
 //!
 //! The command line and the terminal: `cli` (the command tree, assembled from each
 //! command's arguments; `completions` and `man`), one module per command or family of
 //! commands (`render`, `animate`, `commands` for frame/rays/project/scene, `compare`,
-//! `check`, `grade`, `autograde` (with its platform kits), `figures`, `diagram`, `serve`,
-//! `interop` for export/import), and what they share below them: `values` (parsers of
-//! what is typed), `usage` (argument rewriting and the usage-error line), `input` (where
-//! a scene comes from, and a scene's error as printed), `output` (atomic files and
-//! folders, Ctrl-C), `style` (colours). Module dependencies point one way, from `cli`
-//! down.
+//! `check`, `trace`, `grade`, `autograde` (with its platform kits), `figures`, `diagram`,
+//! `serve`, `interop` for export/import), and what they share below them: `values`
+//! (parsers of what is typed), `usage` (argument rewriting and the usage-error line),
+//! `input` (where a scene comes from, and a scene's error as printed), `output` (atomic
+//! files and folders, Ctrl-C), `style` (colours). Module dependencies point one way, from
+//! `cli` down.
 //!
 //! # Invariant
 //!
@@ -48,6 +48,7 @@ mod output;
 mod render;
 mod serve;
 mod style;
+mod trace;
 mod usage;
 mod values;
 
@@ -84,6 +85,7 @@ fn main() -> ExitCode {
         Command::Frame(args) => commands::frame(&args),
         Command::Rays(args) => commands::rays(&args),
         Command::Project(args) => commands::project(&args),
+        Command::Trace(args) => trace::trace(&args),
         Command::Check(args) => return check::run(&args),
         Command::Compare(args) => return compare::run(&args),
         Command::Grade(args) => return grade::run(&args),

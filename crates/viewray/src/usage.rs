@@ -141,7 +141,7 @@ pub(crate) fn report_usage_error(error: &clap::Error, command: Option<&str>) -> 
     // `viewray rays --eye ..`: the camera comes from the scene; clap's tip ("use '--
     // --eye'") would send a student the wrong way.
     if error.kind() == ErrorKind::UnknownArgument
-        && let (Some(command @ ("rays" | "project")), Some(arg)) = (command, invalid)
+        && let (Some(command @ ("rays" | "project" | "trace")), Some(arg)) = (command, invalid)
         && let Some(option) = FRAME_OPTIONS.iter().find(|o| arg.starts_with(**o))
     {
         crate::style::error(format_args!(

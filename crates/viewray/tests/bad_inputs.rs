@@ -46,6 +46,12 @@ fn every_bad_scene_fails_with_one_line_and_no_output() {
                 "--pixel".as_ref(),
                 "0,0".as_ref(),
             ],
+            vec![
+                "trace".as_ref(),
+                scene.as_os_str(),
+                "--pixel".as_ref(),
+                "0,0".as_ref(),
+            ],
         ] {
             let result = viewray().args(&args).output().unwrap();
             let stderr = String::from_utf8_lossy(&result.stderr);

@@ -382,6 +382,7 @@ fn help_of_every_command_at_80_columns() {
         "frame",
         "rays",
         "project",
+        "trace",
         "compare",
         "grade",
         "autograde",
@@ -418,7 +419,7 @@ fn help_explains_the_conventions() {
     ] {
         assert!(help.contains(phrase), "--help lacks {phrase:?}");
     }
-    for command in ["frame", "rays", "project"] {
+    for command in ["frame", "rays", "project", "trace"] {
         let out = viewray(&[command, "--help"]);
         assert!(out.status.success());
         assert!(
@@ -454,7 +455,7 @@ fn completions_and_man_pages_come_from_the_command_line_definition() {
         let out = viewray(&["completions", shell]);
         assert!(out.status.success(), "{shell}");
         let script = String::from_utf8(out.stdout).unwrap();
-        for word in ["--one-based", "--look-at", "completions"] {
+        for word in ["--one-based", "--look-at", "completions", "trace"] {
             assert!(script.contains(word), "{shell} completions lack {word}");
         }
     }
@@ -469,6 +470,10 @@ fn completions_and_man_pages_come_from_the_command_line_definition() {
     let page = String::from_utf8(out.stdout).unwrap();
     assert!(page.contains(".TH viewray-rays 1"), "{page}");
     assert!(page.contains("\\-\\-one\\-based"), "{page}");
+    let out = viewray(&["man", "trace"]);
+    let page = String::from_utf8(out.stdout).unwrap();
+    assert!(page.contains(".TH viewray-trace 1"), "{page}");
+    assert!(page.contains("\\-\\-json"), "{page}");
 }
 
 #[test]
@@ -566,8 +571,9 @@ fn colour_only_on_request_and_never_with_no_color() {
     );
 }
 
-/// Every `$ viewray frame|rays|project ...` example in the user docs prints exactly what
-/// the docs show under it, so the docs cannot drift from the program.
+/// Every `$ viewray frame|rays|project|trace ...` example in the user docs prints exactly
+/// what the docs show under it (blank lines aside), so the docs cannot drift from the
+/// program.
 #[test]
 fn the_documented_examples_print_what_the_docs_show() {
     for doc in ["docs/cameras.md", "README.md"] {
@@ -588,12 +594,17 @@ fn the_documented_examples_print_what_the_docs_show() {
                     }
                 }
                 let args: Vec<&str> = command.split_whitespace().collect();
-                if !["frame", "rays", "project"].contains(&args[0]) {
+                if !["frame", "rays", "project", "trace"].contains(&args[0]) {
                     continue;
                 }
                 let out = support::viewray_in(&repository(), &args);
                 assert!(out.status.success(), "{doc}: viewray {command}");
-                let stdout = String::from_utf8(out.stdout).unwrap();
+                let stdout: String = String::from_utf8(out.stdout)
+                    .unwrap()
+                    .lines()
+                    .filter(|line| !line.is_empty())
+                    .map(|line| format!("{line}\n"))
+                    .collect();
                 assert_eq!(stdout, expected, "{doc}: viewray {command}");
                 checked += 1;
             }

@@ -1,6 +1,6 @@
-//! docs/homework.md shows real output: every `$ viewray ...` and `$ cat FILE` in its
-//! console blocks is run from the repository's root, and what follows it in the block is
-//! what it prints, to the byte.
+//! docs/homework.md shows real output: every `$ viewray ...` (with `| head -N` or `| tail
+//! -N`, its first or last lines) and `$ cat FILE` in its console blocks is run from the
+//! repository's root, and what follows it in the block is what it prints, to the byte.
 
 mod support;
 
@@ -40,6 +40,24 @@ fn every_example_of_the_homework_walkthrough_prints_what_it_shows() {
     for (command, shown) in examples(&text) {
         let words: Vec<&str> = command.split_whitespace().collect();
         let printed = match words.as_slice() {
+            // `| head -N` and `| tail -N` show the first or last lines of the output.
+            ["viewray", args @ .., "|", end @ ("head" | "tail"), count] => {
+                let out = support::viewray_in(&root, args);
+                assert!(out.status.success(), "$ {command}");
+                let count: usize = count.trim_start_matches('-').parse().unwrap();
+                let text = String::from_utf8(out.stdout).unwrap();
+                let lines: Vec<&str> = text.lines().collect();
+                let shown_lines = if *end == "head" {
+                    &lines[..count.min(lines.len())]
+                } else {
+                    &lines[lines.len().saturating_sub(count)..]
+                };
+                shown_lines
+                    .iter()
+                    .map(|l| format!("{l}\n"))
+                    .collect::<String>()
+                    .into_bytes()
+            }
             ["viewray", args @ ..] => support::viewray_in(&root, args).stdout,
             ["cat", file] if root.join(file).is_file() => std::fs::read(root.join(file)).unwrap(),
             // Running the student's program shows that it prints the buggy answers the
@@ -64,5 +82,5 @@ fn every_example_of_the_homework_walkthrough_prints_what_it_shows() {
         assert_eq!(printed.trim_end(), shown.trim_end(), "$ {command}");
         checked += 1;
     }
-    assert!(checked >= 7, "only {checked} examples checked");
+    assert!(checked >= 10, "only {checked} examples checked");
 }

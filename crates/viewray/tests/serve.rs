@@ -100,6 +100,62 @@ fn the_first_line_is_the_url_on_loopback_and_the_page_is_served() {
 }
 
 #[test]
+fn the_lecture_is_served_whole_with_its_steps_in_the_lectures_order() {
+    let served = Served::start(BINARY, &[]);
+    let page = served.get("/lecture");
+    assert_eq!(page.status, 200);
+    assert_eq!(
+        page.header("content-type"),
+        Some("text/html; charset=utf-8")
+    );
+    let html = page.text();
+    for outside in [
+        "src=\"http",
+        "href=\"http",
+        "<script src",
+        "<link rel=\"stylesheet\"",
+        "cdn",
+    ] {
+        assert!(!html.contains(outside), "the lecture loads {outside}");
+    }
+    // Formulas are MathML, typeset by the browser: the script writes <math> elements.
+    assert!(html.contains("<math display=\"block\">"));
+    // The steps, in the lecture's order.
+    let order = [
+        "pseudocode",
+        "canonical",
+        "distance",
+        "viewport",
+        "eye",
+        "rotated",
+        "basis-${which}",
+        "thin-lens",
+        "taxonomy",
+        "parallel",
+        "shift",
+        "foreshortening",
+        "tilt-shift",
+    ];
+    let at: Vec<usize> = order
+        .iter()
+        .map(|id| {
+            html.find(&format!("id: \"{id}\""))
+                .or_else(|| html.find(&format!("id: `{id}`")))
+                .unwrap_or_else(|| panic!("no step {id}"))
+        })
+        .collect();
+    assert!(
+        at.windows(2).all(|w| w[0] < w[1]),
+        "steps out of order: {at:?}"
+    );
+    // The first step follows the served scene's camera.
+    let camera = camera_text(&default_text(), Path::new("x"))
+        .unwrap()
+        .to_owned();
+    assert!(html.contains(&serde_json::to_string(&camera).unwrap()));
+}
+
+#[test]
 fn renders_are_pixel_for_pixel_what_viewray_render_writes() {
     let dir = TempDir::new().unwrap();
     let served = Served::start(BINARY, &[]);
@@ -229,6 +285,119 @@ fn frames_rays_and_projections_are_the_command_lines_lines() {
 }
 
 #[test]
+fn a_clicked_pixels_trace_is_what_viewray_trace_prints() {
+    let dir = TempDir::new().unwrap();
+    let path = fixtures().join("homework/lit_4x4.ron");
+    let served = Served::start(BINARY, &[path.to_str().unwrap()]);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let cases = [
+        // The served camera and shading.
+        (None, None),
+        (
+            Some(
+                "(eye: (0.5, 1.0, 2.0), look_at: (0.0, -0.5, -3.0), projection: Perspective(fov_y: 50.0))",
+            ),
+            Some("Depth"),
+        ),
+        (
+            Some("Cabinet(target: (0.0, -0.5, -3.0), size: 5.0, angle: 30.0)"),
+            Some("Normals"),
+        ),
+        (
+            Some("(eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0), projection: Fisheye(fov: 200.0))"),
+            Some("Flat"),
+        ),
+    ];
+    for (k, (camera, shading)) in cases.into_iter().enumerate() {
+        let scene = dir.path().join(format!("traced{k}.ron"));
+        let mut query = "width=4&height=4".to_owned();
+        let file = match camera {
+            Some(camera) => {
+                query.push_str(&format!("&camera={}", encode(camera)));
+                with_camera(&text, camera, shading)
+            }
+            None => text.clone(),
+        };
+        if let Some(shading) = shading {
+            query.push_str(&format!("&shading={shading}"));
+        }
+        std::fs::write(&scene, file).unwrap();
+        let scene = scene.to_str().unwrap();
+        for (row, col) in [(0, 0), (1, 2), (3, 1), (3, 3)] {
+            let pixel = format!("{row},{col}");
+            let lines = served.get(&format!("/api/trace?{query}&row={row}&col={col}"));
+            assert_eq!(lines.status, 200, "{}", lines.text());
+            assert_eq!(lines.header("content-type"), Some("application/x-ndjson"));
+            assert_eq!(
+                lines.text(),
+                cli(&["trace", scene, "--pixel", &pixel, "--json"]),
+                "{camera:?} {shading:?} ({pixel})"
+            );
+            let (i, j) = (row + 1, col + 1);
+            let one_based = served.get(&format!("/api/trace?{query}&i={i}&j={j}"));
+            assert_eq!(
+                one_based.text(),
+                cli(&[
+                    "trace",
+                    scene,
+                    "--pixel",
+                    &format!("{i},{j}"),
+                    "--one-based",
+                    "--json"
+                ]),
+                "{camera:?} {shading:?} (i, j) = ({i}, {j})"
+            );
+            // The page's panel: the command line's text, which names the render in the
+            // playground's words.
+            let page = served.get(&format!(
+                "/api/trace?{query}&row={row}&col={col}&format=text"
+            ));
+            assert_eq!(page.status, 200);
+            assert_eq!(
+                page.header("content-type"),
+                Some("text/plain; charset=utf-8")
+            );
+            let printed = cli(&["trace", scene, "--pixel", &pixel]);
+            assert!(printed.contains("as `viewray render --samples 1` writes it"));
+            assert_eq!(
+                page.text(),
+                printed.replace("`viewray render --samples 1`", "a one-sample render"),
+                "{camera:?} {shading:?} ({pixel})"
+            );
+        }
+    }
+    let check = |target: &str, expected: &str| {
+        let response = served.get(target);
+        assert_eq!(response.status, 400, "{target}: {}", response.text());
+        let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+        assert_eq!(body["error"], expected, "{target}");
+    };
+    check(
+        "/api/trace?row=4&col=0",
+        "row: pixel 4,0 is outside the 4 x 4 image: row runs 0..=3 and col 0..=3 (0-based; \
+         i=I&j=J for the lecture's i, j)",
+    );
+    check(
+        "/api/trace?i=0&j=1",
+        "i: pixel 0,1 is outside the 4 x 4 image: i runs 1..=4 and j 1..=4 (1-based, the \
+         lecture's i, j)",
+    );
+    check(
+        "/api/trace",
+        "row: missing: give the pixel as row=R&col=C (0-based from the top-left) or i=I&j=J \
+         (the lecture's, 1-based)",
+    );
+    check(
+        "/api/trace?row=0&col=0&format=pdf",
+        "format: expected `json` (one line per step) or `text`, found `pdf`",
+    );
+    check(
+        "/api/trace?row=0&col=0&width=100000&height=100000",
+        "width: 100000 x 100000 is too large: each side can be at most 4096 pixels",
+    );
+}
+
+#[test]
 fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
     let served = Served::start(BINARY, &[]);
     let text = default_text();
@@ -269,6 +438,140 @@ fn the_diagram_is_the_side_view_of_the_camera_over_the_served_scene() {
         );
     }
     roxmltree::Document::parse(&expected).unwrap();
+}
+
+#[test]
+fn the_top_view_and_a_panel_of_any_shape_are_the_librarys() {
+    let served = Served::start(BINARY, &[]);
+    let scene = SceneLoader::text(&default_text(), Path::new("default.ron"))
+        .load()
+        .unwrap()
+        .scene;
+    let camera_ron =
+        "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: Perspective(fov_y: 40.0))";
+    let camera = parse_camera(camera_ron, Path::new("camera"), 320, 180).unwrap();
+    let cases = [
+        (
+            "&view=top",
+            SideWindow::fit_top(&scene, &[camera]),
+            SideViewCanvas::Square,
+        ),
+        (
+            "&canvas=1700x540",
+            SideWindow::fit(&scene, &[camera]),
+            SideViewCanvas::Fitted {
+                width: 1700,
+                height: 540,
+            },
+        ),
+        (
+            "&view=top&canvas=700x540",
+            SideWindow::fit_top(&scene, &[camera]),
+            SideViewCanvas::Fitted {
+                width: 700,
+                height: 540,
+            },
+        ),
+    ];
+    for (extra, window, canvas) in cases {
+        let response = served.get(&format!(
+            "/api/diagram.svg?camera={}&width=320&height=180&row=90&col=100{extra}",
+            encode(camera_ron)
+        ));
+        assert_eq!(response.status, 200, "{extra}: {}", response.text());
+        let figure = side_view(&scene, &camera, &window, canvas, Some((90, 100)));
+        let expected = viewray_draw::svg::document(&figure, viewray_draw::svg::SvgText::Paths);
+        assert!(
+            response.text() == expected,
+            "{extra}: not the library's view"
+        );
+    }
+}
+
+#[test]
+fn the_depth_is_how_far_along_the_view_the_middle_of_the_picture_lies() {
+    let served = Served::start(BINARY, &[]);
+    let depth = |camera: &str| -> serde_json::Value {
+        let response = served.get(&format!(
+            "/api/depth?camera={}&width=64&height=48",
+            encode(camera)
+        ));
+        assert_eq!(response.status, 200, "{camera}: {}", response.text());
+        serde_json::from_slice(&response.body).unwrap()
+    };
+    // The default scene's cube spans [-0.6, 0.6] x [0, 1.2] x [-0.6, 0.6]: looking down -z
+    // from z = 10 at its middle, the centre ray meets its front face 9.4 along the view,
+    // whatever the length of `view`.
+    for view in ["(0.0, 0.0, -1.0)", "(0.0, 0.0, -7.0)"] {
+        let line = depth(&format!(
+            "(eye: (0.0, 0.6, 10.0), view: {view}, projection: Perspective(fov_y: 30.0))"
+        ));
+        assert_eq!(line["from"], "hit");
+        let d = line["depth"].as_f64().unwrap();
+        assert!((d - 9.4).abs() < 1e-5, "{d}");
+    }
+    // From 50 above, looking down: the cube's top, 48.8 below.
+    let line = depth(
+        "(eye: (0.0, 50.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0), \
+         projection: Orthographic(height: 4.0))",
+    );
+    assert!(
+        (line["depth"].as_f64().unwrap() - 48.8).abs() < 1e-4,
+        "{line}"
+    );
+    // A centre ray into the sky (the window shifted far up): the middle of the objects'
+    // bounds, z from -1.2 (the gold sphere) to 3.0 (the white one), so 0.9: 9.1 away.
+    let line = depth(
+        "(eye: (0.0, 0.6, 10.0), view: (0.0, 0.0, -1.0), \
+         projection: Perspective(fov_y: 30.0, shift: (0.0, 3.0)))",
+    );
+    assert_eq!(line["from"], "objects");
+    assert!(
+        (line["depth"].as_f64().unwrap() - 9.1).abs() < 1e-6,
+        "{line}"
+    );
+    // Nothing in front: null.
+    let line = depth(
+        "(eye: (0.0, 0.6, 10.0), view: (0.0, 0.0, 1.0), projection: Perspective(fov_y: 30.0))",
+    );
+    assert_eq!(line, serde_json::json!({"depth": null, "from": null}));
+}
+
+#[test]
+fn a_slide_is_a_1920_by_1080_png_of_the_camera() {
+    let served = Served::start(BINARY, &[]);
+    let camera =
+        "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: Perspective(fov_y: 40.0))";
+    for extra in ["", "&row=10&col=20&top=1"] {
+        let response = served.get(&format!(
+            "/api/slide.png?camera={}&width=160&height=90&samples=1{extra}",
+            encode(camera)
+        ));
+        assert_eq!(response.status, 200, "{extra}: {}", response.text());
+        assert_eq!(response.header("content-type"), Some("image/png"));
+        let image = image::load_from_memory(&response.body).unwrap();
+        assert_eq!((image.width(), image.height()), (1920, 1080), "{extra}");
+    }
+    let check = |target: &str, expected: &str| {
+        let response = served.get(target);
+        assert_eq!(response.status, 400, "{target}: {}", response.text());
+        let body: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+        assert_eq!(body["error"], expected, "{target}");
+    };
+    check("/api/slide.png?top=2", "top: expected 0 or 1, found `2`");
+    check(
+        "/api/slide.png?row=480&col=0",
+        "row: pixel 480,0 is outside the 640 x 480 image: row runs 0..=479 and col 0..=639 \
+         (0-based)",
+    );
+    check(
+        "/api/diagram.svg?view=front",
+        "view: expected `side` or `top`, found `front`",
+    );
+    check(
+        "/api/diagram.svg?canvas=100x100",
+        "canvas: expected WIDTHxHEIGHT in pixels, each from 300 to 4000, found `100x100`",
+    );
 }
 
 #[test]

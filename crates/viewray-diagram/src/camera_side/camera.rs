@@ -7,11 +7,11 @@ use viewray_draw::{Color, Stroke};
 use viewray_geometry::DRay;
 use viewray_scene::Scene;
 
-use super::labels::{beside, label_anchor, place_label};
+use super::labels::{Labels, label_anchor};
+use super::window::Plane;
 use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::{FigureView, SideView};
-use viewray_output::number;
 
 /// The aperture and focus distance of a camera with a lens.
 pub(super) fn lens(camera: &Camera) -> Option<(f64, f64)> {
@@ -30,46 +30,48 @@ pub(super) fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
 }
 
 /// Draws the focus plane of a camera with a lens: a dashed segment across the frustum at
-/// distance `focus` along `-w`, labelled.
-pub(super) fn draw_focus_plane(sketch: &mut Sketch, view: &SideView, camera: &Camera, focus: f64) {
+/// distance `focus` along `-w` (across **v** seen from the side, **u** from above);
+/// returns its upper and lower ends on the figure, if it is in the view.
+pub(super) fn draw_focus_plane(
+    sketch: &mut Sketch,
+    view: &SideView,
+    camera: &Camera,
+    (focus, plane): (f64, Plane),
+) -> Option<(Vec2, Vec2)> {
     let frame = camera.frame();
     let centre = frame.e() - frame.w() * focus;
+    let across = plane.across(frame);
+    let extent = |viewport: DVec2| match plane {
+        Plane::Side => viewport.y,
+        Plane::Top => viewport.x,
+    };
     let half = match camera.projection() {
-        Projection::ThinLens(p) => p.viewport.y / 2.0 * focus / p.distance,
-        _ => camera.projection().viewport().map_or(1.0, |v| v.y / 2.0),
+        Projection::ThinLens(p) => extent(p.viewport) / 2.0 * focus / p.distance,
+        _ => camera
+            .projection()
+            .viewport()
+            .map_or(1.0, |v| extent(v) / 2.0),
     };
     // The segment across the frustum, a little longer, clipped to the view.
-    let across = DRay {
-        origin: centre - frame.v() * half * 1.15,
-        direction: frame.v() * half * 2.3,
+    let segment = DRay {
+        origin: centre - across * half * 1.15,
+        direction: across * half * 2.3,
     };
-    let Some((t0, t1)) = view.clip_ray(&across, (0.0, 1.0)) else {
-        return;
-    };
-    let (bottom, top) = (view.to_figure(across.at(t0)), view.to_figure(across.at(t1)));
+    let (t0, t1) = view.clip_ray(&segment, (0.0, 1.0))?;
+    let (bottom, top) = (
+        view.to_figure(segment.at(t0)),
+        view.to_figure(segment.at(t1)),
+    );
     sketch.line(
         top,
         bottom,
         Stroke::new(style::HIGHLIGHT, style::LINE_REGULAR).dashed(&style::DASH),
     );
-    let (upper, lower) = if top.y < bottom.y {
+    Some(if top.y < bottom.y {
         (top, bottom)
     } else {
         (bottom, top)
-    };
-    place_label(
-        sketch,
-        &format!("focus plane, $f$ = {}", number::label_significant(focus)),
-        &[
-            beside(upper, 0.0, -10.0),
-            beside(lower, 0.0, 10.0),
-            beside(upper, 12.0, 12.0),
-            beside(lower, 12.0, -12.0),
-            beside(upper, -12.0, 12.0),
-        ],
-        style::HIGHLIGHT,
-        style::SMALL_LABEL_SIZE,
-    );
+    })
 }
 
 /// Draws the centre ray of `pixel` from its origin to the first thing it hits in the
@@ -114,30 +116,55 @@ pub(super) fn draw_traced_ray(
 }
 
 /// Draws an arrow at the edge of the view pointing at the eye `e`, which lies beyond it,
-/// labelled with how far away the eye is (world units from the view's centre).
-pub(super) fn draw_eye_beyond(sketch: &mut Sketch, view: &SideView, e: DVec3) {
+/// from `from` (the middle of the objects, or of the view when there are none), and asks
+/// for its label: how far the eye is from `from`, in world units.
+pub(super) fn draw_eye_beyond(
+    sketch: &mut Sketch,
+    labels: &mut Labels,
+    view: &SideView,
+    e: DVec3,
+    from: Option<DVec3>,
+) {
     let (min, max) = (view.bounds.min.as_dvec2(), view.bounds.max.as_dvec2());
-    let centre = (min + max) / 2.0;
+    let view_centre = (min + max) / 2.0;
     let eye = view.plane_point(e);
+    let (centre, distance) = match from {
+        Some(from) => (view.plane_point(from).clamp(min, max), (e - from).length()),
+        None => (view_centre, (eye - view_centre).length()),
+    };
     let Some(towards) = (eye - centre).try_normalize() else {
         return;
     };
     // Where the line from the centre to the eye leaves the view.
-    let reach = ((max - min) / 2.0 / towards.abs()).min_element();
+    let room = (towards.signum() * (max - min) / 2.0 + view_centre - centre) / towards;
+    let reach = DVec2::new(
+        if towards.x == 0.0 {
+            f64::INFINITY
+        } else {
+            room.x
+        },
+        if towards.y == 0.0 {
+            f64::INFINITY
+        } else {
+            room.y
+        },
+    )
+    .min_element();
     let to_canvas = |p: DVec2| view.mapping.to_canvas(p.as_vec2());
     let tip = to_canvas(centre + towards * reach * 0.96);
     let tail = to_canvas(centre + towards * reach * 0.72);
     sketch.arrow(tail, tip, Stroke::new(style::EYE, style::LINE_REGULAR));
-    let text = format!("*e*, {:.0} away", (eye - centre).length());
+    let text = format!("*e*, {:.0} away", distance);
     let along = (tip - tail).normalize_or_zero();
     let side = along.perp() * 18.0;
-    place_label(
-        sketch,
-        &text,
-        &[
+    labels.add(
+        text,
+        vec![
             (tail - along * 14.0, label_anchor(-along)),
             (tail + side, label_anchor(side)),
             (tail - side, label_anchor(-side)),
+            (tip + side, label_anchor(side)),
+            (tip - side, label_anchor(-side)),
         ],
         style::EYE,
         style::SMALL_LABEL_SIZE,

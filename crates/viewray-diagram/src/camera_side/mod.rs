@@ -4,11 +4,13 @@
 //!
 //! [`side_view`] draws it, step by step, from its parts:
 //!
-//! - [`window`]: the [`SideWindow`], the plane and rectangle of the world shown;
+//! - [`window`]: the [`SideWindow`], the plane (the side's **v** and **w**, or the top's
+//!   **u** and **w**) and rectangle of the world shown;
 //! - [`canvas`]: the [`SideViewCanvas`] (slide, panel, beside a picture) and its layout;
 //! - [`objects`]: the scene's objects projected onto the plane;
 //! - [`camera`]: the camera's marks (lens, focus plane, traced rays, a far eye's arrow);
-//! - [`labels`]: the frame's and the image plane's names, each placed where it is free;
+//! - [`labels`]: the frame's and the image plane's names, placed last, each where it
+//!   covers no other label and, where it can, nothing drawn;
 //! - [`caption`]: the projection and its parameters in the lecture's notation.
 
 mod camera;
@@ -25,30 +27,33 @@ use viewray_scene::Scene;
 
 use self::camera::{draw_eye_beyond, draw_focus_plane, draw_traced_ray, lens, tilt_on_figure};
 pub use self::canvas::SideViewCanvas;
-use self::caption::draw_caption;
-use self::labels::{beside, draw_frame_labels, draw_image_plane_label, place_label};
+use self::caption::Caption;
+use self::labels::{Labels, beside, focus_plane_label, frame_labels, image_plane_label};
 use self::objects::draw_objects;
 pub use self::window::SideWindow;
+use self::window::{Plane, objects_centre};
 use crate::Diagram;
-use crate::side::{draw_image_plane, draw_side_frame, viewport_edges};
+use crate::side::draw_out_of_page;
 use crate::sketch::{CameraRay, Sketch};
 use crate::style;
 use crate::view::FigureView;
 
-/// How many viewing rays of the middle column are drawn, spread over its rows.
+/// How many viewing rays of the middle column (or row) are drawn, spread over it.
 const RAY_COUNT: u32 = 5;
 
 /// The side view of `camera` over `scene` in `window`, on `canvas`: the plane of the
 /// window seen face-on (for a window fitted to this camera, the plane of its **v** and
 /// **w**, so **u** points at the viewer; world up is up, so a tilted camera looks tilted
-/// and a shifted one level). It shows the scene's objects projected onto that plane
-/// (spheres as circles, boxes and meshes as their outlines, planes seen edge-on as
-/// lines), the eye **e** with **v** and **w** (an arrow at the edge when the eye lies
-/// beyond the window), the image plane edge-on, the frustum's top and bottom edges, a
-/// thin lens's lens and focus plane, and the viewing rays of five pixels of the middle
-/// column, each drawn to the first thing it hits, traced in the scene; a caption names
-/// the projection and its parameters. `pixel` (row, col), when given, adds that pixel's
-/// ray, highlighted.
+/// and a shifted one level; for a top view, the plane of **u** and **w** seen from **v**'s
+/// side). It shows the scene's objects projected onto that plane (spheres as circles,
+/// boxes and meshes as their outlines, planes seen edge-on as lines), the eye **e** with
+/// the two axes in the plane (an arrow at the edge when the eye lies beyond the window),
+/// the image plane edge-on, the frustum's edges, a thin lens's lens and focus plane, and
+/// the viewing rays of five pixels of the middle column (row, from above), each drawn to
+/// the first thing it hits, traced in the scene; a caption names the projection and its
+/// parameters. `pixel` (row, col), when given, adds that pixel's ray, highlighted. The
+/// labels are placed last, each where it covers no other and, where it can, nothing
+/// drawn.
 pub(crate) fn side_view(
     scene: &Scene,
     camera: &Camera,
@@ -56,27 +61,31 @@ pub(crate) fn side_view(
     canvas: SideViewCanvas,
     pixel: Option<(u32, u32)>,
 ) -> Diagram {
-    let layout = canvas.layout();
+    let plane = window.plane;
+    let caption = Caption::new(camera, canvas);
+    let layout = canvas.layout(caption.len());
     let (width, height) = canvas.size();
     let mut sketch = Sketch::sized(width, height);
     if layout.title {
-        sketch.title("Side view of the camera");
+        sketch.title(match plane {
+            Plane::Side => "Side view of the camera",
+            Plane::Top => "Top view of the camera",
+        });
     }
     let view = window.view(layout.drawing);
     draw_objects(&mut sketch, &view, scene);
     // The caption over the drawing goes on top of the objects, before anything is placed
     // around it.
-    draw_caption(&mut sketch, camera, canvas, layout.caption_at);
+    caption.draw(&mut sketch, canvas, layout.caption_at);
     let figure_view = FigureView::Side(view);
+    let mut labels = Labels::default();
 
-    // The frustum's top and bottom edges, for the planar projections.
+    // The frustum's edges in the plane, for the planar projections.
     let frame = *camera.frame();
     let planar = camera.projection().viewport().is_some();
     if planar {
-        let x = f64::from(camera.width()) / 2.0;
         let stroke = Stroke::new(style::RAY, style::LINE_THIN).dashed(&style::DASH);
-        for y in [0.0, f64::from(camera.height())] {
-            let image = DVec2::new(x, y);
+        for image in plane.image_edges(camera) {
             if let Some(ray) = camera.generate_ray_through(image, DVec2::splat(0.5))
                 && let Some(t) = view.clip_ray(&ray, (0.0, f64::INFINITY))
                 && t.1.is_finite()
@@ -93,37 +102,31 @@ pub(crate) fn side_view(
 
     // The thin lens's focus plane and lens.
     let eye_in_view = view.bounds.contains(view.plane_point(frame.e()).as_vec2());
+    let mut focus_ends = None;
     if let Some((aperture, focus)) = lens(camera) {
-        draw_focus_plane(&mut sketch, &view, camera, focus);
+        focus_ends = draw_focus_plane(&mut sketch, &view, camera, (focus, plane))
+            .map(|(upper, lower)| (focus, upper, lower));
         if eye_in_view {
             let half = view.length(aperture).max(2.0);
             sketch.push(Item::Ellipse {
                 center: view.to_figure(frame.e()),
                 radii: Vec2::new((half * 0.18).max(3.0), half),
-                rotation: -tilt_on_figure(&view, frame.v()),
+                rotation: -tilt_on_figure(&view, plane.across(&frame)),
                 fill: Some(style::IMAGE_PLANE_FILL),
                 stroke: Some(Stroke::new(style::OBJECT, style::LINE_THIN)),
             });
         }
     }
 
-    // A few viewing rays of the middle column, each to what it hits.
-    let col = camera.width() / 2;
-    let rows = (0..RAY_COUNT).map(|k| {
-        let centre = (f64::from(k) + 0.5) / f64::from(RAY_COUNT) * f64::from(camera.height());
-        // Rows are whole pixels inside the image.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let row = centre.floor() as u32;
-        row.min(camera.height() - 1)
-    });
+    // A few viewing rays of the middle column (row), each to what it hits.
     let ray_stroke = Stroke::new(style::RAY, style::LINE_REGULAR);
-    for row in rows {
+    for pixel in plane.pixels(camera, RAY_COUNT) {
         draw_traced_ray(
             &mut sketch,
             &view,
             scene,
             camera,
-            (row, col),
+            pixel,
             &ray_stroke,
             style::RAY,
         );
@@ -142,44 +145,70 @@ pub(crate) fn side_view(
         .map(|hit| (pixel, hit))
     });
 
-    // The image plane, the frame at the eye, the eye (or an arrow towards it); the
-    // plane's label where it overlaps no other.
-    let plane_ends = if planar && eye_in_view {
-        let (top, bottom) = viewport_edges(camera);
+    // The image plane, the frame at the eye, the eye (or an arrow towards it).
+    let mut plane_ends = None;
+    if planar && eye_in_view {
+        let (top, bottom) = plane.viewport_edges(camera);
         let (top, bottom) = (view.plane_point(top), view.plane_point(bottom));
-        (view.bounds.contains(top.as_vec2()) && view.bounds.contains(bottom.as_vec2()))
-            .then(|| draw_image_plane(&mut sketch, &view, camera, style::IMAGE_PLANE, 0.0))
-    } else {
-        None
-    };
+        if view.bounds.contains(top.as_vec2()) && view.bounds.contains(bottom.as_vec2()) {
+            let (top, bottom) = (
+                view.mapping.to_canvas(top.as_vec2()),
+                view.mapping.to_canvas(bottom.as_vec2()),
+            );
+            sketch.line(
+                top,
+                bottom,
+                Stroke::new(style::IMAGE_PLANE, style::LINE_THICK),
+            );
+            plane_ends = Some((top, bottom));
+        }
+    }
     if eye_in_view {
         let axis_length = 0.09 * (window.max - window.min).max_element();
-        draw_side_frame(&mut sketch, &view, &frame, axis_length, false);
-        draw_frame_labels(&mut sketch, &view, &frame, axis_length);
+        let e = view.to_figure(frame.e());
+        for (axis, color, _) in plane.arrows(&frame) {
+            let tip = view.to_figure(frame.e() + axis * axis_length);
+            sketch.arrow(e, tip, Stroke::new(color, style::LINE_THICK));
+        }
+        let (out, color, _) = plane.out_axis(&frame);
+        draw_out_of_page(&mut sketch, e, out.dot(view.towards_viewer()) > 0.0, color);
+        frame_labels(&mut labels, &view, &frame, plane, axis_length);
     } else {
-        draw_eye_beyond(&mut sketch, &view, frame.e());
-    }
-    if let Some((top, bottom)) = plane_ends {
-        draw_image_plane_label(&mut sketch, camera, top, bottom);
-    }
-
-    if let Some((pixel, hit)) = pixel_hit {
-        let text = format!("$i$ = {}, $j$ = {}", pixel.0 + 1, pixel.1 + 1);
-        let candidates = [
-            beside(hit, 14.0, -14.0),
-            beside(hit, -14.0, -14.0),
-            beside(hit, 14.0, 14.0),
-            beside(hit, -14.0, 14.0),
-            beside(hit, 0.0, -50.0),
-            beside(hit, 0.0, 50.0),
-        ];
-        place_label(
+        draw_eye_beyond(
             &mut sketch,
-            &text,
-            &candidates,
-            style::HIGHLIGHT,
-            style::SMALL_LABEL_SIZE,
+            &mut labels,
+            &view,
+            frame.e(),
+            objects_centre(scene),
         );
     }
+
+    if let Some((top, bottom)) = plane_ends {
+        image_plane_label(&mut labels, camera, top, bottom);
+    }
+    if let Some((focus, upper, lower)) = focus_ends {
+        focus_plane_label(&mut labels, focus, upper, lower);
+    }
+    if let Some((pixel, hit)) = pixel_hit {
+        let text = format!("$i$ = {}, $j$ = {}", pixel.0 + 1, pixel.1 + 1);
+        let mut candidates = Vec::new();
+        for gap in [14.0, 40.0, 80.0, 130.0] {
+            candidates.extend([
+                beside(hit, gap, -gap),
+                beside(hit, -gap, -gap),
+                beside(hit, gap, gap),
+                beside(hit, -gap, gap),
+                beside(hit, 0.0, -2.5 * gap),
+                beside(hit, 0.0, 2.5 * gap),
+            ]);
+        }
+        labels.add_naming(
+            text,
+            candidates,
+            (style::HIGHLIGHT, style::SMALL_LABEL_SIZE),
+            hit,
+        );
+    }
+    labels.place(&mut sketch);
     sketch.finish()
 }

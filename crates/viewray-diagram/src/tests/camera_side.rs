@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, Vec2};
 use viewray_camera::{Camera, CameraSample};
-use viewray_draw::Item;
+use viewray_draw::{Item, Rect};
 use viewray_scene::{Scene, parse_camera};
 
 use super::figures::{assert_drawn_rays_are_generated, labels};
@@ -72,9 +72,18 @@ fn fitted(
     side_view(scene, camera, &window, canvas, pixel)
 }
 
-const CANVASES: [SideViewCanvas; 3] = [
+const CANVASES: [SideViewCanvas; 6] = [
     SideViewCanvas::Slide,
     SideViewCanvas::Panel,
+    SideViewCanvas::Square,
+    SideViewCanvas::Fitted {
+        width: 1700,
+        height: 600,
+    },
+    SideViewCanvas::Fitted {
+        width: 600,
+        height: 600,
+    },
     SideViewCanvas::Beside,
 ];
 
@@ -188,6 +197,9 @@ fn any_camera_can_be_drawn_over_a_scene_with_its_labels_on_the_canvas_and_apart(
         "(eye: (0.0, 8.0, 0.0), view: (0.0, -1.0, 0.0), up: (0.0, 0.0, -1.0), projection: Perspective(fov_y: 60.0))",
         "(eye: (3.0, 1.0, 3.0), look_at: (0.0, 0.5, 0.0), up: (1.0, 0.0, 0.0), projection: Perspective(fov_y: 40.0))",
         "(eye: (0.0, 1.0, 6.0), look_at: (0.0, 1.0, 0.0), projection: ThinLens(fov_y: 40.0, aperture: 0.3, focus: 6.0))",
+        // Captions longer than a panel is wide.
+        "(eye: (5.2, 1.6, 6.0), look_at: (0.0, 0.5, 0.0), projection: ThinLens(fov_y: 33.7, shift: (-0.32571, -0.21987), aperture: 0.061234, focus: 7.7777))",
+        "(eye: (0.5, 1.5, 9.0), view: (0.0, 0.0, -1.0), projection: Oblique(viewport: (7.33333, 4.12345), ratio: 0.55555, angle: 37.5))",
     ] {
         let camera = parse_camera(camera_text, Path::new("camera"), 160, 90).unwrap();
         for canvas in CANVASES {
@@ -289,11 +301,8 @@ fn an_animations_window_keeps_the_objects_still_and_far_eyes_as_arrows() {
                 .collect();
             let far = camera.frame().e().z > 100.0;
             assert_eq!(texts.contains(&"*e*"), !far, "{texts:?}");
-            assert_eq!(
-                texts.iter().any(|text| text.starts_with("*e*, 9")),
-                far,
-                "{texts:?}"
-            );
+            // 10000 from the sphere's centre, the middle of the objects.
+            assert_eq!(texts.contains(&"*e*, 10000 away"), far, "{texts:?}");
             let arrows_to_eye = diagram
                 .figure
                 .items
@@ -315,4 +324,306 @@ fn an_animations_window_keeps_the_objects_still_and_far_eyes_as_arrows() {
     // The sphere is drawn in the same place in every frame: only the camera moves.
     assert_eq!(spheres[0], spheres[1]);
     assert_eq!(spheres[0], spheres[2]);
+}
+
+#[test]
+fn a_caption_too_long_for_its_canvas_wraps_between_its_parts() {
+    let scene = scene("default", SCENES[0].1);
+    let camera = parse_camera(
+        "(eye: (5.2, 1.6, 6.0), look_at: (0.0, 0.5, 0.0), projection: ThinLens(fov_y: 33.7, \
+         shift: (-0.32571, -0.21987), aperture: 0.061234, focus: 7.7777))",
+        Path::new("camera"),
+        640,
+        360,
+    )
+    .unwrap();
+    for canvas in CANVASES {
+        let diagram = fitted(&scene, &camera, None, canvas);
+        let texts: Vec<&str> = labels(&diagram.figure)
+            .iter()
+            .map(|label| label.text.as_str())
+            .collect();
+        // Every part whole, the shift's numbers on one line.
+        for label in labels(&diagram.figure) {
+            assert!(
+                diagram.figure.bounds().contains_rect(&label.bounds()),
+                "{canvas:?}: {:?} leaves the canvas",
+                label.text
+            );
+        }
+        for part in [
+            "thin lens:  $d$ = 1",
+            "$vw$ × $vh$ = 1.077 × 0.606",
+            "shift (−0.326, −0.22)",
+            "aperture $r$ = 0.0612",
+            "focus $f$ = 7.778",
+        ] {
+            assert!(
+                texts.iter().any(|text| text.contains(part)),
+                "{canvas:?}: no label holds {part:?}: {texts:?}"
+            );
+        }
+    }
+}
+
+/// The extent `(across, up)` of the scene's bounded objects in `window`'s plane.
+fn objects_extent(scene: &Scene, window: &SideWindow) -> DVec2 {
+    let (mut min, mut max) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+    for object in scene.world().objects() {
+        if let Some(bounds) = object.bounds() {
+            for p in bounds.corners() {
+                let p = p.as_dvec3();
+                let q = DVec2::new(p.dot(window.right), p.dot(window.up));
+                min = min.min(q);
+                max = max.max(q);
+            }
+        }
+    }
+    max - min
+}
+
+#[test]
+fn far_cameras_leave_the_scene_large_and_point_at_their_eye() {
+    let scene = scene("default", SCENES[0].1);
+    for camera_text in [
+        "Top(target: (0.0, 0.5, 0.0), size: 6.0)",
+        "Cabinet(target: (0.0, 0.5, 0.0), size: 5.0)",
+        // A late frame of perspective to orthographic: 164 from the objects.
+        "(eye: (82.0, 82.0, 120.0), look_at: (0.0, 0.5, 0.0), \
+         projection: Perspective(distance: 1.0, viewport: (0.1, 0.05625)))",
+    ] {
+        let camera = parse_camera(camera_text, Path::new("camera"), 640, 360).unwrap();
+        let window = SideWindow::fit(&scene, &[camera]);
+        // What a panel's drawing (900 x 440) shows of the plane: the window, widened or
+        // heightened to the drawing's shape.
+        let mut shown = window.max - window.min;
+        let aspect = 900.0 / 440.0;
+        shown = shown.max(DVec2::new(shown.y * aspect, shown.x / aspect));
+        let objects = objects_extent(&scene, &window);
+        let share = (objects / shown).max_element();
+        assert!(
+            share > 0.2,
+            "{camera_text}: the objects fill {share:.3} of the drawing"
+        );
+        let diagram = fitted(&scene, &camera, None, SideViewCanvas::Panel);
+        assert_drawn_rays_are_generated(camera_text, &diagram);
+        let arrows_to_eye = diagram
+            .figure
+            .items
+            .iter()
+            .filter(|item| matches!(item, Item::Arrow { stroke, .. } if stroke.color == style::EYE))
+            .count();
+        assert_eq!(arrows_to_eye, 1, "{camera_text}: an arrow towards the eye");
+    }
+}
+
+#[test]
+fn a_far_eyes_distance_is_measured_from_the_middle_of_the_objects() {
+    // The sphere's centre is the origin: the eye is 164 from it, as a caption saying
+    // "eye 164 from the target" means.
+    let scene = sphere_scene();
+    let back = DVec3::new(0.3, 0.4, 1.0).normalize();
+    let text = format!(
+        "(eye: ({:?}, {:?}, {:?}), look_at: (0.0, 0.0, 0.0), \
+         projection: Perspective(distance: 1.0, viewport: (0.02, 0.02)))",
+        back.x * 164.0,
+        back.y * 164.0,
+        back.z * 164.0
+    );
+    let camera = parse_camera(&text, Path::new("camera"), 40, 40).unwrap();
+    for canvas in CANVASES {
+        let diagram = fitted(&scene, &camera, None, canvas);
+        let texts: Vec<&str> = labels(&diagram.figure)
+            .iter()
+            .map(|label| label.text.as_str())
+            .collect();
+        assert!(texts.contains(&"*e*, 164 away"), "{canvas:?}: {texts:?}");
+    }
+}
+
+/// Whether the segment from `a` to `b` crosses the rectangle `rect`.
+fn segment_meets(rect: &Rect, a: Vec2, b: Vec2) -> bool {
+    // Liang-Barsky: clip the segment's parameter to the rectangle's slabs.
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    for (start, slope, low, high) in [
+        (a.x, d.x, rect.min.x, rect.max.x),
+        (a.y, d.y, rect.min.y, rect.max.y),
+    ] {
+        if slope == 0.0 {
+            if start < low || start > high {
+                return false;
+            }
+            continue;
+        }
+        let (p, q) = ((low - start) / slope, (high - start) / slope);
+        t0 = t0.max(p.min(q));
+        t1 = t1.min(p.max(q));
+    }
+    t0 <= t1
+}
+
+/// Whether `rect` overlaps the convex polygon `points` (or its outline crosses it).
+fn polygon_meets(rect: &Rect, points: &[Vec2]) -> bool {
+    let edges = points.iter().zip(points.iter().cycle().skip(1));
+    if edges.clone().any(|(&a, &b)| segment_meets(rect, a, b)) {
+        return true;
+    }
+    // The rectangle wholly inside: its centre on the inner side of every edge.
+    let c = rect.center();
+    let sides: Vec<f32> = edges.map(|(&a, &b)| (b - a).perp_dot(c - a)).collect();
+    sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0)
+}
+
+#[test]
+fn side_view_labels_keep_off_the_rays_and_the_objects() {
+    let default = scene("default", SCENES[0].1);
+    let street = viewray_scene::SceneLoader::text(
+        include_str!("../../../viewray-animation/scenes/street.ron"),
+        Path::new("street.ron"),
+    )
+    .load()
+    .unwrap()
+    .scene;
+    let cases = [
+        (
+            &default,
+            "(eye: (5.2, 1.6, 6.0), view: (-5.2, 0.0, -6.0), up: (0.0, 1.0, 0.0), \
+             projection: ThinLens(fov_y: 32.0, shift: (0.0, -0.17), aperture: 0.06, focus: 7.0))",
+        ),
+        (
+            &default,
+            "(eye: (3.0, 2.0, 4.0), look_at: (0.0, 0.5, 0.0), projection: Perspective(fov_y: 40.0))",
+        ),
+        // The dolly zoom, early and midway.
+        (
+            &street,
+            "(eye: (0.0, 1.0, 3.0), view: (0.0, 0.0, -1.0), \
+             projection: Perspective(distance: 0.825, viewport: (1.7778, 1.0)))",
+        ),
+        (
+            &street,
+            "(eye: (0.0, 1.0, 7.25), view: (0.0, 0.0, -1.0), \
+             projection: Perspective(distance: 1.99375, viewport: (1.7778, 1.0)))",
+        ),
+    ];
+    for (scene, camera_text) in cases {
+        let camera = parse_camera(camera_text, Path::new("camera"), 480, 270).unwrap();
+        for canvas in [SideViewCanvas::Slide, SideViewCanvas::Panel] {
+            let diagram = fitted(scene, &camera, Some((160, 260)), canvas);
+            let items = &diagram.figure.items;
+            let rays: Vec<(Vec2, Vec2)> = items
+                .iter()
+                .filter_map(|item| match item {
+                    // Rays and the frustum's edges, not a label's thin leader line.
+                    Item::Line { from, to, stroke }
+                        if (stroke.color == style::RAY || stroke.color == style::HIGHLIGHT)
+                            && stroke.width >= style::LINE_THIN =>
+                    {
+                        Some((*from, *to))
+                    }
+                    _ => None,
+                })
+                .collect();
+            let objects: Vec<Vec<Vec2>> = items
+                .iter()
+                .filter_map(|item| match item {
+                    Item::Polygon {
+                        points,
+                        stroke: Some(stroke),
+                        ..
+                    } if stroke.color == style::OBJECT => Some(points.clone()),
+                    _ => None,
+                })
+                .collect();
+            for label in labels(&diagram.figure) {
+                let named = [
+                    "*e*",
+                    "*u*",
+                    "*v*",
+                    "*w*",
+                    "image plane",
+                    "focus plane",
+                    "$i$",
+                ];
+                if !named.iter().any(|name| label.text.starts_with(name)) {
+                    continue;
+                }
+                let bounds = label.bounds();
+                for (a, b) in &rays {
+                    assert!(
+                        !segment_meets(&bounds, *a, *b),
+                        "{camera_text} ({canvas:?}): {:?} sits on a ray",
+                        label.text
+                    );
+                }
+                for points in &objects {
+                    assert!(
+                        !polygon_meets(&bounds, points),
+                        "{camera_text} ({canvas:?}): {:?} covers an object",
+                        label.text
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_top_view_is_the_plane_of_u_and_w_with_the_view_up_the_page() {
+    for (name, text) in SCENES {
+        let scene = scene(name, text);
+        let camera = *scene.camera();
+        let window = SideWindow::fit_top(&scene, &[camera]);
+        let frame = camera.frame();
+        // u to the right, the view (-w) up: left and right are the picture's.
+        assert!(window.right.abs_diff_eq(frame.u(), 1e-12), "{name}");
+        assert!(window.up.abs_diff_eq(-frame.w(), 1e-12), "{name}");
+        assert!(
+            window.right.cross(window.up).abs_diff_eq(frame.v(), 1e-12),
+            "{name}: seen from v's side"
+        );
+        let pixel = (camera.height() / 3, camera.width() / 4);
+        for canvas in CANVASES {
+            let diagram = side_view(&scene, &camera, &window, canvas, Some(pixel));
+            assert_drawn_rays_are_generated(name, &diagram);
+        }
+        let diagram = side_view(&scene, &camera, &window, SideViewCanvas::Square, None);
+        // The rays of the middle row, spread over its columns.
+        let middle: Vec<u32> = diagram
+            .rays
+            .iter()
+            .filter(|ray| ray.row == camera.height() / 2 && ray.sample == CameraSample::CENTER)
+            .map(|ray| ray.col)
+            .collect();
+        assert!(middle.len() >= 5, "{name}: {middle:?}");
+        let spread = middle.iter().max().unwrap() - middle.iter().min().unwrap();
+        assert!(spread > camera.width() / 2, "{name}: {middle:?}");
+        if matches!(name, "default" | "perspective_three_point") {
+            let texts: Vec<&str> = labels(&diagram.figure)
+                .iter()
+                .map(|label| label.text.as_str())
+                .collect();
+            for axis in ["*e*", "*u*", "*v*", "*w*"] {
+                assert!(texts.contains(&axis), "{name}: {axis} missing in {texts:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_fitted_panel_of_the_panels_size_is_the_panel() {
+    let scene = scene("default", SCENES[0].1);
+    let camera = *scene.camera();
+    let panel = fitted(&scene, &camera, Some((10, 20)), SideViewCanvas::Panel);
+    let sized = fitted(
+        &scene,
+        &camera,
+        Some((10, 20)),
+        SideViewCanvas::Fitted {
+            width: 1000,
+            height: 600,
+        },
+    );
+    assert_eq!(panel, sized);
 }

@@ -6,6 +6,7 @@ use viewray_camera::{Camera, Projection};
 use viewray_geometry::{Object, ObjectHit, Ray};
 
 use super::Shader;
+use crate::trace::DepthValue;
 
 /// The rule that turns hit points into [`Shading::Depth`](viewray_scene::Shading::Depth)
 /// values.
@@ -74,15 +75,25 @@ impl DepthMap {
         }
     }
 
-    /// The depth value of `p`, in `(0, 1]`.
+    /// The depth value of `p`, in `(0, 1]`, with the numbers it comes from.
     #[inline]
-    pub(crate) fn value(&self, p: Vec3) -> f32 {
+    pub(crate) fn evaluate(&self, p: Vec3) -> DepthValue {
+        let z = self.z(p);
         let extent = self.far - self.near;
-        if !extent.is_finite() || extent <= 0.0 {
-            return 1.0;
+        let (s, value) = if !extent.is_finite() || extent <= 0.0 {
+            (None, 1.0)
+        } else {
+            let s = ((z - self.near) / extent).max(0.0);
+            (Some(s), if s <= 1.0 { 1.0 - 0.9 * s } else { 0.1 / s })
+        };
+        DepthValue {
+            panoramic: self.panoramic,
+            z,
+            near: self.near,
+            far: self.far,
+            s,
+            value,
         }
-        let s = ((self.z(p) - self.near) / extent).max(0.0);
-        if s <= 1.0 { 1.0 - 0.9 * s } else { 0.1 / s }
     }
 }
 

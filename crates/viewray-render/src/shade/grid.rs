@@ -6,8 +6,11 @@ use viewray_geometry::Hit;
 use viewray_scene::{Grid, Material};
 
 use super::footprint::Footprint;
+use super::record::Recorder;
+use crate::trace::GridLines;
 
-/// The surface colour of `material` at `hit`: its colour, with grid lines over it.
+/// The surface colour of `material` at `hit`: its colour, with grid lines over it; for
+/// a recorder that records (`R::ACTIVE`), how the lines were mixed in, into `lines`.
 ///
 /// Grid lines are lines of constant world coordinate every `spacing` along the two
 /// world axes closest to the surface's plane (the axis nearest the normal is left out),
@@ -16,10 +19,11 @@ use super::footprint::Footprint;
 /// materials), so they stay smooth toward the horizon; without a footprint (reflected
 /// rays) they are point-sampled.
 #[inline]
-pub(super) fn surface_color(
+pub(super) fn surface_color<R: Recorder>(
     material: &Material,
     hit: &Hit,
     footprint: impl FnOnce() -> Footprint,
+    lines: &mut Option<GridLines>,
 ) -> Vec3 {
     let Some(grid) = material.grid else {
         return material.color;
@@ -40,7 +44,19 @@ pub(super) fn surface_color(
     let coverage_a = line_coverage(hit.point[a], widths[a], &grid);
     let coverage_b = line_coverage(hit.point[b], widths[b], &grid);
     let coverage = 1.0 - (1.0 - coverage_a) * (1.0 - coverage_b);
-    material.color.lerp(grid.color, coverage)
+    let color = material.color.lerp(grid.color, coverage);
+    if R::ACTIVE {
+        *lines = Some(GridLines {
+            axes: [a, b],
+            footprint: [widths[a], widths[b]],
+            coverage: [coverage_a, coverage_b],
+            total: coverage,
+            line_color: grid.color,
+            base: material.color,
+            color,
+        });
+    }
+    color
 }
 
 /// The fraction of the interval `[x - width/2, x + width/2]` covered by grid lines

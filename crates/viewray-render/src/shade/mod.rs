@@ -15,6 +15,9 @@
 //!   [`footprint`] on the surface, which the pixel's ray differentials give.
 //! - [`depth`]: the rule that turns hit points into Depth values, and the pre-pass that
 //!   finds its range.
+//! - [`record`]: the hooks through which each step tells a [`Recorder`] the numbers of
+//!   the one sample it follows (`viewray trace`); the renderer's recorder records
+//!   nothing and its hooks compile away.
 //!
 //! Every step does the same arithmetic, in the same order, as one sample shaded alone,
 //! so batching, lanes and tiles never change a pixel.
@@ -24,6 +27,7 @@ mod footprint;
 mod grid;
 mod lit;
 mod primary;
+mod record;
 
 use glam::Vec3;
 use viewray_camera::Camera;
@@ -35,6 +39,8 @@ use crate::View;
 pub(crate) use self::depth::{DepthMap, DepthRange};
 pub(crate) use self::footprint::{FilmPoint, RayDifferentials};
 pub(crate) use self::lit::LitScratch;
+pub(crate) use self::primary::T_MIN;
+pub(crate) use self::record::{NoRecorder, Recorder};
 
 /// Everything shading needs, shared read-only by every tile.
 pub(crate) struct Shader<'a> {

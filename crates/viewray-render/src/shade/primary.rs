@@ -9,9 +9,11 @@ use super::Shader;
 use super::footprint::FilmPoint;
 use super::grid::surface_color;
 use super::lit::{LitBatch, LitScratch, push_hit};
+use super::record::Recorder;
+use crate::trace::{StepKind, material_index};
 
 /// Where primary rays start their search: `t > 0`, as the camera contract says.
-pub(super) const T_MIN: f32 = f32::MIN_POSITIVE;
+pub(crate) const T_MIN: f32 = f32::MIN_POSITIVE;
 
 impl Shader<'_> {
     /// Whether [`Shader::shade_primaries`] may ask for film points: Lit shading always,
@@ -44,16 +46,22 @@ impl Shader<'_> {
     /// written and read back once per ray); `film(i)` is the film point of
     /// `rays[i]`, asked for only where a grid is filtered over the sample's footprint.
     /// Lit shading traces the batch's shadow rays toward each light together, and its
-    /// reflected rays together, as packets (see [`Shader::lit_batch`]).
-    pub(crate) fn shade_primaries<'f>(
+    /// reflected rays together, as packets (see [`Shader::lit_batch`]). `recorder` is
+    /// told the numbers of the ray it follows ([`Recorder::followed_ray`]).
+    pub(crate) fn shade_primaries<'f, R: Recorder>(
         &self,
         rays: &[Ray],
         hits: &[Option<ObjectHit>],
         film: impl Fn(usize) -> FilmPoint<'f>,
-        scratch: &mut LitScratch,
+        (scratch, recorder): (&mut LitScratch, &mut R),
         mut emit: impl FnMut(usize, Vec3),
         count: &mut u64,
     ) {
+        let followed = if R::ACTIVE {
+            recorder.followed_ray()
+        } else {
+            None
+        };
         *count += rays.len() as u64;
         let world = &self.scene.world();
         if self.shading == Shading::Lit {
@@ -71,10 +79,19 @@ impl Shader<'_> {
             for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
                 match hit {
                     Some(hit) => {
+                        if R::ACTIVE && followed == Some(i) {
+                            recorder.follow(0, Some(samples.len()));
+                        }
                         push_hit(world, ray, hit, hit_rays, surfaces);
                         samples.push(i);
                     }
-                    None => emit(i, self.background),
+                    None => {
+                        if R::ACTIVE && followed == Some(i) {
+                            let color = self.background;
+                            recorder.record(0, StepKind::Background { color });
+                        }
+                        emit(i, self.background);
+                    }
                 }
             }
             lit.clear();
@@ -86,7 +103,7 @@ impl Shader<'_> {
                 film: Some(&film_of),
                 depth: 0,
             };
-            self.lit_batch(batch, buffers, lit, count);
+            self.lit_batch(batch, buffers, lit, recorder, count);
             for (&i, &color) in samples.iter().zip(lit.iter()) {
                 emit(i, color);
             }
@@ -94,23 +111,58 @@ impl Shader<'_> {
         }
         for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
             let Some(object_hit) = hit else {
+                if R::ACTIVE && followed == Some(i) {
+                    let color = self.background;
+                    recorder.record(0, StepKind::Background { color });
+                }
                 emit(i, self.background);
                 continue;
             };
+            let is_followed = R::ACTIVE && followed == Some(i);
             let color = match self.shading {
                 Shading::Flat => {
                     // A plain colour needs no surface details.
                     let material = self.material(object_hit.object, object_hit.primitive);
-                    if material.grid.is_none() {
+                    let mut grid = None;
+                    let color = if material.grid.is_none() {
                         material.color
                     } else {
                         let hit = world.surface(ray, object_hit);
-                        surface_color(material, &hit, || self.footprint(&film(i), ray, &hit))
+                        let footprint = || self.footprint(&film(i), ray, &hit);
+                        surface_color::<R>(material, &hit, footprint, &mut grid)
+                    };
+                    if is_followed {
+                        let hit = world.surface(ray, object_hit);
+                        recorder.closest(0, &hit);
+                        let material = material_index(self.scene, &hit);
+                        let step = StepKind::Flat {
+                            material,
+                            color,
+                            grid,
+                        };
+                        recorder.record(0, step);
                     }
+                    color
                 }
-                Shading::Normals => world.surface(ray, object_hit).shading_normal * 0.5 + 0.5,
+                Shading::Normals => {
+                    let hit = world.surface(ray, object_hit);
+                    let value = hit.shading_normal * 0.5 + 0.5;
+                    if is_followed {
+                        recorder.closest(0, &hit);
+                        let normal = hit.shading_normal;
+                        recorder.record(0, StepKind::Normals { normal, value });
+                    }
+                    value
+                }
                 // Every shape's hit point is `ray.at(t)`, as in the depth pre-pass.
-                Shading::Depth => Vec3::splat(self.depth_map.value(ray.at(object_hit.t))),
+                Shading::Depth => {
+                    let depth = self.depth_map.evaluate(ray.at(object_hit.t));
+                    if is_followed {
+                        recorder.closest(0, &world.surface(ray, object_hit));
+                        recorder.record(0, StepKind::Depth(depth));
+                    }
+                    Vec3::splat(depth.value)
+                }
                 Shading::Lit => unreachable!("lit samples are shaded in a batch above"),
             };
             emit(i, color);

@@ -9,6 +9,10 @@ use viewray_scene::Light;
 use super::LitGroup;
 use crate::lanes::{self, Vec3x4, lanes_of};
 use crate::shade::Shader;
+use crate::shade::record::Recorder;
+use crate::trace::{
+    BlinnPhong, HeadlightTerms, LightSource, LightTerms, LitTerm, ShadowRay, Specular, StepKind,
+};
 
 /// The headlight used when a [`Shading::Lit`](viewray_scene::Shading::Lit) scene has no
 /// lights at all: the share of the surface colour every lit point gets regardless of its
@@ -48,13 +52,16 @@ impl Source {
 }
 
 impl Shader<'_> {
-    /// Adds what every light gives each sample of `groups` to its colour, light by light
-    /// in the scene's order; counts the shadow rays in `count`.
+    /// Adds what every light gives each sample of `groups` (the batch of mirror bounce
+    /// `bounce`) to its colour, light by light in the scene's order; counts the shadow
+    /// rays in `count`, and tells `recorder` each light's terms for the sample it
+    /// follows.
     #[inline]
-    pub(super) fn add_lights(
+    pub(super) fn add_lights<R: Recorder>(
         &self,
         groups: &mut [LitGroup],
         buffers: &mut ShadowBuffers,
+        (bounce, recorder): (u32, &mut R),
         count: &mut u64,
     ) {
         let world = &self.scene.world();
@@ -68,11 +75,22 @@ impl Shader<'_> {
 
         // Headlight: a light at the eye, so a scene without lights is still visible.
         if lights.is_empty() {
-            for group in groups.iter_mut() {
+            for (g, group) in groups.iter_mut().enumerate() {
                 let lit = group.blinn_phong(group.view, group.lanes);
-                group.color = group.color
-                    + (group.base * Vec4::splat(HEADLIGHT_AMBIENT)
-                        + lit * Vec4::splat(1.0 - HEADLIGHT_AMBIENT));
+                let term = group.base * Vec4::splat(HEADLIGHT_AMBIENT)
+                    + lit.color * Vec4::splat(1.0 - HEADLIGHT_AMBIENT);
+                group.color = group.color + term;
+                if R::ACTIVE
+                    && let Some(j) = recorder.lane_of(bounce, g)
+                {
+                    let terms = HeadlightTerms {
+                        ambient: HEADLIGHT_AMBIENT,
+                        lit: lit.lane(j),
+                        term: term.lane(j),
+                        color: group.color.lane(j),
+                    };
+                    recorder.record(bounce, StepKind::Headlight(terms));
+                }
             }
         }
 
@@ -82,11 +100,23 @@ impl Shader<'_> {
         // distance (point lights).
         toward.clear();
         toward.resize(groups.len(), (0_u32, Vec3x4::ZERO, Vec4::ONE));
-        for light in lights {
+        for (index, light) in lights.iter().enumerate() {
             let (intensity, source) = match *light {
                 Light::Ambient { intensity } => {
-                    for group in groups.iter_mut() {
-                        group.color = group.color + group.base * Vec3x4::splat(intensity);
+                    for (g, group) in groups.iter_mut().enumerate() {
+                        let term = group.base * Vec3x4::splat(intensity);
+                        group.color = group.color + term;
+                        if R::ACTIVE
+                            && let Some(j) = recorder.lane_of(bounce, g)
+                        {
+                            let step = StepKind::Ambient {
+                                light: index,
+                                intensity,
+                                term: term.lane(j),
+                                color: group.color.lane(j),
+                            };
+                            recorder.record(bounce, step);
+                        }
                     }
                     continue;
                 }
@@ -139,16 +169,95 @@ impl Shader<'_> {
                     toward[i / 4].0 &= !(1 << (i % 4));
                 }
             }
-            for (group, &(seen, l, distance_squared)) in groups.iter_mut().zip(toward.iter()) {
-                if seen == 0 {
-                    continue;
+            for (g, (group, &(seen, l, distance_squared))) in
+                groups.iter_mut().zip(toward.iter()).enumerate()
+            {
+                let mut lit = None;
+                if seen != 0 {
+                    // Inverse-square falloff, intensity / d^2, then times Blinn-Phong (a
+                    // directional light's d^2 is 1, and dividing by 1 is exact).
+                    let scale = Vec3x4::splat(intensity) / distance_squared;
+                    let terms = group.blinn_phong(l, seen);
+                    let added = scale * terms.color;
+                    group.color =
+                        Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
+                    if R::ACTIVE {
+                        lit = Some((scale, terms, added, seen));
+                    }
                 }
-                // Inverse-square falloff, intensity / d^2, then times Blinn-Phong (a
-                // directional light's d^2 is 1, and dividing by 1 is exact).
-                let added =
-                    (Vec3x4::splat(intensity) / distance_squared) * group.blinn_phong(l, seen);
-                group.color = Vec3x4::select(lanes::mask(seen), group.color + added, group.color);
+                if R::ACTIVE
+                    && let Some(j) = recorder.lane_of(bounce, g)
+                {
+                    let i = 4 * g + j;
+                    let shadow = shadow_samples
+                        .iter()
+                        .position(|&s| s == i)
+                        .map(|n| ShadowRay {
+                            ray: shadow_rays[n],
+                            t_min: source.t_range().start,
+                            t_max: source.t_range().end,
+                            blocked: answers[n],
+                            blocker: None,
+                        });
+                    let lit = lit.filter(|&(.., seen)| seen & 1 << j != 0).map(
+                        |(scale, terms, added, _)| LitTerm {
+                            scale: scale.lane(j),
+                            blinn_phong: terms.lane(j),
+                            term: added.lane(j),
+                        },
+                    );
+                    let terms = LightTerms {
+                        light: index,
+                        source: match source {
+                            Source::At(position) => LightSource::Point(position),
+                            Source::Along(l) => LightSource::Directional(-l),
+                        },
+                        intensity,
+                        l: l.lane(j),
+                        distance_squared: distance_squared[j],
+                        shadow,
+                        lit,
+                        color: group.color.lane(j),
+                    };
+                    recorder.record(bounce, StepKind::Light(terms));
+                }
             }
+        }
+    }
+}
+
+/// Blinn-Phong for four samples, with the numbers it is made of (see
+/// [`LitGroup::blinn_phong`]).
+#[derive(Clone, Copy)]
+struct BlinnPhongLanes {
+    /// `n.l`.
+    n_dot_l: Vec4,
+    /// `color n.l`.
+    diffuse: Vec3x4,
+    /// The lanes with a specular term, and its numbers: `h`, `n.h`, the power and
+    /// `specular max(0, n.h)^shininess`.
+    specular: u32,
+    h: Vec3x4,
+    n_dot_h: [f32; 4],
+    power: [f32; 4],
+    specular_term: Vec3x4,
+    /// The result: `diffuse + specular` in the lanes lit, zero in the others.
+    color: Vec3x4,
+}
+
+impl BlinnPhongLanes {
+    /// The numbers of lane `j`.
+    fn lane(&self, j: usize) -> BlinnPhong {
+        BlinnPhong {
+            n_dot_l: self.n_dot_l[j],
+            diffuse: self.diffuse.lane(j),
+            specular: (self.specular & 1 << j != 0).then(|| Specular {
+                h: self.h.lane(j),
+                n_dot_h: self.n_dot_h[j],
+                power: self.power[j],
+                term: self.specular_term.lane(j),
+            }),
+            sum: self.color.lane(j),
         }
     }
 }
@@ -164,27 +273,35 @@ impl LitGroup {
     /// (zero where `n.l <= 0`; no specular term where the specular colour is zero).
     /// `powf` is taken lane by lane.
     #[inline]
-    fn blinn_phong(&self, l: Vec3x4, lanes: u32) -> Vec3x4 {
+    fn blinn_phong(&self, l: Vec3x4, lanes: u32) -> BlinnPhongLanes {
         let n = self.shading_normal;
         let n_dot_l = n.dot(l);
         let lit = !lanes::bits(n_dot_l.cmple(Vec4::ZERO)) & lanes;
-        let mut color = self.base * n_dot_l;
+        let diffuse = self.base * n_dot_l;
+        let mut color = diffuse;
         let specular = lit & self.specular_lanes;
+        let (mut h, mut n_dot_h, mut power) = (Vec3x4::ZERO, [0.0; 4], [0.0; 4]);
+        let mut specular_term = Vec3x4::ZERO;
         if specular != 0 {
-            let h = (l + self.view).normalize_or_zero();
+            h = (l + self.view).normalize_or_zero();
             // Read lane by lane through an array (indexing a `Vec4` is a `match`).
-            let n_dot_h = n.dot(h).to_array();
-            let mut power = [0.0; 4];
+            n_dot_h = n.dot(h).to_array();
             for j in lanes_of(specular) {
                 power[j] = n_dot_h[j].max(0.0).powf(self.shininess[j]);
             }
-            color = Vec3x4::select(
-                lanes::mask(specular),
-                color + self.specular * Vec4::from_array(power),
-                color,
-            );
+            specular_term = self.specular * Vec4::from_array(power);
+            color = Vec3x4::select(lanes::mask(specular), color + specular_term, color);
         }
-        Vec3x4::select(lanes::mask(lit), color, Vec3x4::ZERO)
+        BlinnPhongLanes {
+            n_dot_l,
+            diffuse,
+            specular,
+            h,
+            n_dot_h,
+            power,
+            specular_term,
+            color: Vec3x4::select(lanes::mask(lit), color, Vec3x4::ZERO),
+        }
     }
 }
 
@@ -240,7 +357,7 @@ mod tests {
                 origin: Vec3x4::ZERO,
                 color: Vec3x4::ZERO,
             };
-            let got = group.blinn_phong(Vec3x4::gather(l.each_ref()), lanes);
+            let got = group.blinn_phong(Vec3x4::gather(l.each_ref()), lanes).color;
             for j in 0..4 {
                 let expected = if lanes & (1 << j) != 0 {
                     blinn_phong(base[j], specular[j], shininess[j], n[j], l[j], v[j])

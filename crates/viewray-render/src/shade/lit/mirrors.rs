@@ -7,6 +7,12 @@ use viewray_geometry::{Hit, ObjectHit, Ray};
 use super::{LitBatch, LitBuffers, push_hit};
 use crate::shade::Shader;
 use crate::shade::footprint::FilmPoint;
+use crate::shade::record::Recorder;
+use crate::trace::StepKind;
+
+/// Where reflected rays start their search: at their origin, which is already off the
+/// surface.
+const MIRROR_T_MIN: f32 = 0.0;
 
 /// The buffers of one bounce's reflected rays, with the next bounce's made when a
 /// mirror is first met.
@@ -30,12 +36,15 @@ impl Shader<'_> {
     /// far): `(1 - mirror) local + mirror reflected`, the reflected colour traced and
     /// shaded one bounce deeper, or the background, or black past the last bounce.
     /// Counts the reflected rays in `count`.
+    ///
+    /// `recorder` follows its sample's reflected ray into the next bounce's batch.
     #[inline]
-    pub(super) fn follow_mirrors<'f, F: Fn(usize) -> FilmPoint<'f>>(
+    pub(super) fn follow_mirrors<'f, F: Fn(usize) -> FilmPoint<'f>, R: Recorder>(
         &self,
         batch: &LitBatch<'_, F>,
         buffers: &mut LitBuffers,
         colors: &mut [Vec3],
+        recorder: &mut R,
         count: &mut u64,
     ) {
         let (hits, depth) = (batch.hits, batch.depth);
@@ -61,6 +70,15 @@ impl Shader<'_> {
         // together, one bounce deeper.
         mirrors.clear();
         mirrors.extend((0..batch.rays.len()).filter(|&i| mirror[i] > 0.0));
+        // The followed sample, if it is on a mirror: its place among the mirrors.
+        let followed = if R::ACTIVE {
+            recorder.follow(depth + 1, None);
+            recorder
+                .followed(depth)
+                .and_then(|i| mirrors.iter().position(|&m| m == i))
+        } else {
+            None
+        };
         if mirrors.is_empty() {
             return;
         }
@@ -77,7 +95,7 @@ impl Shader<'_> {
             *count += mirror_rays.len() as u64;
             mirror_hits.clear();
             mirror_hits.resize(mirror_rays.len(), None);
-            world.closest_objects(mirror_rays, 0.0..f32::INFINITY, mirror_hits);
+            world.closest_objects(mirror_rays, MIRROR_T_MIN..f32::INFINITY, mirror_hits);
             next_rays.clear();
             next_hits.clear();
             for ((ray, hit), color) in mirror_rays
@@ -90,6 +108,25 @@ impl Shader<'_> {
                     None => *color = self.background,
                 }
             }
+            if R::ACTIVE
+                && let Some(m) = followed
+            {
+                let step = StepKind::Reflect {
+                    mirror: mirror[mirrors[m]],
+                    ray: Some(mirror_rays[m]),
+                };
+                recorder.record(depth, step);
+                recorder.ray(depth + 1, &mirror_rays[m], MIRROR_T_MIN);
+                if mirror_hits[m].is_none() {
+                    let color = self.background;
+                    recorder.record(depth + 1, StepKind::Background { color });
+                }
+                // Its place in the next batch: among the reflected rays that hit.
+                let next = mirror_hits[m]
+                    .is_some()
+                    .then(|| mirror_hits[..m].iter().filter(|h| h.is_some()).count());
+                recorder.follow(depth + 1, next);
+            }
             next_colors.clear();
             next_colors.resize(next_rays.len(), Vec3::ZERO);
             let next = LitBatch::<F> {
@@ -98,16 +135,36 @@ impl Shader<'_> {
                 film: None,
                 depth: depth + 1,
             };
-            self.lit_batch(next, deeper.get_or_insert_default(), next_colors, count);
+            let deeper = deeper.get_or_insert_default();
+            self.lit_batch(next, deeper, next_colors, recorder, count);
             let mut next_colors = next_colors.iter();
             for (hit, color) in mirror_hits.iter().zip(reflected.iter_mut()) {
                 if hit.is_some() {
                     *color = next_colors.next().copied().unwrap_or(Vec3::ZERO);
                 }
             }
+        } else if R::ACTIVE
+            && let Some(m) = followed
+        {
+            // Past the last bounce: the mirror reflects black.
+            let step = StepKind::Reflect {
+                mirror: mirror[mirrors[m]],
+                ray: None,
+            };
+            recorder.record(depth, step);
         }
-        for (&i, &reflected) in mirrors.iter().zip(reflected.iter()) {
-            colors[i] = colors[i].lerp(reflected, mirror[i]);
+        for (m, (&i, &reflected)) in mirrors.iter().zip(reflected.iter()).enumerate() {
+            let local = colors[i];
+            colors[i] = local.lerp(reflected, mirror[i]);
+            if R::ACTIVE && followed == Some(m) {
+                let step = StepKind::Mix {
+                    mirror: mirror[i],
+                    local,
+                    reflected,
+                    color: colors[i],
+                };
+                recorder.record(depth, step);
+            }
         }
     }
 }

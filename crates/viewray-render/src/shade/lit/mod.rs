@@ -13,7 +13,9 @@ use self::mirrors::MirrorBuffers;
 use super::Shader;
 use super::footprint::{FilmPoint, Footprint};
 use super::grid::surface_color;
+use super::record::Recorder;
 use crate::lanes::Vec3x4;
+use crate::trace::{LitSurface, StepKind, material_index};
 
 /// How far a secondary ray's origin is moved off the surface: this much times
 /// `1 + max |coordinate|` of the hit point ...
@@ -116,15 +118,20 @@ impl Shader<'_> {
     /// lighting is worked out four samples at a time ([`Vec3x4`]), light by light;
     /// each sample's colour is summed in the same order and with the same numbers as
     /// one sample shaded alone, so neither the batch nor the lanes change a pixel.
-    pub(super) fn lit_batch<'f, F: Fn(usize) -> FilmPoint<'f>>(
+    ///
+    /// `recorder` is told the numbers of the sample it follows (see
+    /// [`Recorder`]).
+    pub(super) fn lit_batch<'f, F: Fn(usize) -> FilmPoint<'f>, R: Recorder>(
         &self,
         batch: LitBatch<'_, F>,
         buffers: &mut LitBuffers,
         colors: &mut [Vec3],
+        recorder: &mut R,
         count: &mut u64,
     ) {
-        self.gather_groups(&batch, buffers);
-        self.add_lights(&mut buffers.groups, &mut buffers.shadows, count);
+        self.gather_groups(&batch, buffers, recorder);
+        let shadows = &mut buffers.shadows;
+        self.add_lights(&mut buffers.groups, shadows, (batch.depth, recorder), count);
         let n = batch.rays.len();
         for (colors, group) in colors[..n].chunks_mut(4).zip(buffers.groups.iter()) {
             // Element by element: `copy_from_slice` of a length not known at compile
@@ -133,21 +140,32 @@ impl Shader<'_> {
                 *color = lane;
             }
         }
-        self.follow_mirrors(&batch, buffers, colors, count);
+        self.follow_mirrors(&batch, buffers, colors, recorder, count);
     }
 
     /// Fills `buffers` with each sample's surface colour and mirror reflectance, and its
     /// groups of four with their surface details, where their secondary rays start, the
-    /// view direction, and no colour yet.
+    /// view direction, and no colour yet; tells `recorder` the surface of the sample it
+    /// follows.
     #[inline]
-    fn gather_groups<'f, F: Fn(usize) -> FilmPoint<'f>>(
+    fn gather_groups<'f, F: Fn(usize) -> FilmPoint<'f>, R: Recorder>(
         &self,
         batch: &LitBatch<'_, F>,
         buffers: &mut LitBuffers,
+        recorder: &mut R,
     ) {
         let LitBatch {
-            rays, hits, film, ..
+            rays,
+            hits,
+            film,
+            depth,
         } = *batch;
+        let followed = if R::ACTIVE {
+            recorder.followed(depth)
+        } else {
+            None
+        };
+        let mut followed_grid = None;
         let n = rays.len();
         let LitBuffers {
             bases,
@@ -161,10 +179,17 @@ impl Shader<'_> {
         bases.clear();
         for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
             let material = self.scene.material(hit);
-            bases.push(surface_color(material, hit, || {
-                film.map_or(Footprint::Point, |f| self.footprint(&f(i), ray, hit))
-            }));
+            let mut grid = None;
+            bases.push(surface_color::<R>(
+                material,
+                hit,
+                || film.map_or(Footprint::Point, |f| self.footprint(&f(i), ray, hit)),
+                &mut grid,
+            ));
             mirror.push(material.mirror);
+            if R::ACTIVE && followed == Some(i) {
+                followed_grid = grid;
+            }
         }
         // Then, four at a time, where its secondary rays start and the view direction.
         // Every vector is gathered from where it lies (see `Vec3x4::gather`), and the
@@ -198,6 +223,24 @@ impl Shader<'_> {
                 origin: offset_origin(point, normal, t, direction),
                 color: Vec3x4::ZERO,
             };
+        }
+        if R::ACTIVE
+            && let Some(i) = followed
+        {
+            let (group, j) = (&groups[i / 4], i % 4);
+            let material = self.scene.material(&hits[i]);
+            recorder.closest(depth, &hits[i]);
+            let surface = LitSurface {
+                material: material_index(self.scene, &hits[i]),
+                color: bases[i],
+                grid: followed_grid,
+                specular: material.specular,
+                shininess: material.shininess,
+                mirror: material.mirror,
+                view: group.view.lane(j),
+                origin: group.origin.lane(j),
+            };
+            recorder.record(depth, StepKind::Surface(surface));
         }
     }
 }
