@@ -98,6 +98,8 @@ fn gradescopes_run_autograder_grades_a_python_program_and_a_broken_one() {
         "{readme}"
     );
     assert!(readme.contains("upload this zip file as it is"));
+    // Eight tests of at most 60 s each.
+    assert!(readme.contains("runs 480 s in all"), "{readme}");
 
     // Gradescope builds the image: setup.sh, as root, once.
     let setup = Command::new("bash")

@@ -363,8 +363,12 @@ fn submission_words(assignment: &Assignment) -> String {
             "Their program, which is run once per test as `{}` in a copy of their submission \
              (at most {} s per test), `{{scene}}` being the test's scene file and `{{output}}` \
              the file it must write: the picture (PNG or PPM) or the numbers (as `viewray \
-             check` reads them) the test names below.",
-            run.command, run.timeout_s
+             check` reads them) the test names below. A program that uses every second \
+             runs {} s in all, plus viewray's own time: the platform's time limit for the \
+             whole autograder must be longer, or the submission gets no results at all.",
+            run.command,
+            run.timeout_s,
+            points(run.timeout_s * assignment.tests.len() as f64)
         ),
         None => {
             "These files, at the top of their submission (a picture may be PNG or PPM, \
