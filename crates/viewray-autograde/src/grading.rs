@@ -13,7 +13,7 @@ use crate::picture::{
     MAX_PICTURE_BYTES, PICTURE_EXTENSIONS, PictureJudges, judge_picture, read_picture,
 };
 use crate::results::{Results, Status, TestResult, points};
-use crate::sandbox::{self, Limits, Program, ending_words, shell_quote};
+use crate::sandbox::{self, Limits, Program, RunAs, ending_words, shell_quote};
 use crate::words::{answers_words, appearance_words, camera_words, thumbnail, thumbnail_rgb};
 
 /// How a submission is graded.
@@ -27,6 +27,9 @@ pub struct Options {
     pub scratch_in: Option<PathBuf>,
     /// The tests to grade, by name (all when empty).
     pub only: Vec<String>,
+    /// The user the student's program runs as, by name, instead of viewray's own (which
+    /// must then be root): it owns only the program's folders.
+    pub run_as: Option<String>,
 }
 
 impl Default for Options {
@@ -39,6 +42,7 @@ impl Default for Options {
             },
             scratch_in: None,
             only: Vec::new(),
+            run_as: None,
         }
     }
 }
@@ -209,12 +213,15 @@ fn check_command(test: &Test) -> String {
 struct Scratch {
     _dir: tempfile::TempDir,
     root: PathBuf,
+    /// The user the program runs as, who owns `work`, `home` and `out`.
+    run_as: Option<RunAs>,
 }
 
 impl Scratch {
     /// Makes the scratch folder and copies the submission into it; the note lists what
     /// the copy left out.
     fn new(submission: &Path, options: &Options) -> Result<(Scratch, Option<String>), String> {
+        let run_as = options.run_as.as_deref().map(RunAs::user).transpose()?;
         let parent = options
             .scratch_in
             .clone()
@@ -234,6 +241,16 @@ impl Scratch {
                 .map_err(|e| format!("cannot make the scratch folder: {e}"))?;
         }
         let copied = copy_submission(submission, &root.join("work"), options.copy)?;
+        if let Some(user) = run_as {
+            // The scratch folder itself stays viewray's, which the user may only pass
+            // through: nothing can be written beside the program's folders.
+            use std::os::unix::fs::PermissionsExt as _;
+            std::fs::set_permissions(&root, std::fs::Permissions::from_mode(0o711))
+                .map_err(|e| format!("cannot open the scratch folder to the program: {e}"))?;
+            for folder in ["work", "home", "out"] {
+                give_all(&user, &root.join(folder))?;
+            }
+        }
         let note = (!copied.left_out.is_empty()).then(|| {
             format!(
                 "left out of the copy your program runs in (symbolic links and special files are \
@@ -241,7 +258,14 @@ impl Scratch {
                 copied.left_out.join(", ")
             )
         });
-        Ok((Scratch { _dir: dir, root }, note))
+        Ok((
+            Scratch {
+                _dir: dir,
+                root,
+                run_as,
+            },
+            note,
+        ))
     }
 
     /// Runs the student's program for test number `index` and takes what it made.
@@ -259,6 +283,11 @@ impl Scratch {
         let output = out.join(name);
         if let Err(e) = std::fs::create_dir_all(output.parent().unwrap_or(&out)) {
             return fail(format!("cannot make the output folder: {e}"), None);
+        }
+        if let Some(user) = self.run_as
+            && let Err(message) = give_all(&user, &out)
+        {
+            return fail(message, None);
         }
         let scene =
             std::path::absolute(&test.scene_file).unwrap_or_else(|_| test.scene_file.clone());
@@ -280,6 +309,7 @@ impl Scratch {
             watched: &watched,
             home: &home,
             stdout_file: stdout_file.clone(),
+            run_as: self.run_as,
         };
         let finished = match sandbox::run(&program, limits) {
             Ok(finished) => finished,
@@ -365,6 +395,19 @@ impl Scratch {
         }
         stray
     }
+}
+
+/// Gives `path` and everything in it to `user` (the copy of a submission holds no links).
+fn give_all(user: &RunAs, path: &Path) -> Result<(), String> {
+    user.give(path)?;
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+        let entries = std::fs::read_dir(path)
+            .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+        for entry in entries.filter_map(Result::ok) {
+            give_all(user, &entry.path())?;
+        }
+    }
+    Ok(())
 }
 
 /// Judges what was handed in for `test`.

@@ -7,8 +7,9 @@
 //!   a scene and what the student hands in, a picture or answers, with points and
 //!   visibility; the program to run; partial credit);
 //! - running the student's own program with limits ([`sandbox`]: a time limit with the
-//!   whole process group killed, output and file sizes capped, nothing read through a
-//!   symbolic link ([`files`]), and what is not prevented without a container, said);
+//!   whole process group killed, output and file sizes capped, another user when viewray
+//!   is root, nothing read through a symbolic link ([`files`]), and what is not prevented
+//!   without a container, said);
 //! - judging each test as viewray judges a student's work: a picture by its camera
 //!   (viewray-judge's label maps and the catalogue of mistakes) and its appearance
 //!   (viewray-compare's FLIP), behind the one function [`judge_picture`]; answers as

@@ -17,12 +17,16 @@
 //!   than [`Limits::folder_entries`] files;
 //! - **environment**: it starts with an empty environment but `PATH`, `HOME` and `TMPDIR`
 //!   (both in the scratch folder) and `LANG`, so no token of the platform reaches it,
-//!   and with no standard input.
+//!   and with no standard input;
+//! - **user**: when viewray runs as root (Gradescope runs its autograder as root), it
+//!   can run the program as another user ([`RunAs`], `--run-as nobody`), which owns only
+//!   the program's folders: it can then neither write beside them nor touch viewray, the
+//!   assignment or the results, nor signal viewray.
 //!
 //! What is not prevented without a container (which every platform runs a submission
-//! in): the program runs as the same user as viewray, so it can read and write whatever
-//! that user can (a write outside its folders is not undone, though it is capped in
-//! size); it can use the network where the platform allows it; memory is not capped here
+//! in): without [`RunAs`] the program runs as the same user as viewray, so it can read
+//! and write whatever that user can (a write outside its folders is not undone, though it
+//! is capped in size); it can use the network where the platform allows it; memory is not capped here
 //! (interpreters and JITs reserve more address space than they use, so `RLIMIT_AS` would
 //! break them: the platform's container caps memory); and a process that leaves its
 //! group on purpose (`setsid`) escapes the group's kill, though not the container's end.
@@ -72,6 +76,51 @@ impl Default for Limits {
     }
 }
 
+/// The user a program runs as, instead of viewray's own (which must then be root).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunAs {
+    /// Its user id.
+    pub uid: u32,
+    /// Its group id (its only group).
+    pub gid: u32,
+}
+
+impl RunAs {
+    /// The user named `name` in the system's user database, checked usable: viewray is
+    /// root, or already that user.
+    ///
+    /// # Errors
+    /// No such user, or viewray may not become it: a sentence.
+    pub fn user(name: &str) -> Result<RunAs, String> {
+        let user = nix::unistd::User::from_name(name)
+            .map_err(|e| format!("cannot look up the user `{name}`: {e}"))?
+            .ok_or_else(|| format!("there is no user `{name}` to run the program as"))?;
+        let me = nix::unistd::geteuid();
+        if !me.is_root() && me != user.uid {
+            return Err(format!(
+                "the program can run as `{name}` only when viewray runs as root"
+            ));
+        }
+        Ok(RunAs {
+            uid: user.uid.as_raw(),
+            gid: user.gid.as_raw(),
+        })
+    }
+
+    /// Gives `path` (not following a link) to this user.
+    ///
+    /// # Errors
+    /// The change of owner fails: a sentence.
+    pub fn give(&self, path: &Path) -> Result<(), String> {
+        std::os::unix::fs::lchown(path, Some(self.uid), Some(self.gid)).map_err(|e| {
+            format!(
+                "cannot give `{}` to the program's user: {e}",
+                path.display()
+            )
+        })
+    }
+}
+
 /// A program to run.
 #[derive(Clone, Debug)]
 pub struct Program<'a> {
@@ -86,6 +135,8 @@ pub struct Program<'a> {
     /// Where its standard output goes in full (up to [`Limits::answers_bytes`]), when
     /// it is the answers.
     pub stdout_file: Option<PathBuf>,
+    /// The user it runs as, if not viewray's.
+    pub run_as: Option<RunAs>,
 }
 
 /// How a run ended.
@@ -178,6 +229,11 @@ pub fn run(program: &Program<'_>, limits: &Limits) -> Result<Finished, String> {
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
     std::os::unix::process::CommandExt::process_group(&mut command, 0);
+    if let Some(user) = program.run_as {
+        // std drops root's supplementary groups too (setgroups) before setuid.
+        std::os::unix::process::CommandExt::uid(&mut command, user.uid);
+        std::os::unix::process::CommandExt::gid(&mut command, user.gid);
+    }
     let stdout_sink = match &program.stdout_file {
         Some(path) => Some(
             std::fs::File::create(path)

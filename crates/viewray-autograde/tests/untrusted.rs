@@ -406,3 +406,51 @@ fn crc32(bytes: &[u8]) -> u32 {
     }
     !crc
 }
+
+#[test]
+fn a_program_run_as_another_user_can_touch_only_its_folders() {
+    let course = Course::new();
+    // The user must be able to pass through the course's folders to its own.
+    use std::os::unix::fs::PermissionsExt as _;
+    std::fs::set_permissions(course.dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
+    let scene = course.path("assignment/scenes/canonical.ron");
+    let before = std::fs::read(&scene).unwrap();
+    // It answers right only if it is `nobody` and can neither change the assignment nor
+    // write beside its folder.
+    let command = format!(
+        "if [ \"$(id -un)\" = nobody ] && ! touch {{scene}} 2>/dev/null && \
+         ! (echo x > ../escaped.txt) 2>/dev/null; then echo '{RIGHT}' > {{output}}; else exit 9; fi"
+    );
+    let assignment = course.assignment(&command, 10.0);
+    let options = Options {
+        run_as: Some("nobody".to_owned()),
+        ..course.options(Limits::default())
+    };
+    let results = grade(&assignment, &course.path("submission"), &options);
+    if !running_as_root() {
+        // Only root may become another user: the submission is not graded, and says why.
+        let problem = results.problem.expect("not graded");
+        assert!(
+            problem.contains("only when viewray runs as root"),
+            "{problem}"
+        );
+        return;
+    }
+    assert!(results.all_passed(), "{results:#?}");
+    assert_eq!(std::fs::read(&scene).unwrap(), before);
+    let scratch: Vec<_> = std::fs::read_dir(course.path("scratch")).unwrap().collect();
+    assert!(
+        scratch.is_empty(),
+        "the scratch folder is removed: {scratch:?}"
+    );
+}
+
+/// Whether these tests run as root (the only user who may run a program as another).
+fn running_as_root() -> bool {
+    std::fs::read_to_string("/proc/self/status")
+        .unwrap()
+        .lines()
+        .find_map(|l| l.strip_prefix("Uid:"))
+        .and_then(|ids| ids.split_whitespace().nth(1))
+        == Some("0")
+}

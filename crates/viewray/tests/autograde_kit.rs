@@ -77,6 +77,8 @@ fn gradescopes_run_autograder_grades_a_python_program_and_a_broken_one() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+    // As on Gradescope, where /autograder is open to the user the program runs as.
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
     let root = dir.path().join("autograder");
     let names = unzip(&zip, &root.join("source"));
     for name in [
@@ -154,6 +156,39 @@ fn gradescopes_run_autograder_grades_a_python_program_and_a_broken_one() {
     assert_eq!(code, 0);
     check_gradescope(&results).unwrap();
     assert_eq!(results["score"], 0.0);
+
+    // A program that reaches for the results and the kit: run as root (as Gradescope
+    // runs the autograder), run_autograder runs it as `nobody`, who may write neither.
+    let cheat = "import os, sys\n\
+        root = os.path.abspath(sys.argv[1])\n\
+        for _ in range(4):\n    root = os.path.dirname(root)\n\
+        for target in ('results/marker', 'source/marker'):\n\
+        \x20   try:\n        open(os.path.join(root, target), 'w').write('cheat')\n\
+        \x20   except OSError:\n        pass\n";
+    let (code, results) = gradescope_run(&root, &[("raytracer.py", cheat)]);
+    assert_eq!(code, 0);
+    check_gradescope(&results).unwrap();
+    assert_eq!(results["score"], 0.0);
+    // It ran to its end (no Python error), having written no picture.
+    let output = results["tests"][0]["output"].as_str().unwrap();
+    assert!(
+        output.contains("your program ended without writing `canonical.png`"),
+        "{output}"
+    );
+    if running_as_root() {
+        assert!(!root.join("results/marker").exists());
+        assert!(!root.join("source/marker").exists());
+    }
+}
+
+/// Whether the tests run as root (as Gradescope runs run_autograder).
+fn running_as_root() -> bool {
+    std::fs::read_to_string("/proc/self/status")
+        .unwrap()
+        .lines()
+        .find_map(|l| l.strip_prefix("Uid:"))
+        .and_then(|ids| ids.split_whitespace().nth(1))
+        == Some("0")
 }
 
 #[test]

@@ -416,10 +416,13 @@ fn limits_words() -> String {
     format!(
         "Each run is stopped at the assignment's time limit with every process it started; \
          at most {} KiB of its output is kept; no file it writes may exceed {} MB, nor its \
-         folders {} MB; it starts with an empty environment and no input. It runs as the \
-         same user as viewray (root, on Gradescope), inside the platform's container, which \
-         is what keeps it from the rest of the machine: a program that leaves its process \
-         group on purpose (setsid) outlives the time limit until the container ends.",
+         folders {} MB; it starts with an empty environment and no input. Where viewray \
+         runs as root (Gradescope's run_autograder), the program runs as `nobody` \
+         (`--run-as nobody`), who owns only the program's folders and can touch neither \
+         viewray, the assignment nor the results; elsewhere it runs as viewray's user. The \
+         platform's container keeps it from the rest of the machine: a program that leaves \
+         its process group on purpose (setsid) outlives the time limit until the container \
+         ends.",
         limits.output_bytes >> 10,
         limits.file_bytes >> 20,
         limits.folder_bytes >> 20

@@ -52,6 +52,10 @@ pub(crate) struct AutogradeArgs {
     /// of the results.
     #[arg(long = "test", value_name = "NAME")]
     pub(crate) tests: Vec<String>,
+    /// Run the student's program as this user (viewray must be root), who owns only the
+    /// program's folders: what the Gradescope kit does with `nobody`.
+    #[arg(long, value_name = "USER")]
+    pub(crate) run_as: Option<String>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -112,6 +116,7 @@ pub(crate) fn run(args: &AutogradeArgs) -> ExitCode {
     };
     let options = Options {
         only: args.tests.clone(),
+        run_as: args.run_as.clone(),
         ..Options::default()
     };
     let results = grade(assignment, submission, &options);
