@@ -259,3 +259,73 @@ fn the_github_kit_is_a_workflow_whose_steps_the_reporter_reads() {
     assert_eq!((reported.total_points, reported.max_points), (14.0, 14.0));
     assert_eq!(reported.failed, None);
 }
+
+/// A wheel as `cargo xtask wheel` lays one out, holding `command` as its script.
+fn wheel_with(path: &Path, command: Option<&[u8]>) {
+    use std::io::Write as _;
+    use zip::write::SimpleFileOptions;
+    let mut wheel = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
+    let options = SimpleFileOptions::default();
+    wheel.start_file("viewray/__init__.py", options).unwrap();
+    wheel.write_all(b"from .viewray import *\n").unwrap();
+    if let Some(command) = command {
+        wheel
+            .start_file("viewray-0.1.0.data/scripts/viewray", options)
+            .unwrap();
+        wheel.write_all(command).unwrap();
+    }
+    wheel.finish().unwrap();
+}
+
+#[test]
+fn a_kit_takes_viewray_from_a_wheel() {
+    let dir = tempfile::tempdir().unwrap();
+    // The test binary stands for the wheel's command: what matters is that the kit
+    // carries exactly the script's bytes.
+    let program = std::fs::read(env!("CARGO_BIN_EXE_viewray")).unwrap();
+    let wheel = dir
+        .path()
+        .join("viewray-0.1.0-cp39-abi3-manylinux2014_x86_64.whl");
+    wheel_with(&wheel, Some(&program));
+    let zip = dir.path().join("autograder.zip");
+    let output = command()
+        .args(["autograde", "kit"])
+        .arg(homework())
+        .args(["--for", "gradescope", "--viewray"])
+        .arg(&wheel)
+        .arg("-o")
+        .arg(&zip)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let unpacked = dir.path().join("kit");
+    unzip(&zip, &unpacked);
+    let carried = std::fs::read(unpacked.join("bin/viewray")).unwrap();
+    assert!(
+        carried == program,
+        "the kit's bin/viewray is not the wheel's command"
+    );
+
+    // A wheel without the command is refused in one line, and no kit is written.
+    let empty = dir.path().join("viewray-module-only.whl");
+    wheel_with(&empty, None);
+    let refused = dir.path().join("refused.zip");
+    let output = command()
+        .args(["autograde", "kit"])
+        .arg(homework())
+        .args(["--for", "gradescope", "--viewray"])
+        .arg(&empty)
+        .arg("-o")
+        .arg(&refused)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("holds no viewray command"), "{stderr}");
+    assert!(!refused.exists());
+}

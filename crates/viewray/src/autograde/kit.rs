@@ -11,8 +11,9 @@
 //!   assignment's template repository.
 //!
 //! viewray goes onto the platform's machine as itself: the kit carries the very program
-//! that made it (or `--viewray FILE`), so nothing is built or downloaded there and every
-//! submission is judged by the viewray the instructor tried. The kit is checked before it
+//! that made it (or `--viewray FILE`: a program, or the viewray wheel whose command it
+//! takes), so nothing is built or downloaded there and every submission is judged by the
+//! viewray the instructor tried. The kit is checked before it
 //! is written: its assignment is loaded from the kit's own copy (a scene's mesh left out
 //! is named), and the glibc the program needs is read from it and stated in the README.
 
@@ -47,8 +48,9 @@ pub(crate) struct KitArgs {
     /// to, a template repository's (github).
     #[arg(short = 'o', long = "output", value_name = "OUT")]
     pub(crate) output: PathBuf,
-    /// The viewray program the kit carries, for Linux on x86-64 [default: this one]. A
-    /// viewray installed from its wheel runs on any glibc from 2.17 on.
+    /// The viewray program the kit carries, for Linux on x86-64 [default: this one], or a
+    /// viewray wheel (`.whl`), whose command the kit carries: it runs on any glibc from
+    /// 2.17 on, so on every platform image.
     #[arg(long, value_name = "FILE")]
     pub(crate) viewray: Option<PathBuf>,
 }
@@ -70,8 +72,7 @@ pub(crate) fn kit(args: &KitArgs) -> Result<()> {
         Some(path) => path.clone(),
         None => std::env::current_exe().context("cannot find this viewray program")?,
     };
-    let binary = std::fs::read(&binary_path)
-        .with_context(|| format!("cannot read the viewray program {}", binary_path.display()))?;
+    let binary = read_viewray(&binary_path)?;
     let glibc = glibc_needed(&binary);
     let name = file_name(&assignment.path);
     let kit_prefix = format!("{KIT_FOLDER}/");
@@ -103,13 +104,43 @@ pub(crate) fn kit(args: &KitArgs) -> Result<()> {
     if let Some(glibc) = glibc.filter(|&g| g > OLDEST_IMAGE_GLIBC) {
         crate::style::warning(format_args!(
             "this viewray needs glibc {}.{} or newer: choose a platform image that has it \
-             (Ubuntu 22.04 has 2.35), or make the kit with a viewray installed from its wheel \
-             (glibc 2.17 and newer)",
+             (Ubuntu 22.04 has 2.35), or make the kit with `--viewray` and the viewray wheel \
+             (`cargo xtask wheel`; glibc 2.17 and newer)",
             glibc.0, glibc.1
         ));
     }
     println!("wrote {}", args.output.display());
     Ok(())
+}
+
+/// The viewray program at `path`: the file itself or, for a wheel (`.whl`, as `cargo
+/// xtask wheel` builds it), the command the wheel installs (`*.data/scripts/viewray`).
+fn read_viewray(path: &Path) -> Result<Vec<u8>> {
+    let shown = path.display();
+    if path.extension().is_none_or(|extension| extension != "whl") {
+        return std::fs::read(path)
+            .with_context(|| format!("cannot read the viewray program {shown}"));
+    }
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot read the wheel {shown}"))?;
+    let mut wheel =
+        zip::ZipArchive::new(file).with_context(|| format!("{shown}: not a wheel (a zip file)"))?;
+    let Some(name) = wheel
+        .file_names()
+        .find(|name| name.ends_with(".data/scripts/viewray"))
+        .map(str::to_owned)
+    else {
+        bail!("{shown}: this wheel holds no viewray command (no *.data/scripts/viewray)");
+    };
+    let mut bytes = Vec::new();
+    std::io::Read::read_to_end(
+        &mut wheel
+            .by_name(&name)
+            .with_context(|| format!("{shown}: cannot read {name}"))?,
+        &mut bytes,
+    )
+    .with_context(|| format!("{shown}: cannot read {name}"))?;
+    Ok(bytes)
 }
 
 /// The assignment file (as `path` in the kit) and every input it names, under `prefix`.
@@ -210,6 +241,17 @@ fn glibc_words(glibc: Option<(u32, u32)>) -> String {
     }
 }
 
+/// Which of the platform's base images the kit's viewray runs on.
+fn image_words(glibc: Option<(u32, u32)>) -> String {
+    match glibc {
+        Some((major, minor)) if (major, minor) > OLDEST_IMAGE_GLIBC => format!(
+            "a base image with glibc {major}.{minor} or newer (see below; Ubuntu 22.04 or \
+             newer)"
+        ),
+        _ => "any of its Ubuntu base images (viewray runs on each, see below)".to_owned(),
+    }
+}
+
 fn file_name(path: &Path) -> String {
     path.file_name().map_or_else(
         || "assignment.ron".to_owned(),
@@ -230,8 +272,8 @@ fn gradescope_files(
          Made by `viewray autograde kit {name} --for gradescope` ({version}).\n\n\
          ## What to upload\n\n\
          1. On Gradescope, create a Programming Assignment worth {max} points.\n\
-         2. On its Configure Autograder page, choose a base image with a new enough glibc \
-            (see below; Ubuntu 22.04 or newer), and upload this zip file as it is: \
+         2. On its Configure Autograder page, choose {image}, and upload this zip file as \
+            it is: \
             `setup.sh` and `run_autograder` must stay at the zip's root (to change a file, \
             unzip it, edit, and zip the files, not their folder).\n\
          3. If the students' programs need what the image lacks (a language, a library), add \
@@ -254,6 +296,7 @@ fn gradescope_files(
         submission = submission_words(assignment),
         tests = tests_table(assignment),
         glibc = glibc_words(glibc),
+        image = image_words(glibc),
         limits = limits_words(),
     );
     vec![
@@ -474,6 +517,14 @@ fn write_folder(files: &[KitFile], output: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_readme_asks_for_a_newer_image_only_when_viewray_needs_one() {
+        assert!(image_words(Some((2, 17))).starts_with("any of its Ubuntu base images"));
+        assert!(image_words(Some((2, 31))).starts_with("any of its Ubuntu base images"));
+        assert!(image_words(None).starts_with("any of its Ubuntu base images"));
+        assert!(image_words(Some((2, 34))).starts_with("a base image with glibc 2.34 or newer"));
+    }
 
     #[test]
     fn the_newest_glibc_asked_for_is_found() {
