@@ -6,7 +6,7 @@ use std::io;
 use image::imageops::FilterType;
 use viewray_compare::{Comparison, Outcome, Reference, RgbImage, RgbaImage};
 
-use crate::folders::{ReferenceImage, Student, pair};
+use crate::folders::{ReferenceImage, Student};
 use crate::judging::{in_order, judge_counterpart};
 
 /// The largest thumbnail of a report, in pixels: images are shrunk to fit, never grown.
@@ -95,7 +95,7 @@ pub fn thumbnail<P: image::Pixel + 'static>(
 /// `pictures`, each failed image keeps its thumbnails.
 pub fn grade_student(assignment: &Assignment, student: &Student, pictures: bool) -> StudentGrade {
     let images: Vec<ReferenceImage> = assignment.tasks.iter().map(|t| t.image.clone()).collect();
-    let pairing = match pair(&student.folder, &images) {
+    let pairing = match student.pair(&images) {
         Ok(pairing) => pairing,
         Err(error) => {
             let message = format!("cannot read the folder: {error}");

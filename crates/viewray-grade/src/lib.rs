@@ -21,6 +21,7 @@
 //! scene reaches it as [`viewray_compare::Expectations`] inside its `Reference`).
 
 mod class;
+mod flat;
 mod folders;
 mod gradebook;
 mod judging;
@@ -31,8 +32,8 @@ pub use class::{
     grade_class, grade_student, thumbnail,
 };
 pub use folders::{
-    Counterpart, FolderError, Pairing, ReferenceImage, Student, Submissions, listed, pair,
-    reference_images, submissions,
+    Counterpart, FolderError, HandedIn, Pairing, ReferenceImage, Student, Submissions,
+    flat_submissions, is_image_name, listed, pair, reference_images, submissions,
 };
 pub use gradebook::{HEADER, gradebook, write_gradebook};
 pub use judging::{in_order, judge_counterpart, load_counterpart, unreadable};
