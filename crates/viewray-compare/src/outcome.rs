@@ -55,13 +55,11 @@ impl Outcome {
         self.comparison()?.metrics.map(|m| m.peak_flip)
     }
 
-    /// What a row says after the figures: the diagnosis, else why it failed, else nothing.
+    /// What a row says after the figures: the diagnosis, else why it failed, else nothing
+    /// ([`Comparison::note`]).
     pub fn note(&self) -> String {
         match self {
-            Outcome::Compared(c) => match c.diagnosis {
-                Some(d) => d.to_string(),
-                None => c.reasons(),
-            },
+            Outcome::Compared(c) => c.note(),
             Outcome::Failed(message) | Outcome::Error(message) => message.clone(),
         }
     }
