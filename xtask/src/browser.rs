@@ -13,6 +13,8 @@ use std::process::{Child, Command, Stdio};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
+use crate::run;
+
 /// The Chromium the test drives: Debian's.
 const CHROMIUM: &str = "/usr/bin/chromium";
 
@@ -77,12 +79,15 @@ fn ensure_system_packages() -> Result<()> {
         return Ok(());
     }
     eprintln!("installing {} with apt-get", missing.join(", "));
-    run(Command::new("apt-get").arg("update"))?;
-    run(Command::new("apt-get")
-        .args(["install", "-y", "--no-install-recommends"])
-        .args(&missing)
-        .env("DEBIAN_FRONTEND", "noninteractive"))
-    .context("cannot install the browser test's tools (run as root, or install them)")
+    let what = "install the browser test's tools (run as root, or install them)";
+    run(Command::new("apt-get").arg("update"), what)?;
+    run(
+        Command::new("apt-get")
+            .args(["install", "-y", "--no-install-recommends"])
+            .args(&missing)
+            .env("DEBIAN_FRONTEND", "noninteractive"),
+        what,
+    )
 }
 
 /// Installs playwright-core into `work/node_modules` from the committed lock file,
@@ -102,9 +107,12 @@ fn ensure_playwright(root: &Path, work: &Path) -> Result<()> {
         std::fs::copy(source.join(file), work.join(file))
             .with_context(|| format!("cannot copy {file} into {}", work.display()))?;
     }
-    run(Command::new("npm")
-        .args(["ci", "--no-audit", "--no-fund", "--loglevel=error"])
-        .current_dir(work))
+    run(
+        Command::new("npm")
+            .args(["ci", "--no-audit", "--no-fund", "--loglevel=error"])
+            .current_dir(work),
+        "install playwright-core from npm",
+    )
 }
 
 /// The version of playwright-core a package lock file pins.
@@ -154,27 +162,6 @@ impl Drop for Server {
     fn drop(&mut self) {
         self.stop();
     }
-}
-
-/// Runs `command`, echoing it, and fails unless it succeeds.
-fn run(command: &mut Command) -> Result<()> {
-    let shown = format!(
-        "{} {}",
-        command.get_program().to_string_lossy(),
-        command
-            .get_args()
-            .map(|a| a.to_string_lossy().into_owned())
-            .collect::<Vec<_>>()
-            .join(" ")
-    );
-    eprintln!("$ {shown}");
-    let status = command
-        .status()
-        .with_context(|| format!("cannot run `{shown}`"))?;
-    if !status.success() {
-        bail!("`{shown}` failed ({status})");
-    }
-    Ok(())
 }
 
 #[cfg(test)]

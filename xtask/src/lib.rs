@@ -47,6 +47,27 @@ pub fn cargo() -> String {
     std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned())
 }
 
+/// Runs `command`, echoing it as a shell would show it, and fails unless it succeeds;
+/// the error says `what` it was for and the command.
+///
+/// # Errors
+/// When the command cannot start or exits unsuccessfully.
+pub fn run(command: &mut Command, what: &str) -> Result<()> {
+    let shown = std::iter::once(command.get_program())
+        .chain(command.get_args())
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ");
+    eprintln!("$ {shown}");
+    let status = command
+        .status()
+        .with_context(|| format!("could not {what}: cannot run `{shown}`"))?;
+    if !status.success() {
+        bail!("could not {what}: `{shown}` failed ({status})");
+    }
+    Ok(())
+}
+
 /// Where cargo puts the workspace's build outputs: `cargo metadata`'s
 /// `target_directory`, which honours `CARGO_TARGET_DIR` and `build.target-dir`. Every
 /// xtask writes its own outputs (reports, installed tools, screenshots) under it and

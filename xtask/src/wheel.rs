@@ -31,6 +31,7 @@ use clap::Args;
 use serde_json::Value;
 
 use crate::mutants::{base_commit, git};
+use crate::run;
 
 /// The build tools, from PyPI: maturin, the zig toolchain it links with, auditwheel.
 const TOOLS: [&str; 3] = ["maturin==1.16.0", "ziglang==0.15.2", "auditwheel==6.8.2"];
@@ -479,17 +480,6 @@ fn only_wheel(dir: &Path, prefix: &str) -> Result<PathBuf> {
 fn remove_dir(dir: &Path) -> Result<()> {
     if dir.exists() {
         std::fs::remove_dir_all(dir).with_context(|| format!("cannot remove {}", dir.display()))?;
-    }
-    Ok(())
-}
-
-fn run(command: &mut Command, what: &str) -> Result<()> {
-    eprintln!("$ {command:?}");
-    let status = command
-        .status()
-        .with_context(|| format!("could not {what}"))?;
-    if !status.success() {
-        bail!("could not {what} ({status})");
     }
     Ok(())
 }

@@ -48,7 +48,7 @@ pub enum CameraError {
     Image(#[from] ImageLimitError),
     /// A catalogue mistake that cannot be made in this camera (see
     /// [`crate::Mistake::fits`]; `size-minus-one` also needs two pixels each way).
-    #[error("the mistake {id} cannot be made in a {family} camera{detail}")]
+    #[error("the mistake {id} cannot be made in this {family} camera{detail}")]
     MistakeDoesNotFit {
         /// The mistake's id.
         id: &'static str,

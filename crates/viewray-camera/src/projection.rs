@@ -332,6 +332,28 @@ impl Projection {
         }
     }
 
+    /// The principal point: where the optical axis (the ray through `u + sx = 0`, `v +
+    /// sy = 0`) meets the image, as fractions `(x / W, y / H)` of its width and height,
+    /// from the top-left corner:
+    ///
+    /// ```text
+    /// x / W = 1/2 - sx / vw,   y / H = 1/2 + sy / vh
+    /// ```
+    ///
+    /// The image's centre `(1/2, 1/2)` without a shift and for the parallel families;
+    /// `None` for the panoramic ones, which have no image plane.
+    pub fn principal_point(&self) -> Option<DVec2> {
+        let shifted = |viewport: DVec2, shift: DVec2| {
+            DVec2::new(0.5 - shift.x / viewport.x, 0.5 + shift.y / viewport.y)
+        };
+        match self {
+            Projection::Perspective(p) => Some(shifted(p.viewport, p.shift)),
+            Projection::ThinLens(p) => Some(shifted(p.viewport, p.shift)),
+            Projection::Orthographic(_) | Projection::Oblique(_) => Some(DVec2::splat(0.5)),
+            Projection::Equirectangular | Projection::Fisheye(_) => None,
+        }
+    }
+
     /// Whether all rays are parallel (orthographic and oblique).
     pub fn is_parallel(&self) -> bool {
         matches!(self, Projection::Orthographic(_) | Projection::Oblique(_))

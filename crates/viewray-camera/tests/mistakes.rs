@@ -310,12 +310,12 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
     check(
         &ortho,
         Mistake::DistanceMissing,
-        "the mistake distance-missing cannot be made in a Orthographic camera",
+        "the mistake distance-missing cannot be made in this Orthographic camera",
     );
     check(
         &right_camera(Family::Perspective),
         Mistake::ObliqueSign,
-        "the mistake oblique-sign cannot be made in a Perspective camera",
+        "the mistake oblique-sign cannot be made in this Perspective camera",
     );
     let narrow = right_camera(Family::Perspective)
         .with_image_size(1, 4)
@@ -323,7 +323,7 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
     check(
         &narrow,
         Mistake::SizeMinusOne,
-        "the mistake size-minus-one cannot be made in a Perspective camera of 1 x 4 pixels",
+        "the mistake size-minus-one cannot be made in this Perspective camera of 1 x 4 pixels",
     );
     let fine = right_camera(Family::Perspective)
         .with_mistakes(Mistake::SizeMinusOne.into())
@@ -333,6 +333,12 @@ fn entries_that_do_not_fit_the_camera_are_errors() {
         Err(CameraError::MistakeDoesNotFit { .. })
     ));
     assert_eq!(fine.with_image_size(5, 4).unwrap().width(), 5);
+    // Two pixels each way is the least the mistake needs: one fewer either way is refused.
+    assert_eq!(fine.with_image_size(2, 2).unwrap().height(), 2);
+    assert!(matches!(
+        fine.with_image_size(1, 4),
+        Err(CameraError::MistakeDoesNotFit { .. })
+    ));
     let fisheye = Camera::new(
         Frame::CANONICAL,
         Projection::Fisheye(viewray_camera::Fisheye { fov: PI }),
@@ -499,4 +505,73 @@ proptest! {
             assert_eq!(block, camera.generate_ray(r, c, sample));
         });
     }
+}
+
+/// `(u, v)` of a pixel, as the lecture computes it, at any film offset; a pixel entry
+/// moves it as the student's formula does; the panoramic cameras have none.
+#[test]
+fn the_image_plane_point_is_the_lectures_u_v() {
+    let camera = right_camera(Family::Perspective);
+    let uv = camera
+        .image_plane_point(2, 5, DVec2::new(0.25, 0.75))
+        .unwrap();
+    let expected = DVec2::new(
+        ((5.25) / 8.0 - 0.5) * VIEWPORT.x,
+        -((2.75) / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    assert!((uv - expected).length() < 1e-15, "{uv} != {expected}");
+    let corner = camera.with_mistakes(Mistake::PixelCorner.into()).unwrap();
+    let uv = corner
+        .image_plane_point(2, 5, CameraSample::CENTER.p_film)
+        .unwrap();
+    let expected = DVec2::new(
+        (5.0 / 8.0 - 0.5) * VIEWPORT.x,
+        -(2.0 / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    assert!((uv - expected).length() < 1e-15, "{uv} != {expected}");
+    let fisheye = Camera::new(
+        Frame::CANONICAL,
+        Projection::Fisheye(viewray_camera::Fisheye { fov: PI }),
+        4,
+        4,
+    )
+    .unwrap();
+    assert_eq!(fisheye.image_plane_point(1, 1, DVec2::splat(0.5)), None);
+}
+
+/// `basis-missing` in the parallel families: the camera's coordinates taken as the
+/// world's, so a ray starts at e + (u, v, 0) and runs along (0, 0, -1) (or the oblique
+/// slant in world axes).
+#[test]
+fn basis_missing_takes_the_parallel_cameras_coordinates_as_the_worlds() {
+    let (row, col) = (1, 6);
+    let (u, v) = (
+        ((6.5) / 8.0 - 0.5) * VIEWPORT.x,
+        -((1.5) / 6.0 - 0.5) * VIEWPORT.y,
+    );
+    let ortho = right_camera(Family::Orthographic)
+        .with_mistakes(Mistake::BasisMissing.into())
+        .unwrap();
+    let ray = ortho.generate_ray(row, col, CameraSample::CENTER).unwrap();
+    assert_close(ray.origin, EYE + DVec3::new(u, v, 0.0), "ortho origin");
+    assert_close(ray.direction, DVec3::NEG_Z, "ortho direction");
+    let oblique = right_camera(Family::Oblique)
+        .with_mistakes(Mistake::BasisMissing.into())
+        .unwrap();
+    let ray = oblique
+        .generate_ray(row, col, CameraSample::CENTER)
+        .unwrap();
+    assert_close(ray.origin, EYE + DVec3::new(u, v, 0.0), "oblique origin");
+    let slant = DVec3::new(-RATIO * ANGLE.cos(), -RATIO * ANGLE.sin(), -1.0);
+    assert_close(ray.direction, slant, "oblique direction");
+    // And without the eye too: 0 + (u, v, 0).
+    let both: Mistakes = [Mistake::BasisMissing, Mistake::EyeMissing]
+        .into_iter()
+        .collect();
+    let ray = right_camera(Family::Orthographic)
+        .with_mistakes(both)
+        .unwrap()
+        .generate_ray(row, col, CameraSample::CENTER)
+        .unwrap();
+    assert_close(ray.origin, DVec3::new(u, v, 0.0), "no eye, no basis");
 }

@@ -278,3 +278,48 @@ fn field_of_view_constructors() {
     let o = Orthographic::from_height(3.0, 4.0 / 3.0).unwrap();
     assert!((o.viewport - DVec2::new(4.0, 3.0)).abs().max_element() < 1e-12);
 }
+
+/// The principal point, worked by hand: the homework's shifted camera (vw = 3, vh = 1,
+/// shift (0.5, 0.25)) has its optical axis at x / W = 1/2 - 0.5/3 = 1/3 and
+/// y / H = 1/2 + 0.25/1 = 3/4, and a ray there goes straight along -w.
+#[test]
+fn the_principal_point_is_where_the_optical_axis_meets_the_image() {
+    use viewray_camera::{Camera, Frame, Oblique, Perspective, Projection, ThinLens};
+    let shift = DVec2::new(0.5, 0.25);
+    let viewport = DVec2::new(3.0, 1.0);
+    let perspective = Projection::Perspective(Perspective {
+        distance: 2.0,
+        viewport,
+        shift,
+    });
+    let expected = DVec2::new(1.0 / 3.0, 0.75);
+    let found = perspective.principal_point().unwrap();
+    assert!((found - expected).length() < 1e-15, "{found}");
+    let camera = Camera::new(Frame::CANONICAL, perspective, 30, 20).unwrap();
+    let ray = camera
+        .generate_ray_through(found * DVec2::new(30.0, 20.0), DVec2::splat(0.5))
+        .unwrap();
+    assert!(ray.direction.truncate().length() < 1e-12, "{ray:?}");
+    let thin = Projection::ThinLens(ThinLens {
+        distance: 2.0,
+        viewport,
+        shift,
+        aperture: 0.1,
+        focus: 4.0,
+    });
+    assert_eq!(thin.principal_point(), Some(found));
+    let oblique = Projection::Oblique(Oblique {
+        viewport,
+        ratio: 0.5,
+        angle: 0.3,
+    });
+    assert_eq!(oblique.principal_point(), Some(DVec2::splat(0.5)));
+    let ortho = Projection::Orthographic(viewray_camera::Orthographic {
+        viewport,
+        lens: None,
+    });
+    assert_eq!(ortho.principal_point(), Some(DVec2::splat(0.5)));
+    assert_eq!(Projection::Equirectangular.principal_point(), None);
+    let fisheye = Projection::Fisheye(viewray_camera::Fisheye { fov: 3.0 });
+    assert_eq!(fisheye.principal_point(), None);
+}

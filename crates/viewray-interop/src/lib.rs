@@ -178,7 +178,7 @@ impl ImportError {
         Self {
             path: path.to_path_buf(),
             position,
-            message: one_line(&message.into()),
+            message: viewray_scene::one_line(&message.into()),
         }
     }
 
@@ -199,30 +199,16 @@ impl ImportError {
 }
 
 impl fmt::Display for ImportError {
+    /// Worded as a scene's errors are (viewray-scene's one rule for errors about files).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", one_line(&self.path.display().to_string()))?;
-        if let Some((line, column)) = self.position {
-            write!(f, ":{line}:{column}")?;
-        }
-        write!(f, ": {}", self.message)
+        let position = self
+            .position
+            .map(|(line, column)| viewray_scene::Position { line, column });
+        viewray_scene::write_file_error(f, &self.path, position, &self.message)
     }
 }
 
 impl std::error::Error for ImportError {}
-
-/// `text` with control characters escaped, so an error stays on one line.
-fn one_line(text: &str) -> String {
-    text.chars()
-        .flat_map(|c| {
-            let escaped: Vec<char> = if c.is_control() {
-                c.escape_default().collect()
-            } else {
-                vec![c]
-            };
-            escaped
-        })
-        .collect()
-}
 
 /// Writes `scene` for `format`. `file_name` is the main output's file name (e.g.
 /// `scene.xml`): the files it refers to are named after it.

@@ -10,6 +10,7 @@ use std::collections::TryReserveError;
 
 use glam::DVec3;
 use viewray_camera::{Camera, CameraSample};
+use viewray_judge::{Answer, CheckOptions, Checker, Report};
 use viewray_render::{RenderError, RenderSettings, View, render_view};
 use viewray_scene::Scene;
 
@@ -49,6 +50,39 @@ pub fn pixel_rays(camera: &Camera) -> Result<PixelRays, TryReserveError> {
         origins,
         directions,
     })
+}
+
+/// A student's rays judged as `viewray check` judges printed ones: the ray of pixel
+/// `(row, col)` is `origins[row, col]` and `directions[row, col]` (row-major `(H, W, 3)`
+/// buffers of `camera`'s image), each judged against the camera (directions up to a
+/// positive factor unless `options` say otherwise) and the wrong ones explained by the
+/// lecture's catalogue.
+pub fn check_rays(
+    camera: &Camera,
+    origins: &[f64],
+    directions: &[f64],
+    options: CheckOptions,
+) -> Report {
+    let width = camera.width() as usize;
+    let mut checker = Checker::new(camera, options);
+    let rays = origins.chunks_exact(3).zip(directions.chunks_exact(3));
+    for (k, (origin, direction)) in rays.enumerate() {
+        let (row, col) = (k / width, k % width);
+        let answer = Answer::Ray {
+            row: i64::try_from(row).unwrap_or(i64::MAX),
+            col: i64::try_from(col).unwrap_or(i64::MAX),
+            one_based: false,
+            uv: None,
+            origin: DVec3::from_slice(origin),
+            direction: DVec3::from_slice(direction),
+        };
+        // Every index is inside the image: the arrays are the image's shape.
+        let line = u64::try_from(k + 1).unwrap_or(u64::MAX);
+        checker
+            .check(line, &answer)
+            .expect("an array's pixels are the image's");
+    }
+    checker.finish()
 }
 
 /// The continuous image coordinates `(x, y)` of each point, in pixels from the image's
@@ -193,5 +227,41 @@ mod tests {
             pixels,
             "4 samples antialias the edge"
         );
+    }
+
+    /// The arrays a student with v without its minus sign computes, in NumPy terms:
+    /// the check names the mistake, and the right arrays pass.
+    #[test]
+    fn a_students_arrays_are_checked_and_explained() {
+        let text = "(image: (width: 4, height: 3), \
+                    camera: (eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0), \
+                    projection: Perspective(distance: 1.0, viewport: (1.0, 1.0))))";
+        let scene = viewray_scene::SceneLoader::text(text, Path::new("<test>"))
+            .load()
+            .unwrap()
+            .scene;
+        let camera = scene.camera();
+        let right = pixel_rays(camera).unwrap();
+        let options = CheckOptions::default();
+        let report = check_rays(camera, &right.origins, &right.directions, options);
+        assert!(report.passed(), "{report}");
+        assert_eq!(report.answers, 12);
+        let mut flipped = right.directions.clone();
+        for row in 0..3 {
+            for col in 0..4 {
+                let v = -((f64::from(row) + 0.5) / 3.0 - 0.5);
+                flipped[3 * (4 * row as usize + col) + 1] = -v;
+            }
+        }
+        let report = check_rays(camera, &right.origins, &flipped, options);
+        assert!(!report.passed());
+        let ids: Vec<String> = report
+            .diagnosis
+            .unwrap()
+            .alternatives
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+        assert!(ids.contains(&"v-sign".to_owned()), "{ids:?}");
     }
 }

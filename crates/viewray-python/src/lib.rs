@@ -8,6 +8,8 @@
 //! f = scene.frame()                         # {"e", "u", "v", "w"}: float64 (3,)
 //! xy = scene.project(points)                # (N, 3) -> (N, 2); NaN where not seen
 //! img = scene.render(samples=4)             # uint8 (H, W, 3), as `viewray render`
+//! report = viewray.check(scene, origins=o2, directions=d2)   # a student's arrays
+//! report.ok, report.mistakes                # False, ["v-sign"]
 //! ```
 //!
 //! Like the command, this crate is a thin layer over the libraries: viewray-scene loads
@@ -38,14 +40,13 @@
 //! `cargo test` need no Python and compile no PyO3; the module itself is tested from
 //! Python by `cargo xtask wheel --test` (`tests/test_module.py`).
 //!
-//! # Adding `viewray.check`
+//! # Checking a student's arrays
 //!
-//! `viewray.check(scene, origins=..., directions=...)` judges a student's arrays with
-//! viewray-judge, as `viewray check` does. Its arguments are checked by
-//! [`ArraySpec::per_pixel`] (`(H, W, 3)` float64 for the scene's image) through
-//! `module::float64_array`; the judge runs with the GIL released inside `guarded`, like
-//! `render`; its report becomes a small `#[pyclass]` (`ok`, `mistakes`, `__str__` with
-//! the command's words), registered where `module::viewray_module` marks its place.
+//! `viewray.check(scene, origins=..., directions=...)` judges a student's rays, as
+//! `viewray check` judges printed ones ([`check_rays`], on viewray-judge): each pixel's
+//! ray against the scene's camera, and the wrong ones explained by the lecture's
+//! catalogue. Its report (`ok`, `mistakes`, `alternatives`, `wrong`, and `str()` in the
+//! command's words) is `viewray.Report`.
 
 mod arrays;
 mod guard;
@@ -53,6 +54,6 @@ mod guard;
 mod module;
 mod shapes;
 
-pub use arrays::{PixelRays, pixel_rays, project_points, render_rgb8};
+pub use arrays::{PixelRays, check_rays, pixel_rays, project_points, render_rgb8};
 pub use guard::{Panic, catch_panic};
 pub use shapes::{ArraySpec, Axis, FLOAT64, samples};

@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use viewray_scene::{Scene, SceneLoader};
 
-use crate::arrays::{pixel_rays, project_points, render_rgb8};
+use crate::arrays::{check_rays, pixel_rays, project_points, render_rgb8};
 use crate::guard::catch_panic;
 use crate::shapes::{self, ArraySpec};
 
@@ -219,6 +219,125 @@ impl PyScene {
     }
 }
 
+/// What `viewray.check` found: whether every ray is right, and the catalogue's
+/// explanation of the wrong ones. `str(report)` is the summary `viewray check` prints.
+#[pyclass(name = "Report", module = "viewray", frozen)]
+struct PyReport {
+    report: viewray_judge::Report,
+}
+
+#[pymethods]
+impl PyReport {
+    /// Whether every ray is right.
+    #[getter]
+    fn ok(&self) -> bool {
+        self.report.passed()
+    }
+
+    /// How many rays are wrong.
+    #[getter]
+    fn wrong(&self) -> u64 {
+        self.report.wrong
+    }
+
+    /// The catalogue ids that explain the wrong rays (`["v-sign"]`; two ids for two
+    /// mistakes made together; entries that make the same rays for this camera are all
+    /// listed); empty when every ray is right or no entry explains them.
+    #[getter]
+    fn mistakes(&self) -> Vec<&'static str> {
+        let mut ids = Vec::new();
+        for set in self.alternative_sets() {
+            for mistake in set.iter() {
+                if !ids.contains(&mistake.id()) {
+                    ids.push(mistake.id());
+                }
+            }
+        }
+        ids
+    }
+
+    /// Each explanation on its own: a list of lists of ids (`[["v-sign"],
+    /// ["v-cross-order"]]` when either makes these rays).
+    #[getter]
+    fn alternatives(&self) -> Vec<Vec<&'static str>> {
+        self.alternative_sets()
+            .iter()
+            .map(|set| set.iter().map(|m| m.id()).collect())
+            .collect()
+    }
+
+    fn __str__(&self) -> String {
+        self.report.to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<viewray.Report: {} rays, {} wrong{}>",
+            self.report.answers,
+            self.report.wrong,
+            match self.mistakes().as_slice() {
+                [] => String::new(),
+                ids => format!(": {}", ids.join(", ")),
+            }
+        )
+    }
+}
+
+impl PyReport {
+    fn alternative_sets(&self) -> &[viewray_camera::Mistakes] {
+        self.report
+            .diagnosis
+            .as_ref()
+            .map_or(&[], |d| d.alternatives.as_slice())
+    }
+}
+
+/// Judges a student's rays, as `viewray check` judges printed ones: `origins` and
+/// `directions` are float64 arrays of shape (H, W, 3) for the scene's image (row 0 at
+/// the top; what `Scene.rays()` returns for the right camera). Directions are right up
+/// to a positive factor unless `exact_direction`; every comparison is relative, within
+/// `tolerance`. Returns a `Report`: `ok`, `mistakes` (the catalogue ids that explain the
+/// wrong rays) and, as text, the command's words with the formula to fix.
+///
+/// Raises `ValueError` for arrays of another dtype or shape, or a tolerance that is not
+/// a positive number.
+#[pyfunction]
+#[pyo3(signature = (scene, origins, directions, *, tolerance = 1e-6, exact_direction = false))]
+fn check(
+    py: Python<'_>,
+    scene: &PyScene,
+    origins: &Bound<'_, PyAny>,
+    directions: &Bound<'_, PyAny>,
+    tolerance: f64,
+    exact_direction: bool,
+) -> PyResult<PyReport> {
+    guarded(|| {
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "tolerance: expected a positive number such as 1e-6, found {tolerance}"
+            )));
+        }
+        let camera = *scene.scene.camera();
+        let (width, height) = (camera.width(), camera.height());
+        let buffer = |value: &Bound<'_, PyAny>, name: &'static str| -> PyResult<Vec<f64>> {
+            let array = float64_array(value, &ArraySpec::per_pixel(name, width, height))?;
+            let array = array.cast::<numpy::PyArrayDyn<f64>>()?.readonly();
+            Ok(array.as_array().iter().copied().collect())
+        };
+        let (origins, directions) = (
+            buffer(origins, "origins")?,
+            buffer(directions, "directions")?,
+        );
+        let options = viewray_judge::CheckOptions {
+            one_based: false,
+            tolerance,
+            exact_direction,
+        };
+        let report = py.detach(|| check_rays(&camera, &origins, &directions, options));
+        Ok(PyReport { report })
+    })
+}
+
 /// `value` as a NumPy array that `spec` accepts.
 ///
 /// # Errors
@@ -244,6 +363,7 @@ fn viewray_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add_class::<PyScene>()?;
-    // viewray.check(scene, origins=..., directions=...) goes here: see the crate doc.
+    m.add_class::<PyReport>()?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
     Ok(())
 }

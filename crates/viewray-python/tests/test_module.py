@@ -94,6 +94,60 @@ def test_rays_are_the_lectures_formula():
     assert same(origins[0, 2], [1.0, 0.0, 0.0])
 
 
+def lecture_rays(mistake=None):
+    """The rays of `fixtures/scenes/perspective_general.ron`'s camera (240 x 180, d = 1,
+    viewport 0.8 x 0.6, no shift, as the file says) as a student computes them with
+    NumPy from the lecture's formulas, with `mistake` (a catalogue id) made: u, v from
+    (i, j), then origin e and direction u U + v V - d W in the frame viewray prints."""
+    scene = viewray.Scene.load(FIXTURES / "scenes" / "perspective_general.ron")
+    frame = scene.frame()
+    width, height, d, vw, vh = 240, 180, 1.0, 0.8, 0.6
+    assert (scene.width, scene.height) == (width, height)
+    i, j = np.meshgrid(np.arange(1, height + 1), np.arange(1, width + 1), indexing="ij")
+    if mistake == "pixel-corner":
+        u = ((j - 1) / width - 0.5) * vw
+        v = -((i - 1) / height - 0.5) * vh
+    else:
+        u = ((j - 0.5) / width - 0.5) * vw
+        v = -((i - 0.5) / height - 0.5) * vh
+    if mistake == "v-sign":
+        v = -v
+    if mistake == "u-sign":
+        u = -u
+    directions = u[..., None] * frame["u"] + v[..., None] * frame["v"] - d * frame["w"]
+    origins = np.broadcast_to(frame["e"], directions.shape).copy()
+    return scene, origins, directions
+
+
+def test_check_passes_right_arrays_and_names_planted_mistakes():
+    scene, origins, directions = lecture_rays()
+    report = viewray.check(scene, origins, directions)
+    assert report.ok and report.wrong == 0 and report.mistakes == [], str(report)
+    # Normalized directions are right too, unless asked to be exact.
+    unit = directions / np.linalg.norm(directions, axis=-1, keepdims=True)
+    assert viewray.check(scene, origins, unit).ok
+    assert not viewray.check(scene, origins, unit, exact_direction=True).ok
+    for mistake in ["v-sign", "u-sign", "pixel-corner"]:
+        scene, origins, directions = lecture_rays(mistake)
+        report = viewray.check(scene, origins=origins, directions=directions)
+        assert not report.ok
+        assert mistake in report.mistakes, str(report)
+        assert [mistake] in report.alternatives
+        # The same words as the command.
+        assert "the catalogue explains them" in str(report)
+        assert "you wrote:" in str(report)
+
+
+def test_check_refuses_arrays_of_another_shape_or_dtype():
+    scene, origins, directions = lecture_rays()
+    with pytest.raises(ValueError, match=r"directions: expected a float64 array of shape"):
+        viewray.check(scene, origins, directions[:, :-1])
+    with pytest.raises(ValueError, match=r"origins: expected a float64 array"):
+        viewray.check(scene, origins.astype(np.float32), directions)
+    with pytest.raises(ValueError, match=r"tolerance"):
+        viewray.check(scene, origins, directions, tolerance=-1.0)
+
+
 def sampled_pixels(height, width, count=24, seed=44):
     """The four corners, the centre and `count` pixels drawn with a fixed seed."""
     rng = np.random.default_rng(seed)
@@ -317,7 +371,7 @@ def test_the_type_stub_is_shipped_and_names_what_the_module_has():
     assert stub.with_name("py.typed").is_file()
     tree = ast.parse(stub.read_text())
     top = {n.target.id for n in tree.body if isinstance(n, ast.AnnAssign)}
-    top |= {n.name for n in tree.body if isinstance(n, ast.ClassDef)}
+    top |= {n.name for n in tree.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
     public = {n for n in dir(viewray) if not n.startswith("_") and not isinstance(getattr(viewray, n), type(viewray))}
     assert top == public | {"__version__"}
     (scene_stub,) = [n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Scene"]

@@ -73,19 +73,34 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", one_line(&self.path.display().to_string()))?;
-        if let Some(Position { line, column }) = self.position {
-            write!(f, ":{line}:{column}")?;
-        }
-        write!(f, ": {}", self.message)
+        write_file_error(f, &self.path, self.position, &self.message)
     }
 }
 
 impl std::error::Error for SceneError {}
 
+/// How viewray words an error about a file it reads (a scene, or another tool's file):
+/// `path:line:column: message`, the position when there is one, with the path's control
+/// characters escaped so that the error stays on one line.
+///
+/// # Errors
+/// The formatter's.
+pub fn write_file_error(
+    f: &mut fmt::Formatter<'_>,
+    path: &std::path::Path,
+    position: Option<Position>,
+    message: &str,
+) -> fmt::Result {
+    write!(f, "{}", one_line(&path.display().to_string()))?;
+    if let Some(Position { line, column }) = position {
+        write!(f, ":{line}:{column}")?;
+    }
+    write!(f, ": {message}")
+}
+
 /// `text` with control characters (a newline in a file name or a quoted string) escaped,
 /// so an error stays on one line whatever the input held.
-fn one_line(text: &str) -> String {
+pub fn one_line(text: &str) -> String {
     text.chars()
         .flat_map(|c| {
             let escaped: Vec<char> = if c.is_control() {

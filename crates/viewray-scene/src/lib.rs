@@ -67,7 +67,7 @@ pub use camera::{CameraSpec, camera_text, parse_camera};
 pub use document::{
     Aperture, CameraDocument, ObjectDocument, PerspectiveSize, ProjectionDocument, SceneDocument,
 };
-pub use error::{Position, SceneError};
+pub use error::{Position, SceneError, one_line, write_file_error};
 pub use file_kind::FileKind;
 pub use loader::{
     LoadOptions, LoadTimes, LoadedScene, MAX_SCENE_BYTES, SceneLoader, read_scene_file,

@@ -156,23 +156,24 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
         samples: None,
     };
     let scene = SceneLoader::file(path).options(options).load()?.scene;
-    // The principal point, where u + sx = 0 and v + sy = 0: x = W (1/2 - sx/vw),
-    // y = H (1/2 + sy/vh).
-    let perspective = |viewport: glam::DVec2, shift: glam::DVec2| Expectations {
-        principal_point: (0.5 - shift.x / viewport.x, 0.5 + shift.y / viewport.y),
-        shift: (shift.x, shift.y),
-        camera: CameraKind::Perspective,
+    let projection = scene.camera().projection();
+    let Some(principal) = projection.principal_point() else {
+        return Ok(None);
     };
-    Ok(match scene.camera().projection() {
-        Projection::Perspective(p) => Some(perspective(p.viewport, p.shift)),
-        Projection::ThinLens(p) => Some(perspective(p.viewport, p.shift)),
-        Projection::Orthographic(_) | Projection::Oblique(_) => Some(Expectations {
-            principal_point: (0.5, 0.5),
-            shift: (0.0, 0.0),
-            camera: CameraKind::Parallel,
-        }),
-        Projection::Equirectangular | Projection::Fisheye(_) => None,
-    })
+    let shift = match projection {
+        Projection::Perspective(p) => p.shift,
+        Projection::ThinLens(p) => p.shift,
+        _ => glam::DVec2::ZERO,
+    };
+    Ok(Some(Expectations {
+        principal_point: (principal.x, principal.y),
+        shift: (shift.x, shift.y),
+        camera: if projection.is_parallel() {
+            CameraKind::Parallel
+        } else {
+            CameraKind::Perspective
+        },
+    }))
 }
 
 /// One pair to judge: the reference and what the ACTUAL side holds for it.

@@ -7,6 +7,8 @@ use std::process::Command;
 use anyhow::{Context, Result, bail};
 use serde_json::Value;
 
+use crate::run;
+
 use super::{BPY, MITSUBA, Paths, THREE};
 
 /// Installs the pinned tools under target/interop unless the stamp says they are there.
@@ -50,17 +52,6 @@ pub(super) fn install(paths: &Paths) -> Result<()> {
         "install three.js from npm",
     )?;
     std::fs::write(&stamp, wanted)?;
-    Ok(())
-}
-
-fn run(command: &mut Command, what: &str) -> Result<()> {
-    eprintln!("$ {command:?}");
-    let status = command
-        .status()
-        .with_context(|| format!("could not {what}"))?;
-    if !status.success() {
-        bail!("could not {what} ({status})");
-    }
     Ok(())
 }
 
