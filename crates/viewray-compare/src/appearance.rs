@@ -14,8 +14,10 @@
 //!   once more (too bright, washed out), within a few codes, clearly better than any
 //!   exposure;
 //! - **brighter**, **darker**: one factor of light (an exposure, a light's intensity)
-//!   makes the picture, or the picture is lighter (darker) almost everywhere and on
-//!   average by 10% or more (an ambient light);
+//!   makes the picture, or the picture is lighter (darker) on average by 10% or more and
+//!   everywhere ([`EVERYWHERE`]), or almost everywhere with values that follow the
+//!   reference's (a correlation of at least [`FOLLOWS`]): an ambient light, a light's
+//!   intensity, where a light moved elsewhere lights other surfaces and is `shading`;
 //! - **shading**: anything else: another light, another material or shading model.
 
 use crate::raster::FloatImage;
@@ -111,6 +113,15 @@ pub(crate) struct Pictures<'a> {
     /// The pixels inside surfaces, away from boundaries.
     pub(crate) interior: &'a [bool],
 }
+
+/// The share of interior values lighter (darker) than the reference's that counts as
+/// everywhere: a light moved elsewhere leaves some surfaces lit that were not (in the
+/// planted matrix, at most 95% darker), a brighter light or ambient none (100%).
+const EVERYWHERE: f64 = 0.98;
+
+/// The least correlation of the picture's encoded values with the reference's for a
+/// picture lighter or darker almost everywhere to be called `brighter` or `darker`.
+const FOLLOWS: f64 = 0.9;
 
 /// The fewest interior pixels the tone models are fitted on: below it, `shading`.
 const FEWEST: usize = 64;
@@ -214,9 +225,21 @@ fn tone(pictures: &Pictures<'_>, inside: &[usize]) -> Appearance {
             .count();
         count as f64 / samples.len() as f64
     };
-    if actual > 1.1 * expected && share(true) > 0.8 {
+    let follows = correlation(
+        samples
+            .iter()
+            .map(|&(e, a)| (encode(e), encode(a)))
+            .collect::<Vec<_>>()
+            .as_slice(),
+    ) >= FOLLOWS;
+    // Lighter (darker) everywhere, or almost everywhere with values that follow.
+    let everywhere = |lighter: bool| {
+        let share = share(lighter);
+        share > EVERYWHERE || (share > 0.8 && follows)
+    };
+    if actual > 1.1 * expected && everywhere(true) {
         Appearance::Brighter
-    } else if actual < expected / 1.1 && share(false) > 0.8 {
+    } else if actual < expected / 1.1 && everywhere(false) {
         Appearance::Darker
     } else {
         Appearance::Shading
@@ -269,6 +292,29 @@ pub(crate) fn grow(marked: &[bool], width: usize, height: usize, radius: usize) 
         }
     }
     grown
+}
+
+/// The (Pearson) correlation of the pairs' two values; 1 when either is constant.
+fn correlation(pairs: &[(f64, f64)]) -> f64 {
+    let n = pairs.len() as f64;
+    if pairs.is_empty() {
+        return 1.0;
+    }
+    let (mx, my) = (
+        pairs.iter().map(|p| p.0).sum::<f64>() / n,
+        pairs.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for &(x, y) in pairs {
+        sxy += (x - mx) * (y - my);
+        sxx += (x - mx) * (x - mx);
+        syy += (y - my) * (y - my);
+    }
+    if sxx <= f64::EPSILON || syy <= f64::EPSILON {
+        1.0
+    } else {
+        sxy / (sxx * syy).sqrt()
+    }
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> f64 {
@@ -338,7 +384,10 @@ mod tests {
         let encode = |l: f32| viewray_output::linear_to_srgb(l.clamp(0.0, 1.0));
         let decode = viewray_output::srgb_to_linear;
         let cases: [(Appearance, FloatImage); 5] = [
-            (Appearance::GammaMissing, changed(&reference, |_, c| decode(c))),
+            (
+                Appearance::GammaMissing,
+                changed(&reference, |_, c| decode(c)),
+            ),
             (
                 Appearance::GammaTwice,
                 changed(&reference, |_, c| decode(encode(encode(c)))),
@@ -364,7 +413,10 @@ mod tests {
         });
         assert_eq!(classify_pair(&reference, &noisy), Appearance::Noise);
         // Another light: the left part brighter, the right part darker.
-        let relit = changed(&reference, |p, c| if p % 60 < 30 { c * 1.5 } else { c * 0.5 });
+        let relit = changed(
+            &reference,
+            |p, c| if p % 60 < 30 { c * 1.5 } else { c * 0.5 },
+        );
         assert_eq!(classify_pair(&reference, &relit), Appearance::Shading);
         let interior = vec![true; reference.pixels.len()];
         let blurred = reference.gaussian_blur(2.0);

@@ -264,8 +264,8 @@ impl Reference {
         // Blur in linear light, where a pixel's samples are averaged, then encode for FLIP.
         let actual_linear = FloatImage::linear_from_rgba8(actual);
         let actual_blurred_linear = actual_linear.gaussian_blur(thresholds.blur_sigma);
-        let actual_blurred = actual_blurred_linear
-            .encoded_as_srgb_reusing(&self.blurred_linear, &self.blurred);
+        let actual_blurred =
+            actual_blurred_linear.encoded_as_srgb_reusing(&self.blurred_linear, &self.blurred);
         let map = self.flip.compare(&actual_blurred.to_rgb8_bytes());
         let (mean_flip, peak_flip) = (map.mean(), map.peak(PEAK_WINDOW));
         let flip_failed = peak_flip > thresholds.max_peak_flip;
@@ -300,9 +300,10 @@ impl Reference {
         if self.decides.image_decides() || self.camera.is_none() {
             let _ = measured.set(transform(flip_failed));
         }
-        let camera = self.camera.as_ref().map(|judge| {
-            judge.judge(actual, &|| *measured.get_or_init(|| transform(true)))
-        });
+        let camera = self
+            .camera
+            .as_ref()
+            .map(|judge| judge.judge(actual, &|| *measured.get_or_init(|| transform(true))));
         let mistake = measured.get().copied().flatten();
         let image_judged = self.decides.image_decides() || self.camera.is_none();
         let diagnosis = match mistake {
@@ -327,7 +328,9 @@ impl Reference {
         let appearance = camera_right.then(|| {
             let interior = match &self.camera {
                 Some(judge) => judge.interior(),
-                None => self.flat.get_or_init(|| appearance::flat_parts(&self.linear)),
+                None => self
+                    .flat
+                    .get_or_init(|| appearance::flat_parts(&self.linear)),
             };
             appearance::classify(
                 &appearance::Pictures {

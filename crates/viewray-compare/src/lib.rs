@@ -91,7 +91,7 @@ pub use geometry::{
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
 pub use load::{IMAGE_EXTENSIONS, LoadError, SUPPORTED_IMAGES, load_image, load_png};
-pub use outcome::{Outcome, Tally, Verdict};
+pub use outcome::{FailureKind, Outcome, Tally, Verdict};
 pub use page::{report_page, verdict_badge};
 pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use image::{DynamicImage, ImageFormat, ImageReader, RgbaImage};
 
 /// The image formats [`load_image`] reads, as its messages name them.
-pub const SUPPORTED_IMAGES: &str = "PNG, PPM or PGM (P2, P3, P5, P6) and OpenEXR";
+pub const SUPPORTED_IMAGES: &str = "PNG, PPM/PGM (P2, P3, P5, P6) or OpenEXR";
 
 /// The file-name extensions of the formats [`load_image`] reads, lowercase: a student's
 /// `tower.ppm` answers the reference `tower.png`.

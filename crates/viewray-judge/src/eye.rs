@@ -165,7 +165,12 @@ impl EyeSearch {
 
 /// `camera` with its eye moved by `offset` (along u, v and -w), its basis kept or turned
 /// to look at the point `depth` ahead; `None` where no camera can be made so.
-fn moved_camera(camera: &Camera, offset: [f64; 3], aim: Aim, depth: f64) -> Option<(Camera, DVec3)> {
+fn moved_camera(
+    camera: &Camera,
+    offset: [f64; 3],
+    aim: Aim,
+    depth: f64,
+) -> Option<(Camera, DVec3)> {
     let frame = camera.frame();
     let [right, up, forward] = offset;
     let eye = frame.e() + right * frame.u() + up * frame.v() - forward * frame.w();
@@ -229,7 +234,14 @@ pub(crate) fn sentence(moved: &MovedEye, right_eye: DVec3) -> String {
             parts.push(format!("{} {way}", about(value.abs())));
         }
     }
-    let point = |p: DVec3| format!("({}, {}, {})", coordinate(p.x), coordinate(p.y), coordinate(p.z));
+    let point = |p: DVec3| {
+        format!(
+            "({}, {}, {})",
+            coordinate(p.x),
+            coordinate(p.y),
+            coordinate(p.z)
+        )
+    };
     format!(
         "the eye is about {} where it should be (e is about {}, not {})",
         parts.join(" and "),
