@@ -114,7 +114,10 @@ pub(crate) fn student_folder_name(folder: &str) -> String {
                 && !participant.is_empty()
                 && participant.bytes().all(|b| b.is_ascii_digit())
         })
-        .map_or_else(|| folder.to_owned(), |(student, _)| student.trim().to_owned())
+        .map_or_else(
+            || folder.to_owned(),
+            |(student, _)| student.trim().to_owned(),
+        )
 }
 
 #[cfg(test)]

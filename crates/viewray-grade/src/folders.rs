@@ -223,7 +223,9 @@ fn pair_flat(files: &[(OsString, PathBuf)], references: &[ReferenceImage]) -> Pa
         .iter()
         .map(|(name, path)| Entry {
             name: flat::without_resubmission(name, |n| {
-                references.iter().any(|r| r.file_name == n || same_stem(n, &r.file_name))
+                references
+                    .iter()
+                    .any(|r| r.file_name == n || same_stem(n, &r.file_name))
             }),
             path: path.clone(),
             is_dir: false,
@@ -250,9 +252,7 @@ fn descend(folder: &Path) -> io::Result<(PathBuf, Vec<Entry>)> {
         entries.sort();
         let shown: Vec<&Entry> = entries.iter().filter(|e| !hidden(&e.name)).collect();
         let folders: Vec<&&Entry> = shown.iter().filter(|e| e.is_dir).collect();
-        let images = shown
-            .iter()
-            .any(|e| !e.is_dir && is_image_name(&e.name));
+        let images = shown.iter().any(|e| !e.is_dir && is_image_name(&e.name));
         match folders.as_slice() {
             [only] if !images => folder = only.path.clone(),
             _ => return Ok((folder, entries)),
@@ -289,7 +289,9 @@ fn pair_entries(
                 .filter(|&i| !matched[i]);
             let found = exact.or_else(|| {
                 (0..entries.len()).find(|&i| {
-                    !matched[i] && !entries[i].is_dir && same_stem(&entries[i].name, &reference.file_name)
+                    !matched[i]
+                        && !entries[i].is_dir
+                        && same_stem(&entries[i].name, &reference.file_name)
                 })
             });
             match found {
@@ -384,7 +386,10 @@ pub fn submissions(folder: &Path, role: &'static str) -> Result<Submissions, Fol
             submissions.other.push(name);
         }
     }
-    let names: Vec<String> = folders.iter().map(|(n, _)| flat::student_folder_name(n)).collect();
+    let names: Vec<String> = folders
+        .iter()
+        .map(|(n, _)| flat::student_folder_name(n))
+        .collect();
     for (k, (raw, path)) in folders.into_iter().enumerate() {
         // Two folders of one name (two students called alike) keep their own names.
         let unique = names.iter().filter(|n| **n == names[k]).count() == 1;
@@ -447,7 +452,10 @@ pub fn flat_submissions(folder: &Path, role: &'static str) -> Result<Submissions
 }
 
 /// The entries of `folder` but hidden ones, sorted, with their names as shown.
-fn visible_entries(folder: &Path, role: &'static str) -> Result<Vec<(String, PathBuf)>, FolderError> {
+fn visible_entries(
+    folder: &Path,
+    role: &'static str,
+) -> Result<Vec<(String, PathBuf)>, FolderError> {
     let unreadable = |source| FolderError::Unreadable {
         role,
         path: folder.to_owned(),
@@ -563,8 +571,8 @@ mod tests {
                 None,
                 Some("missing (found `B.png`: names must match exactly, case included)".into()),
                 Some(
-                    "missing (found `c.jpg`: the image must be PNG, PPM or PGM (P2, P3, P5, \
-                     P6) and OpenEXR, named `c` with the extension .png, .ppm, .pgm or .exr)"
+                    "missing (found `c.jpg`: the image must be PNG, PPM/PGM (P2, P3, P5, P6) \
+                     or OpenEXR, named `c` with the extension .png, .ppm, .pgm or .exr)"
                         .into()
                 ),
                 None,
