@@ -204,3 +204,23 @@ fn a_scene_that_is_missing_or_bad_is_bad_input() {
     let line = error_line(&["compare", s(&reference), s(&student), "--scene", s(&scenes)]);
     assert!(line.contains(".ron:2:"), "{line}");
 }
+
+/// The scenes of docs/mistakes.md judge viewray's own renders of them right, by camera.
+#[test]
+fn the_mistakes_pages_scenes_judge_their_own_renders_right() {
+    let dir = tempfile::tempdir().unwrap();
+    for scene in [
+        "fixtures/mistakes/perspective.ron",
+        "fixtures/mistakes/oblique.ron",
+    ] {
+        let path = support::repository().join(scene);
+        let png = dir.path().join("render.png");
+        let out = viewray(&["render", s(&path), "-o", s(&png)]);
+        assert!(out.status.success(), "{scene}");
+        let out = viewray(&["compare", s(&png), s(&png), "--scene", s(&path), "--json"]);
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let line: Value = serde_json::from_str(stdout.lines().next().unwrap()).unwrap();
+        assert_eq!(line["camera"], "right", "{scene}: {line}");
+        assert_eq!(out.status.code(), Some(0), "{scene}: {stdout}");
+    }
+}
