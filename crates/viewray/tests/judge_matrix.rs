@@ -505,3 +505,68 @@ fn the_camera_is_judged_first_and_every_planted_cell_is_named() {
     ]);
     assert_eq!(out.status.code(), Some(1));
 }
+
+/// Every file a student's program writes (PPM P3 and P6, 8 and 16 bits; PGM P2 and P5;
+/// PNG 8 and 16 bits, RGB and grey) reads back as the values it holds, within one 8-bit
+/// code for 16 bits; anything else is refused naming the formats.
+#[test]
+fn every_image_a_student_writes_is_read_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, camera, _) = cameras().remove(1);
+    let picture = render(
+        &Scene::example(),
+        &camera,
+        &[],
+        (24, 18),
+        &RenderOptions::default(),
+    );
+    let (rgb, grey) = (picture.rgb8(), picture.grey8());
+    for format in Format::ALL {
+        let path = dir
+            .path()
+            .join(format!("{format:?}.{}", format.extension()));
+        picture.write(&path, format);
+        let read = viewray_compare::load_image(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(read.dimensions(), (24, 18), "{format:?}");
+        let grey_format = matches!(format, Format::PgmP5 | Format::PgmP2 | Format::PngGrey);
+        for (p, pixel) in read.pixels().enumerate() {
+            let want = if grey_format {
+                [grey[p]; 3]
+            } else {
+                [rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2]]
+            };
+            for c in 0..3 {
+                let off = (i32::from(pixel[c]) - i32::from(want[c])).abs();
+                assert!(off <= 1, "{format:?} pixel {p}: {pixel:?}, want {want:?}");
+            }
+            assert_eq!(pixel[3], 255, "{format:?}");
+        }
+    }
+    // OpenEXR holds linear light: read back, it is the PNG viewray writes of it.
+    let scene = support::repository().join("fixtures/mistakes/perspective.ron");
+    let (exr, png) = (dir.path().join("render.exr"), dir.path().join("render.png"));
+    for out in [&exr, &png] {
+        let done = viewray(&["render", s(&scene), "--size", "24x18", "-o", s(out)]);
+        assert!(
+            done.status.success(),
+            "{}",
+            String::from_utf8_lossy(&done.stderr)
+        );
+    }
+    let (from_exr, from_png) = (
+        viewray_compare::load_image(&exr).unwrap(),
+        viewray_compare::load_image(&png).unwrap(),
+    );
+    for (a, b) in from_exr.pixels().zip(from_png.pixels()) {
+        for c in 0..4 {
+            assert!(a[c].abs_diff(b[c]) <= 1, "{a:?} != {b:?}");
+        }
+    }
+    let text = dir.path().join("notes.ppm");
+    std::fs::write(&text, "my render is below").unwrap();
+    let error = viewray_compare::load_image(&text).unwrap_err().to_string();
+    assert!(
+        error.ends_with("not an image viewray reads (PNG, PPM/PGM (P2, P3, P5, P6) or OpenEXR)"),
+        "{error}"
+    );
+}
