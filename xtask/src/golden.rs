@@ -5,7 +5,11 @@
 //! `fixtures/default.ron`, as `default`) is rendered in-process and compared with
 //! `golden/scenes/<name>.png`, each lecture figure with `golden/figures/<name>.png`, and
 //! the first, middle and last frames of each built-in animation with
-//! `golden/animations/<demo>_{first,middle,last}.png`,
+//! `golden/animations/<demo>_{first,middle,last}.png`, and each entry of the lecture's
+//! catalogue of mistakes (viewray-camera's `Mistake`, but the one whose picture is one
+//! colour) rendered through the mistaken camera of its family's scene with
+//! `golden/mistakes/<id>.png` (the pictures of
+//! docs/mistakes.md, beside the right ones, `golden/mistakes/right-<family>.png`),
 //! by decoded pixels, never by PNG bytes, through
 //! viewray-compare's golden gates ([`Thresholds::GOLDEN`]): a per-pixel gate that absorbs
 //! last-bit floating-point differences between machines, and a perceptual (FLIP) gate that
@@ -21,6 +25,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
+use viewray_camera::{Mistake, Mistakes};
 use viewray_compare::{Comparison, Outcome, Report, ReportEntry, RgbaImage, Rules, Thresholds};
 use viewray_output::Compression;
 use viewray_render::RenderSettings;
@@ -71,7 +76,34 @@ enum Source {
     Figure(&'static str),
     /// A frame of a built-in animation, as [`ANIMATION_FRAMES`] renders it.
     Animation(&'static str, u32),
+    /// A scene file's picture (at [`MISTAKE_SIZE`]) through its camera with one entry of
+    /// the lecture's catalogue of mistakes, or through the right camera.
+    Mistake(PathBuf, Option<Mistake>),
 }
+
+/// The pictures of the lecture's mistakes (docs/mistakes.md) are small: enough to see
+/// what each does to the picture.
+const MISTAKE_SIZE: (u32, u32) = (160, 120);
+
+/// The scene each entry of the catalogue is shown on: its camera's family (a general
+/// perspective camera with d != 1 and a shift, an orthographic one, an oblique one; the
+/// first and the last in `fixtures/mistakes/`).
+fn mistake_scene(mistake: Option<Mistake>) -> &'static str {
+    match mistake {
+        Some(Mistake::OrthoOriginFixed | Mistake::OrthoAsPerspective) => {
+            "fixtures/scenes/orthographic.ron"
+        }
+        Some(Mistake::ObliqueSign | Mistake::ObliqueAsOrtho) => "fixtures/mistakes/oblique.ron",
+        _ => "fixtures/mistakes/perspective.ron",
+    }
+}
+
+/// The right pictures the mistakes' pictures are shown beside, with their golden names.
+const RIGHT_PICTURES: [(&str, Option<Mistake>); 3] = [
+    ("right-perspective", None),
+    ("right-orthographic", Some(Mistake::OrthoOriginFixed)),
+    ("right-oblique", Some(Mistake::ObliqueSign)),
+];
 
 /// Animations are checked by their first, middle and last frames of the demo's own
 /// count, each picture at 320 x 180 with its side view beside it (so the diagram is
@@ -296,9 +328,28 @@ pub fn cases(root: &Path, args: &GoldenArgs) -> Result<(Vec<Case>, Vec<PathBuf>)
             });
         }
     }
+    // `ortho-origin-fixed` makes a picture of one colour, which no golden may be.
+    for mistake in Mistake::ALL
+        .into_iter()
+        .filter(|&m| m != Mistake::OrthoOriginFixed)
+    {
+        let id = mistake.id();
+        cases.push(Case {
+            id: format!("mistakes/{id}"),
+            golden: root.join("golden/mistakes").join(format!("{id}.png")),
+            source: Source::Mistake(root.join(mistake_scene(Some(mistake))), Some(mistake)),
+        });
+    }
+    for (name, family) in RIGHT_PICTURES {
+        cases.push(Case {
+            id: format!("mistakes/{name}"),
+            golden: root.join("golden/mistakes").join(format!("{name}.png")),
+            source: Source::Mistake(root.join(mistake_scene(family)), None),
+        });
+    }
     let produced: Vec<&Path> = cases.iter().map(|c| c.golden.as_path()).collect();
     let mut orphans = Vec::new();
-    for kind in ["scenes", "figures", "animations"] {
+    for kind in ["scenes", "figures", "animations", "mistakes"] {
         let dir = root.join("golden").join(kind);
         if !dir.exists() {
             continue;
@@ -368,6 +419,31 @@ fn make(case: &Case) -> Result<Made> {
                 .load()?
                 .scene;
             let rendered = viewray_render::render(&scene, &RenderSettings::default(), |_, _| {})?;
+            let image = rendered.image;
+            Ok(Made {
+                pixels: image::DynamicImage::ImageRgb8(image.to_rgb_image()).to_rgba8(),
+                output: Output::Render(image),
+            })
+        }
+        Source::Mistake(path, mistake) => {
+            let options = LoadOptions {
+                size: Some(MISTAKE_SIZE),
+                samples: None,
+            };
+            let scene = viewray_scene::SceneLoader::file(path)
+                .options(options)
+                .load()?
+                .scene;
+            let camera = match mistake {
+                Some(mistake) => scene.camera().with_mistakes(Mistakes::one(*mistake))?,
+                None => *scene.camera(),
+            };
+            let view = viewray_render::View {
+                camera,
+                ..viewray_render::View::of(&scene)
+            };
+            let rendered =
+                viewray_render::render_view(&scene, &view, &RenderSettings::default(), |_, _| {})?;
             let image = rendered.image;
             Ok(Made {
                 pixels: image::DynamicImage::ImageRgb8(image.to_rgb_image()).to_rgba8(),

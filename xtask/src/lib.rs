@@ -13,6 +13,7 @@ pub mod figures;
 pub mod golden;
 pub mod icosphere;
 pub mod interop;
+pub mod mistakes;
 pub mod mutants;
 pub mod wheel;
 

@@ -5,7 +5,9 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory as _, Parser, Subcommand};
-use xtask::{browser, figures, golden, icosphere, interop, mutants, wheel, workspace_root};
+use xtask::{
+    browser, figures, golden, icosphere, interop, mistakes, mutants, wheel, workspace_root,
+};
 
 /// viewray's automation.
 #[derive(Debug, Parser)]
@@ -25,13 +27,17 @@ enum Task {
     /// interop check against the real tools.
     Ci,
     /// Render every scene in fixtures/scenes (and the default scene), every lecture
-    /// figure and the first, middle and last frames of every built-in animation, and
-    /// compare each with golden/{scenes,figures,animations}/<name>.png; a report of the
+    /// figure, the first, middle and last frames of every built-in animation and the
+    /// picture of every entry of the lecture's catalogue of mistakes, and compare each
+    /// with golden/{scenes,figures,animations,mistakes}/<name>.png; a report of the
     /// failures goes to golden/index.html in the target directory.
     Golden(golden::GoldenArgs),
     /// Draw every lecture figure, pictures ray traced, as <name>.png and <name>.svg, and
     /// every built-in animation as animations/<demo>.gif.
     Figures(figures::FiguresArgs),
+    /// Write docs/mistakes.md, the students' page of the lecture's mistakes, from the
+    /// catalogue (each entry's formula, its picture in golden/mistakes, the line to fix).
+    Mistakes(mistakes::MistakesArgs),
     /// Write the geometry benchmark's mesh (1,310,720 triangles) and camera as
     /// icosphere.obj and icosphere.ron, to time `viewray render --stats` on them.
     Icosphere(icosphere::IcosphereArgs),
@@ -68,6 +74,7 @@ fn main() -> ExitCode {
         Some(Task::Ci) => ci(),
         Some(Task::Golden(args)) => golden::golden(&root, &args),
         Some(Task::Figures(args)) => figures::figures(&root, &args),
+        Some(Task::Mistakes(args)) => mistakes::mistakes(&root, &args),
         Some(Task::Icosphere(args)) => icosphere::icosphere(&root, &args),
         Some(Task::Interop(args)) => interop::interop(&root, &args),
         Some(Task::Browser(args)) => browser::browser(&root, &args),

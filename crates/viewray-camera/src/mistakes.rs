@@ -87,6 +87,9 @@ pub enum Mistake {
 pub struct Entry {
     /// The id, as every judge prints it: `pixel-corner`.
     pub id: &'static str,
+    /// What the picture looks like, in a word or two: `mirrored`, `upside down` (the
+    /// class summary counts diagnoses by it: "12 mirrored: u-sign").
+    pub looks: &'static str,
     /// The mistake in a few words: "no half-pixel offset".
     pub summary: &'static str,
     /// The mistaken formula, in the lecture's notation.
@@ -140,9 +143,10 @@ impl Mistake {
         const DIRECTION_FIX: &str = "direction = (u + sx) U + (v + sy) V - d W";
         const BASIS_FIX: &str = "w = -view / |view|,  u = (up x w) / |up x w|,  v = w x u";
         const OBLIQUE_FIX: &str = "direction = -W - L (cos phi U + sin phi V)";
-        let (id, summary, mistaken, fix, picture) = match self {
+        let (id, looks, summary, mistaken, fix, picture) = match self {
             Mistake::PixelCorner => (
                 "pixel-corner",
+                "moved half a pixel",
                 "no half-pixel offset",
                 "u = (col/W - 1/2) vw,  v = -(row/H - 1/2) vh",
                 PIXEL_FIX,
@@ -150,6 +154,7 @@ impl Mistake {
             ),
             Mistake::PixelOneBased => (
                 "pixel-one-based",
+                "moved half a pixel",
                 "1-based indices without the 1/2",
                 "u = (j/W - 1/2) vw,  v = -(i/H - 1/2) vh",
                 PIXEL_FIX,
@@ -157,6 +162,7 @@ impl Mistake {
             ),
             Mistake::SizeMinusOne => (
                 "size-minus-one",
+                "a little too small",
                 "divides by W - 1 and H - 1",
                 "u = (col/(W-1) - 1/2) vw,  v = -(row/(H-1) - 1/2) vh",
                 PIXEL_FIX,
@@ -165,6 +171,7 @@ impl Mistake {
             ),
             Mistake::VSign => (
                 "v-sign",
+                "upside down",
                 "v without its minus sign",
                 "v = ((i - 1/2)/H - 1/2) vh",
                 "v = -((i - 1/2)/H - 1/2) vh: rows count down from the top, v points up",
@@ -172,6 +179,7 @@ impl Mistake {
             ),
             Mistake::USign => (
                 "u-sign",
+                "mirrored",
                 "u with a minus sign",
                 "u = -((j - 1/2)/W - 1/2) vw",
                 "u = ((j - 1/2)/W - 1/2) vw: columns and u both count to the right",
@@ -179,6 +187,7 @@ impl Mistake {
             ),
             Mistake::IJSwapped => (
                 "i-j-swapped",
+                "transposed",
                 "i and j swapped",
                 "u = ((i - 1/2)/W - 1/2) vw,  v = -((j - 1/2)/H - 1/2) vh",
                 "u comes from the column j, v from the row i: u = ((j - 1/2)/W - 1/2) vw",
@@ -187,6 +196,7 @@ impl Mistake {
             ),
             Mistake::ViewportMissing => (
                 "viewport-missing",
+                "wrong field of view",
                 "the viewport left out (vw = vh = 1)",
                 "u = (j - 1/2)/W - 1/2,  v = -((i - 1/2)/H - 1/2)",
                 PIXEL_FIX,
@@ -195,6 +205,7 @@ impl Mistake {
             ),
             Mistake::ViewportSwapped => (
                 "viewport-swapped",
+                "stretched",
                 "vw and vh exchanged",
                 "u = ((j - 1/2)/W - 1/2) vh,  v = -((i - 1/2)/H - 1/2) vw",
                 PIXEL_FIX,
@@ -203,6 +214,7 @@ impl Mistake {
             ),
             Mistake::DistanceMissing => (
                 "distance-missing",
+                "wrong field of view",
                 "d left out (d = 1)",
                 "direction = (u + sx) U + (v + sy) V - W",
                 DIRECTION_FIX,
@@ -211,6 +223,7 @@ impl Mistake {
             ),
             Mistake::DistanceSign => (
                 "distance-sign",
+                "looking backwards",
                 "+d W instead of -d W",
                 "direction = (u + sx) U + (v + sy) V + d W",
                 "direction = (u + sx) U + (v + sy) V - d W: the camera looks along -w",
@@ -218,6 +231,7 @@ impl Mistake {
             ),
             Mistake::EyeMissing => (
                 "eye-missing",
+                "seen from the origin",
                 "the eye left out",
                 "origin = (0, 0, 0)  (orthographic: 0 + u U + v V)",
                 "origin = e  (orthographic: e + u U + v V)",
@@ -225,6 +239,7 @@ impl Mistake {
             ),
             Mistake::BasisMissing => (
                 "basis-missing",
+                "looking down -z",
                 "the basis left out",
                 "direction = (u, v, -d) in world coordinates",
                 "direction = u U + v V - d W: the camera's own axes, in the world",
@@ -232,6 +247,7 @@ impl Mistake {
             ),
             Mistake::WView => (
                 "w-view",
+                "looking backwards",
                 "w along view",
                 "w = view / |view|",
                 "w = -view / |view|: w points back, the camera looks along -w",
@@ -239,6 +255,7 @@ impl Mistake {
             ),
             Mistake::UCrossOrder => (
                 "u-cross-order",
+                "turned 180 degrees",
                 "u = w x up",
                 "u = w x up",
                 "u = up x w",
@@ -246,6 +263,7 @@ impl Mistake {
             ),
             Mistake::VCrossOrder => (
                 "v-cross-order",
+                "upside down",
                 "v = u x w",
                 "v = u x w",
                 "v = w x u",
@@ -253,6 +271,7 @@ impl Mistake {
             ),
             Mistake::UNotNormalized => (
                 "u-not-normalized",
+                "wrong field of view",
                 "u not normalized",
                 "u = up x w",
                 BASIS_FIX,
@@ -261,6 +280,7 @@ impl Mistake {
             ),
             Mistake::ShiftSign => (
                 "shift-sign",
+                "shifted the wrong way",
                 "the shift's sign",
                 "direction = (u - sx) U + (v - sy) V - d W",
                 DIRECTION_FIX,
@@ -268,6 +288,7 @@ impl Mistake {
             ),
             Mistake::ShiftMissing => (
                 "shift-missing",
+                "not shifted",
                 "the shift left out",
                 "direction = u U + v V - d W",
                 DIRECTION_FIX,
@@ -275,6 +296,7 @@ impl Mistake {
             ),
             Mistake::OrthoOriginFixed => (
                 "ortho-origin-fixed",
+                "one colour",
                 "every parallel ray starts at the eye",
                 "origin = e",
                 "origin = e + u U + v V: parallel rays start from their pixel",
@@ -282,6 +304,7 @@ impl Mistake {
             ),
             Mistake::OrthoAsPerspective => (
                 "ortho-as-perspective",
+                "in perspective",
                 "perspective rays in an orthographic camera",
                 "origin = e,  direction = u U + v V - W",
                 "origin = e + u U + v V,  direction = -W",
@@ -289,6 +312,7 @@ impl Mistake {
             ),
             Mistake::ObliqueSign => (
                 "oblique-sign",
+                "slanted the wrong way",
                 "the oblique slant's sign",
                 "direction = -W + L (cos phi U + sin phi V)",
                 OBLIQUE_FIX,
@@ -296,6 +320,7 @@ impl Mistake {
             ),
             Mistake::ObliqueAsOrtho => (
                 "oblique-as-ortho",
+                "not slanted",
                 "the oblique slant left out",
                 "direction = -W",
                 OBLIQUE_FIX,
@@ -304,6 +329,7 @@ impl Mistake {
         };
         Entry {
             id,
+            looks,
             summary,
             mistaken,
             fix,

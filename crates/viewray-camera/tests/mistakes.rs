@@ -479,7 +479,13 @@ fn ids_are_the_catalogues_and_name_their_entry() {
         assert_eq!(Mistake::from_id(mistake.id()), Some(mistake));
         assert_eq!(mistake.to_string(), mistake.id());
         let entry = mistake.entry();
-        for text in [entry.summary, entry.mistaken, entry.fix, entry.picture] {
+        for text in [
+            entry.looks,
+            entry.summary,
+            entry.mistaken,
+            entry.fix,
+            entry.picture,
+        ] {
             assert!(
                 !text.is_empty() && !text.ends_with('.'),
                 "{mistake}: {text:?}"

@@ -5,6 +5,8 @@ use std::fmt;
 
 use image::{RgbImage, RgbaImage};
 
+use crate::appearance::Appearance;
+use crate::camera::{CameraFinding, Judge};
 use crate::diagnosis::Diagnosis;
 use crate::flip::ErrorMap;
 use crate::outcome::Verdict;
@@ -88,6 +90,12 @@ pub enum Failure {
     /// The actual image is the expected one moved, mirrored or scaled: a camera mistake
     /// (see [`Comparison::diagnosis`]).
     CameraMistake,
+    /// The camera judgement failed: the picture's edges are not where the scene's are
+    /// (see [`Comparison::camera`]).
+    WrongCamera {
+        /// The camera's diagnosis ([`CameraFinding::diagnosis`]).
+        diagnosis: String,
+    },
 }
 
 impl fmt::Display for Failure {
@@ -122,6 +130,7 @@ impl fmt::Display for Failure {
                 f,
                 "the whole picture is moved, mirrored or scaled: a camera mistake"
             ),
+            Failure::WrongCamera { diagnosis } => write!(f, "the camera is wrong: {diagnosis}"),
         }
     }
 }
@@ -135,8 +144,17 @@ pub struct Comparison {
     pub failures: Vec<Failure>,
     /// The measured figures; `None` when the sizes differ.
     pub metrics: Option<Metrics>,
-    /// The camera mistake that explains the difference, if one does (instructor mode).
+    /// The camera mistake that explains the difference, if one does (instructor mode):
+    /// the transform between the pictures, measured on their pixels.
     pub diagnosis: Option<Diagnosis>,
+    /// The camera judgement (instructor mode, with a [`crate::CameraJudge`]): the
+    /// picture's edges against the scene's; `None` when not judged.
+    pub camera: Option<CameraFinding>,
+    /// How the picture looks beside the reference, apart from its camera (instructor
+    /// mode); `None` when not judged (a wrong camera's picture, or other sizes).
+    pub appearance: Option<Appearance>,
+    /// Which judgement decided [`Comparison::failures`].
+    pub judge: Judge,
     /// The FLIP error map, for [`Comparison::heatmap`]; `None` when the sizes differ.
     pub(crate) error_map: Option<ErrorMap>,
 }
@@ -172,6 +190,47 @@ impl Comparison {
         }
     }
 
+    /// What a row says after the figures: under [`Judge::Image`] the transform's diagnosis,
+    /// else why it failed; under [`Judge::Camera`] the camera's diagnosis; under
+    /// [`Judge::Both`] both (`""` when there is nothing to say).
+    pub fn note(&self) -> String {
+        let image = || match self.diagnosis {
+            Some(d) => d.to_string(),
+            None => self.reasons(),
+        };
+        let camera = || {
+            self.camera
+                .as_ref()
+                .filter(|c| !c.passed())
+                .map(CameraFinding::diagnosis)
+        };
+        match self.judge {
+            Judge::Image => image(),
+            Judge::Camera => camera().unwrap_or_default(),
+            Judge::Both => {
+                let image = self
+                    .failures
+                    .iter()
+                    .any(|f| !matches!(f, Failure::WrongCamera { .. }))
+                    .then(|| match self.diagnosis {
+                        Some(d) => d.to_string(),
+                        None => self
+                            .failures
+                            .iter()
+                            .filter(|f| !matches!(f, Failure::WrongCamera { .. }))
+                            .map(ToString::to_string)
+                            .collect::<Vec<_>>()
+                            .join("; "),
+                    });
+                [camera(), image]
+                    .into_iter()
+                    .flatten()
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            }
+        }
+    }
+
     /// The reasons for failing, as one line (`""` when it passed).
     pub fn reasons(&self) -> String {
         self.failures
@@ -190,6 +249,9 @@ impl Comparison {
             }],
             metrics: None,
             diagnosis: None,
+            camera: None,
+            appearance: None,
+            judge: Judge::Image,
             error_map: None,
         }
     }

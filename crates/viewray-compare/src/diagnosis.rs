@@ -255,6 +255,49 @@ impl CameraMistake {
         messages
     }
 
+    /// What was measured, in plain words and without advice: `mirrored left-right, rotated
+    /// 1.1 degrees clockwise, scaled 0.95x, moved 12 px left` (only what is significant;
+    /// `neither moved, scaled nor turned` when nothing is).
+    pub fn measured_words(&self) -> String {
+        let mut parts = Vec::new();
+        match (self.mirrored_left_right, self.upside_down) {
+            (true, true) => parts.push("turned 180 degrees".to_owned()),
+            (true, false) => parts.push("mirrored left-right".to_owned()),
+            (false, true) => parts.push("upside down".to_owned()),
+            (false, false) => {}
+        }
+        if self.significant.rotation {
+            parts.push(format!(
+                "rotated {} degrees {}",
+                amount(self.rotation),
+                if self.rotation > 0.0 {
+                    "counterclockwise"
+                } else {
+                    "clockwise"
+                }
+            ));
+        }
+        let (sx, sy) = self.scale;
+        match (self.significant.scale_x, self.significant.scale_y) {
+            (true, true) if (sx - sy).abs() < 0.01 => {
+                parts.push(format!("scaled {:.2}x", 0.5 * (sx + sy)));
+            }
+            (true, true) => parts.push(format!("scaled {sx:.2}x in x and {sy:.2}x in y")),
+            (true, false) => parts.push(format!("scaled {sx:.2}x in x")),
+            (false, true) => parts.push(format!("scaled {sy:.2}x in y")),
+            (false, false) => {}
+        }
+        let moved = (self.significant.shift_x, self.significant.shift_y);
+        if moved.0 || moved.1 {
+            parts.push(format!("moved {}", move_words(self.shift, moved)));
+        }
+        if parts.is_empty() {
+            "neither moved, scaled nor turned".to_owned()
+        } else {
+            parts.join(", ")
+        }
+    }
+
     fn scale_message(&self, about: &str) -> Option<String> {
         let (sx, sy) = self.scale;
         let parallel = self

@@ -154,6 +154,8 @@ pub struct GeometryJudgement {
     pub candidates: Vec<Fit>,
     /// The verdict those numbers give.
     pub verdict: GeometryVerdict,
+    /// The best coverage of any map judged, which each fit's relative coverage is of.
+    pub most_coverage: f64,
 }
 
 /// How well a label map explains a picture.
@@ -258,7 +260,16 @@ impl CameraCandidates {
         if picture.dimensions() != (self.width, self.height) {
             return None;
         }
-        let contrast = Contrast::of(picture);
+        self.judge_edges(&PictureEdges::of(picture))
+    }
+
+    /// [`CameraCandidates::judge`] of a picture whose edges are measured already (of the
+    /// maps' size; `None` otherwise).
+    pub fn judge_edges(&self, edges: &PictureEdges) -> Option<GeometryJudgement> {
+        if edges.size != (self.width, self.height) {
+            return None;
+        }
+        let contrast = &edges.contrast;
         let measured: Vec<(f64, f64)> = std::iter::once(&self.right)
             .chain(&self.candidates)
             .map(|boundary| contrast.measure(boundary))
@@ -285,7 +296,68 @@ impl CameraCandidates {
             right,
             candidates,
             verdict,
+            most_coverage: most,
         })
+    }
+
+    /// How well `map`, a camera the caller made besides the candidates (an eye moved), explains
+    /// the picture whose edges are `edges`, in the terms of `judged` (its judgement by
+    /// these maps): `None` when the sizes differ.
+    pub fn fit_other(
+        &self,
+        edges: &PictureEdges,
+        judged: &GeometryJudgement,
+        map: &LabelMap,
+    ) -> Option<Fit> {
+        if edges.size != (self.width, self.height) || map.size() != edges.size {
+            return None;
+        }
+        let (agreement, coverage) = edges.contrast.measure(&Boundary::of(map));
+        Some(Fit::new(
+            agreement,
+            coverage,
+            judged.most_coverage.max(coverage),
+        ))
+    }
+
+    /// For each pixel (row by row), whether it lies more than `margin` pixels away from
+    /// every pixel on or next to the right map's boundaries: inside one surface.
+    pub fn interior(&self, margin: usize) -> Vec<bool> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let near = &self.right.near;
+        // Grown by `margin` along rows, then along columns.
+        let mut rows = vec![false; w * h];
+        for row in 0..h {
+            for col in 0..w {
+                let (lo, hi) = (col.saturating_sub(margin), (col + margin).min(w - 1));
+                rows[row * w + col] = (lo..=hi).any(|c| near[row * w + c]);
+            }
+        }
+        let mut inside = vec![true; w * h];
+        for row in 0..h {
+            let (lo, hi) = (row.saturating_sub(margin), (row + margin).min(h - 1));
+            for col in 0..w {
+                inside[row * w + col] = !(lo..=hi).any(|r| rows[r * w + col]);
+            }
+        }
+        inside
+    }
+}
+
+/// A picture's edges, measured once (its neighbour contrasts, blind to its shading level)
+/// to judge many label maps against.
+pub struct PictureEdges {
+    size: (u32, u32),
+    contrast: Contrast,
+}
+
+impl PictureEdges {
+    /// Measures `picture`'s edges.
+    pub fn of(picture: &RgbaImage) -> PictureEdges {
+        PictureEdges {
+            size: picture.dimensions(),
+            contrast: Contrast::of(picture),
+        }
     }
 }
 

@@ -140,6 +140,9 @@ pub fn compare(expected: &RgbaImage, actual: &RgbaImage, thresholds: &Thresholds
             peak_flip,
         }),
         diagnosis: None,
+        camera: None,
+        appearance: None,
+        judge: crate::camera::Judge::Image,
         error_map: Some(map),
     }
 }

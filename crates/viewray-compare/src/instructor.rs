@@ -1,7 +1,12 @@
 //! Instructor mode: judge a student's render as an instructor would.
 
+use std::cell::OnceCell;
+use std::sync::{Arc, OnceLock};
+
 use image::RgbaImage;
 
+use crate::appearance;
+use crate::camera::{CameraFinding, CameraJudge, Judge};
 use crate::comparison::{Comparison, Failure, Metrics, Mode, count_bad_pixels, is_nearly_blank};
 use crate::diagnosis::{CameraMistake, Diagnosis, Expectations, Significant};
 use crate::estimate::{self, Estimate, ExpectedPyramid, Pyramid};
@@ -135,7 +140,9 @@ pub fn judge_with(
 /// threads too.
 ///
 /// [`Reference::judge`] gives exactly what [`judge_with`] gives for the same images,
-/// thresholds and expectations, bit for bit.
+/// thresholds and expectations, bit for bit. With a [`CameraJudge`]
+/// ([`Reference::with_camera`]) it judges the picture's camera too, and the [`Judge`]
+/// says which judgement decides.
 #[derive(Clone, Debug)]
 pub struct Reference {
     expected: RgbaImage,
@@ -149,6 +156,13 @@ pub struct Reference {
     blurred: FloatImage,
     flip: FlipReference,
     pyramid: ExpectedPyramid,
+    /// The scene's judge of a picture's camera, when the scene is known.
+    camera: Option<Arc<dyn CameraJudge>>,
+    /// Which judgement decides.
+    decides: Judge,
+    /// Where appearance is measured without a camera judge: the reference's flat parts,
+    /// found the first time they are needed.
+    flat: OnceLock<Vec<bool>>,
 }
 
 impl Reference {
@@ -181,7 +195,32 @@ impl Reference {
             blurred,
             flip,
             pyramid,
+            camera: None,
+            decides: Judge::Image,
+            flat: OnceLock::new(),
         }
+    }
+
+    /// This reference with the scene's `camera` judge, and `decides` saying which
+    /// judgement decides a render's verdict ([`Judge::Image`] still judges and reports
+    /// the camera).
+    #[must_use]
+    pub fn with_camera(self, camera: Arc<dyn CameraJudge>, decides: Judge) -> Self {
+        Self {
+            camera: Some(camera),
+            decides,
+            ..self
+        }
+    }
+
+    /// Which judgement decides a render's verdict.
+    pub fn decides(&self) -> Judge {
+        self.decides
+    }
+
+    /// Whether renders' cameras are judged (a scene's judge was given).
+    pub fn judges_cameras(&self) -> bool {
+        self.camera.is_some()
     }
 
     /// The reference image.
@@ -200,12 +239,18 @@ impl Reference {
     }
 
     /// Judges a student's render (`actual`) against this reference, as [`judge_with`]
-    /// does. Never panics.
+    /// does, and its camera when a camera judge was given. Never panics.
     pub fn judge(&self, actual: &RgbaImage) -> Comparison {
         let expected = &self.expected;
         let thresholds = &self.thresholds;
         if expected.dimensions() != actual.dimensions() {
-            return Comparison::size_mismatch(Mode::Instructor, expected, actual);
+            let mut comparison = Comparison::size_mismatch(Mode::Instructor, expected, actual);
+            comparison.judge = self.decides;
+            comparison.camera = self.camera.as_ref().map(|_| CameraFinding::WrongSize {
+                found: actual.dimensions(),
+                expected: expected.dimensions(),
+            });
+            return comparison;
         }
         let mut failures = Vec::new();
         let pixel_count = u64::from(expected.width()) * u64::from(expected.height());
@@ -218,9 +263,9 @@ impl Reference {
 
         // Blur in linear light, where a pixel's samples are averaged, then encode for FLIP.
         let actual_linear = FloatImage::linear_from_rgba8(actual);
-        let actual_blurred = actual_linear
-            .gaussian_blur(thresholds.blur_sigma)
-            .encoded_as_srgb_reusing(&self.blurred_linear, &self.blurred);
+        let actual_blurred_linear = actual_linear.gaussian_blur(thresholds.blur_sigma);
+        let actual_blurred =
+            actual_blurred_linear.encoded_as_srgb_reusing(&self.blurred_linear, &self.blurred);
         let map = self.flip.compare(&actual_blurred.to_rgb8_bytes());
         let (mean_flip, peak_flip) = (map.mean(), map.peak(PEAK_WINDOW));
         let flip_failed = peak_flip > thresholds.max_peak_flip;
@@ -231,32 +276,75 @@ impl Reference {
             });
         }
 
-        let expectations = self.expectations.as_ref();
-        let mut mistake = find_mistake(
-            &self.blurred,
-            &self.pyramid,
-            &actual_blurred,
-            flip_failed,
-            thresholds,
-            expectations,
-        );
-        if mistake.is_none()
-            && flip_failed
-            && let Some(expectations) = expectations
-        {
-            mistake = find_predicted_move(&self.linear, &actual_linear, expectations);
+        // The transform between the pictures, as the image judgement measures it: at once
+        // when the image judgement decides (or is the only one); else only when the camera
+        // judge asks, to say what it measured.
+        let transform = |search: bool| {
+            let mut mistake = find_mistake(
+                &self.blurred,
+                &self.pyramid,
+                &actual_blurred,
+                search,
+                thresholds,
+                self.expectations.as_ref(),
+            );
+            if mistake.is_none()
+                && search
+                && let Some(expectations) = &self.expectations
+            {
+                mistake = find_predicted_move(&self.linear, &actual_linear, expectations);
+            }
+            mistake
+        };
+        let measured: OnceCell<Option<CameraMistake>> = OnceCell::new();
+        if self.decides.image_decides() || self.camera.is_none() {
+            let _ = measured.set(transform(flip_failed));
         }
+        let camera = self
+            .camera
+            .as_ref()
+            .map(|judge| judge.judge(actual, &|| *measured.get_or_init(|| transform(true))));
+        let mistake = measured.get().copied().flatten();
+        let image_judged = self.decides.image_decides() || self.camera.is_none();
         let diagnosis = match mistake {
             Some(mistake) => {
-                failures.push(Failure::CameraMistake);
+                if image_judged {
+                    failures.push(Failure::CameraMistake);
+                }
                 Some(Diagnosis::Camera(mistake))
             }
-            None if flip_failed => Some(Diagnosis::Unexplained {
+            None if flip_failed && image_judged => Some(Diagnosis::Unexplained {
                 whole_view: differs_everywhere(&self.blurred, &actual_blurred),
             }),
             None => None,
         };
 
+        // Appearance, where the camera is right (or, without a scene, where no transform
+        // explains the difference).
+        let camera_right = match &camera {
+            Some(finding) => finding.passed(),
+            None => mistake.is_none(),
+        };
+        let appearance = camera_right.then(|| {
+            let interior = match &self.camera {
+                Some(judge) => judge.interior(),
+                None => self
+                    .flat
+                    .get_or_init(|| appearance::flat_parts(&self.linear)),
+            };
+            appearance::classify(
+                &appearance::Pictures {
+                    expected: &self.linear,
+                    actual: &actual_linear,
+                    expected_blurred: &self.blurred_linear,
+                    actual_blurred: &actual_blurred_linear,
+                    interior,
+                },
+                flip_failed,
+            )
+        });
+
+        let failures = decide(self.decides, failures, camera.as_ref());
         Comparison {
             mode: Mode::Instructor,
             failures,
@@ -268,8 +356,27 @@ impl Reference {
                 peak_flip,
             }),
             diagnosis,
+            camera,
+            appearance,
+            judge: self.decides,
             error_map: Some(map),
         }
+    }
+}
+
+/// The failures that decide a verdict: the image judgement's (`image`), the camera's, or
+/// both, as `decides` says. Without a camera judgement, the image's.
+fn decide(decides: Judge, image: Vec<Failure>, camera: Option<&CameraFinding>) -> Vec<Failure> {
+    let Some(camera) = camera else {
+        return image;
+    };
+    let wrong = (!camera.passed()).then(|| Failure::WrongCamera {
+        diagnosis: camera.diagnosis(),
+    });
+    match decides {
+        Judge::Image => image,
+        Judge::Camera => wrong.into_iter().collect(),
+        Judge::Both => wrong.into_iter().chain(image).collect(),
     }
 }
 

@@ -60,6 +60,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod appearance;
+mod camera;
 mod comparison;
 mod diagnosis;
 mod estimate;
@@ -78,16 +80,18 @@ mod report;
 /// out.
 pub use image::{RgbImage, RgbaImage};
 
+pub use appearance::Appearance;
+pub use camera::{CameraFinding, CameraJudge, CatalogueEntry, Judge};
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use geometry::{
     AGREEMENT_NEEDED, CANDIDATE_MARGIN, COVERAGE_NEEDED, CameraCandidates, Fit, GeometryJudgement,
-    GeometryVerdict, LabelMap, STRONG_EDGE,
+    GeometryVerdict, LabelMap, PictureEdges, STRONG_EDGE,
 };
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};
-pub use load::{LoadError, load_png};
-pub use outcome::{Outcome, Tally, Verdict};
+pub use load::{IMAGE_EXTENSIONS, LoadError, SUPPORTED_IMAGES, load_image, load_png};
+pub use outcome::{FailureKind, Outcome, Tally, Verdict};
 pub use page::{report_page, verdict_badge};
 pub use report::{Report, ReportEntry, Rules, unique_stem, write_report};
 

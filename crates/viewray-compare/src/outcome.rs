@@ -1,7 +1,9 @@
 //! What became of one pair of images, and the verdict the terminal, the JSON lines, the
 //! gradebook and the reports all give it.
 
-use crate::comparison::Comparison;
+use crate::appearance::Appearance;
+use crate::camera::CameraFinding;
+use crate::comparison::{Comparison, Failure};
 
 /// What became of one pair of images: compared, or not, and whose failure that is.
 ///
@@ -55,15 +57,83 @@ impl Outcome {
         self.comparison()?.metrics.map(|m| m.peak_flip)
     }
 
-    /// What a row says after the figures: the diagnosis, else why it failed, else nothing.
+    /// What a row says after the figures: the diagnosis, else why it failed, else nothing
+    /// ([`Comparison::note`]).
     pub fn note(&self) -> String {
         match self {
-            Outcome::Compared(c) => match c.diagnosis {
-                Some(d) => d.to_string(),
-                None => c.reasons(),
-            },
+            Outcome::Compared(c) => c.note(),
             Outcome::Failed(message) | Outcome::Error(message) => message.clone(),
         }
+    }
+
+    /// The camera judgement, when the pair was compared with a scene's camera judge.
+    pub fn camera(&self) -> Option<&CameraFinding> {
+        self.comparison()?.camera.as_ref()
+    }
+
+    /// How the render looks beside the reference, when that was judged.
+    pub fn appearance(&self) -> Option<Appearance> {
+        self.comparison()?.appearance
+    }
+
+    /// Why a pair failed, in the few kinds a class report colours apart; `None` when it
+    /// passed.
+    pub fn failure_kind(&self) -> Option<FailureKind> {
+        match self {
+            Outcome::Compared(c) if c.passed() => None,
+            Outcome::Compared(c) => Some(
+                if c.failures.iter().any(|f| {
+                    matches!(
+                        f,
+                        Failure::WrongCamera { .. }
+                            | Failure::CameraMistake
+                            | Failure::SizeMismatch { .. }
+                    )
+                }) {
+                    FailureKind::Camera
+                } else {
+                    FailureKind::Appearance
+                },
+            ),
+            Outcome::Failed(message) | Outcome::Error(message) => {
+                Some(if message.starts_with("missing") {
+                    FailureKind::Missing
+                } else {
+                    FailureKind::Unreadable
+                })
+            }
+        }
+    }
+
+    /// What a summary counts a failed pair by, in a few words: the camera's catalogue
+    /// entry (`mirrored: u-sign`, [`CameraFinding::key`]), the transform measured when no
+    /// scene was given (`mirrored left-right`), the appearance (`gamma-missing`),
+    /// `missing` or `unreadable`; `None` when it passed.
+    pub fn summary_key(&self) -> Option<String> {
+        let kind = self.failure_kind()?;
+        let Some(c) = self.comparison() else {
+            return Some(kind.word().to_owned());
+        };
+        if let Some(key) = c.camera.as_ref().and_then(CameraFinding::key)
+            && kind == FailureKind::Camera
+        {
+            return Some(key);
+        }
+        if c.failures
+            .iter()
+            .any(|f| matches!(f, Failure::SizeMismatch { .. }))
+        {
+            return Some("wrong size".to_owned());
+        }
+        if kind == FailureKind::Camera
+            && let Some(mistake) = c.diagnosis.as_ref().and_then(|d| d.camera_mistake())
+        {
+            return Some(mistake.measured_words());
+        }
+        Some(match c.appearance {
+            Some(appearance) if appearance != Appearance::Same => appearance.id().to_owned(),
+            _ => "different".to_owned(),
+        })
     }
 
     /// This outcome without what only a report needs (the FLIP error map).
@@ -121,6 +191,43 @@ impl Tally {
             ));
         }
         line
+    }
+}
+
+/// Why a pair failed, in the kinds a class report colours apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FailureKind {
+    /// No render of that name was handed in.
+    Missing,
+    /// The render could not be read.
+    Unreadable,
+    /// The camera is wrong: the picture's geometry (or size) is not the reference's.
+    Camera,
+    /// The camera is right (or was not judged and no transform explains the
+    /// difference), but the picture looks different: shading, gamma, an object or a
+    /// colour.
+    Appearance,
+}
+
+impl FailureKind {
+    /// `missing`, `unreadable`, `wrong camera` or `wrong appearance`.
+    pub fn word(self) -> &'static str {
+        match self {
+            FailureKind::Missing => "missing",
+            FailureKind::Unreadable => "unreadable",
+            FailureKind::Camera => "wrong camera",
+            FailureKind::Appearance => "wrong appearance",
+        }
+    }
+
+    /// `missing`, `unreadable`, `camera` or `appearance`: a report's CSS class.
+    pub fn class(self) -> &'static str {
+        match self {
+            FailureKind::Missing => "missing",
+            FailureKind::Unreadable => "unreadable",
+            FailureKind::Camera => "camera",
+            FailureKind::Appearance => "appearance",
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use std::io;
 use image::imageops::FilterType;
 use viewray_compare::{Comparison, Outcome, Reference, RgbImage, RgbaImage};
 
-use crate::folders::{ReferenceImage, Student, pair};
+use crate::folders::{ReferenceImage, Student};
 use crate::judging::{in_order, judge_counterpart};
 
 /// The largest thumbnail of a report, in pixels: images are shrunk to fit, never grown.
@@ -95,7 +95,7 @@ pub fn thumbnail<P: image::Pixel + 'static>(
 /// `pictures`, each failed image keeps its thumbnails.
 pub fn grade_student(assignment: &Assignment, student: &Student, pictures: bool) -> StudentGrade {
     let images: Vec<ReferenceImage> = assignment.tasks.iter().map(|t| t.image.clone()).collect();
-    let pairing = match pair(&student.folder, &images) {
+    let pairing = match student.pair(&images) {
         Ok(pairing) => pairing,
         Err(error) => {
             let message = format!("cannot read the folder: {error}");
@@ -176,10 +176,33 @@ pub struct ImageTally {
 }
 
 impl ImageTally {
-    /// The pass rate in whole percent, rounded down (so 199 of 200 is 99%, not 100%).
-    pub fn percent(&self) -> usize {
-        (self.passed * 100).checked_div(self.total).unwrap_or(100)
+    /// The pass rate as the summary prints it ([`percent`]): `29%` for 2 of 7, `99.5%`
+    /// for 199 of 200.
+    pub fn percent(&self) -> String {
+        percent(self.passed, self.total)
     }
+}
+
+/// `part` of `whole` in percent, rounded to the nearest whole percent (2 of 7 is `29%`),
+/// with as many decimals as it takes (up to three) never to round a part that is not all
+/// to `100%`, or one that is not none to `0%` (199 of 200 is `99.5%`, 1 of 1000 `0.1%`);
+/// `100%` for none of none.
+pub fn percent(part: usize, whole: usize) -> String {
+    if whole == 0 || part == whole {
+        return "100%".to_owned();
+    }
+    if part == 0 {
+        return "0%".to_owned();
+    }
+    let exact = part as f64 * 100.0 / whole as f64;
+    for decimals in 0..3 {
+        let text = format!("{exact:.decimals$}");
+        let value: f64 = text.parse().unwrap_or(exact);
+        if value > 0.0 && value < 100.0 {
+            return format!("{text}%");
+        }
+    }
+    format!("{exact:.3}%")
 }
 
 /// How the class did.
@@ -191,6 +214,9 @@ pub struct ClassSummary {
     pub passed_everything: usize,
     /// Each image's tally, in the assignment's order.
     pub images: Vec<ImageTally>,
+    /// How many failed images each diagnosis explains ([`Outcome::summary_key`]), the
+    /// most frequent first (then by name).
+    pub diagnoses: Vec<(String, usize)>,
 }
 
 impl ClassSummary {
@@ -208,20 +234,32 @@ impl ClassSummary {
                 total: grades.len(),
             })
             .collect();
+        let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+        for key in grades
+            .iter()
+            .flat_map(|g| &g.images)
+            .filter_map(|i| i.outcome.summary_key())
+        {
+            *counts.entry(key).or_default() += 1;
+        }
+        let mut diagnoses: Vec<(String, usize)> = counts.into_iter().collect();
+        diagnoses.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
         Self {
             students: grades.len(),
             passed_everything: grades.iter().filter(|g| g.passed_everything()).count(),
             images,
+            diagnoses,
         }
     }
 
-    /// The image the fewest students passed (the first of them in name order), unless
-    /// every student passed every image.
-    pub fn hardest(&self) -> Option<&ImageTally> {
-        self.images
-            .iter()
-            .filter(|i| i.passed < i.total)
-            .min_by_key(|i| i.passed)
+    /// The images the fewest students passed (several when they tie), in name order;
+    /// none when every student passed every image.
+    pub fn hardest(&self) -> Vec<&ImageTally> {
+        let failed = self.images.iter().filter(|i| i.passed < i.total);
+        let Some(fewest) = failed.clone().map(|i| i.passed).min() else {
+            return Vec::new();
+        };
+        failed.filter(|i| i.passed == fewest).collect()
     }
 
     /// Whether every student passed every image.
@@ -244,16 +282,104 @@ impl ClassSummary {
     }
 
     /// The hardest image as a sentence, e.g. `hardest image: boxes.png, passed by 188 of
-    /// 200 (94%)`, or `None` when every student passed every image.
+    /// 200 (94%)`, or every image tied for it (`hardest images: a.png and b.png, each
+    /// passed by 3 of 7 (43%)`); `None` when every student passed every image.
     pub fn hardest_line(&self) -> Option<String> {
-        self.hardest().map(|i| {
-            format!(
-                "hardest image: {}, passed by {} of {} ({}%)",
-                i.name,
-                i.passed,
-                i.total,
-                i.percent()
-            )
+        let hardest = self.hardest();
+        let first = hardest.first()?;
+        let names: Vec<&str> = hardest.iter().map(|i| i.name.as_str()).collect();
+        let (noun, each) = if names.len() == 1 {
+            ("image", "")
+        } else {
+            ("images", "each ")
+        };
+        Some(format!(
+            "hardest {noun}: {}, {each}passed by {} of {} ({})",
+            joined(&names),
+            first.passed,
+            first.total,
+            first.percent()
+        ))
+    }
+
+    /// The diagnoses counted, as a sentence: `diagnoses: 12 mirrored: u-sign, 3
+    /// missing`; `None` when nothing failed.
+    pub fn diagnoses_line(&self) -> Option<String> {
+        (!self.diagnoses.is_empty()).then(|| {
+            let counted: Vec<String> = self
+                .diagnoses
+                .iter()
+                .map(|(key, count)| format!("{count} {key}"))
+                .collect();
+            format!("failures: {}", counted.join(", "))
         })
+    }
+}
+
+/// Names joined as a sentence: `a`, `a and b`, `a, b and c`.
+fn joined(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => (*one).to_owned(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentages_round_but_never_to_all_or_none() {
+        let cases = [
+            ((2, 7), "29%"),
+            ((1, 3), "33%"),
+            ((199, 200), "99.5%"),
+            ((1999, 2000), "99.95%"),
+            ((1, 200), "0.5%"),
+            ((1, 1000), "0.1%"),
+            ((0, 5), "0%"),
+            ((5, 5), "100%"),
+            ((0, 0), "100%"),
+            ((1, 2), "50%"),
+        ];
+        for ((part, whole), want) in cases {
+            assert_eq!(percent(part, whole), want, "{part} of {whole}");
+        }
+    }
+
+    #[test]
+    fn tied_hardest_images_are_all_named() {
+        let tally = |name: &str, passed| ImageTally {
+            name: name.to_owned(),
+            passed,
+            total: 7,
+        };
+        let mut summary = ClassSummary {
+            students: 7,
+            passed_everything: 2,
+            images: vec![tally("a.png", 3), tally("b.png", 5), tally("c.png", 3)],
+            diagnoses: vec![
+                ("mirrored: u-sign".to_owned(), 4),
+                ("missing".to_owned(), 2),
+            ],
+        };
+        let names: Vec<&str> = summary.hardest().iter().map(|i| i.name.as_str()).collect();
+        assert_eq!(names, ["a.png", "c.png"]);
+        assert_eq!(
+            summary.hardest_line().unwrap(),
+            "hardest images: a.png and c.png, each passed by 3 of 7 (43%)"
+        );
+        assert_eq!(
+            summary.diagnoses_line().unwrap(),
+            "failures: 4 mirrored: u-sign, 2 missing"
+        );
+        summary.images[2].passed = 4;
+        assert_eq!(
+            summary.hardest_line().unwrap(),
+            "hardest image: a.png, passed by 3 of 7 (43%)"
+        );
+        summary.images = vec![tally("a.png", 7)];
+        assert_eq!(summary.hardest_line(), None);
     }
 }

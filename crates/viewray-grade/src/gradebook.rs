@@ -6,13 +6,25 @@ use std::path::Path;
 use crate::class::{Assignment, StudentGrade};
 
 /// The gradebook's header.
-pub const HEADER: [&str; 5] = ["student", "image", "verdict", "peak_flip", "diagnosis"];
+pub const HEADER: [&str; 7] = [
+    "student",
+    "image",
+    "verdict",
+    "camera",
+    "camera_diagnosis",
+    "peak_flip",
+    "appearance",
+];
 
 /// The gradebook as CSV bytes: the header, then one line per student and image in the
-/// students' and the images' order: the student's folder name, the image's name, `pass`
-/// or `fail`, the peak FLIP to 4 decimals (empty when the images were not compared with
-/// FLIP) and the diagnosis (else why it failed: `missing`, `not a PNG: ...`; empty for a
-/// pass). Fields are quoted as RFC 4180 says where they need it.
+/// students' and the images' order: the student's name, the image's name, `pass` or
+/// `fail`, the camera judgement (`right` or `wrong`; empty when the camera was not judged),
+/// the diagnosis of the judgement that decided (`--judge`: the camera's, the catalogue's
+/// entry with the formula to fix; or the image judgement's; else why it failed:
+/// `missing`, `not an image ...`; empty for a pass), the
+/// peak FLIP to 4 decimals (empty when the images were not compared with FLIP) and the
+/// appearance (`same`, `gamma-missing`, `brighter`, ...; empty when not judged). Fields
+/// are quoted as RFC 4180 says where they need it.
 ///
 /// # Errors
 /// None in practice (the CSV goes to memory); an I/O error type for the writer's sake.
@@ -25,12 +37,15 @@ pub fn gradebook(assignment: &Assignment, grades: &[StudentGrade]) -> io::Result
             let peak = outcome
                 .peak_flip()
                 .map_or_else(String::new, |p| format!("{p:.4}"));
+            let camera = outcome.camera();
             writer.write_record([
                 grade.name.as_str(),
                 name,
                 outcome.verdict().word(),
-                &peak,
+                camera.map_or("", |c| c.word()),
                 &outcome.note(),
+                &peak,
+                outcome.appearance().map_or("", |a| a.id()),
             ])?;
         }
     }

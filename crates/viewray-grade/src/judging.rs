@@ -7,19 +7,24 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 
 use rayon::prelude::*;
-use viewray_compare::{LoadError, Outcome, Reference, RgbaImage, load_png};
+use viewray_compare::{LoadError, Outcome, Reference, RgbaImage, SUPPORTED_IMAGES, load_image};
 
 use crate::folders::Counterpart;
 
-/// Why a render that is a file could not be read, as its row says it: `cannot read: ...`
-/// or `not a PNG: ...` (the file's name is the row's).
+/// Why a render that is a file could not be read, as its row says it: `cannot read: ...`,
+/// `not an image: ...` or `the PNG does not decode: ...` (the file's name is the row's).
 pub fn unreadable(error: &LoadError) -> String {
     match error {
         LoadError::Unreadable { source, .. } => format!("cannot read: {source}"),
         LoadError::NotPng { .. } => {
             "not a PNG: it does not start with the PNG signature".to_owned()
         }
-        LoadError::Decode { source, .. } => format!("not a PNG: it does not decode: {source}"),
+        LoadError::NotAnImage { .. } => {
+            format!("not an image viewray reads ({SUPPORTED_IMAGES})")
+        }
+        LoadError::Decode { format, source, .. } => {
+            format!("the {format} does not decode: {source}")
+        }
     }
 }
 
@@ -27,7 +32,7 @@ pub fn unreadable(error: &LoadError) -> String {
 /// why it fails without being compared.
 pub fn load_counterpart(counterpart: &Counterpart, name: &str) -> Result<RgbaImage, String> {
     match counterpart {
-        Counterpart::File(path) => load_png(path).map_err(|e| unreadable(&e)),
+        Counterpart::File(path) => load_image(path).map_err(|e| unreadable(&e)),
         other => Err(other.problem(name).unwrap_or_default()),
     }
 }

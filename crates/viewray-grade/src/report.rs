@@ -1,5 +1,7 @@
 //! The class report: an HTML page with the class at a glance (a grid of students by
-//! images, coloured by verdict, the diagnosis on hover, failures first) and a page per
+//! images, failures first, each failed cell coloured and worded by what failed: missing,
+//! unreadable, wrong camera, wrong appearance, with its diagnosis written in it, so that
+//! the page reads the same printed) and a page per
 //! student with thumbnails of the expected image, the render and the FLIP heatmap for each
 //! failure.
 
@@ -9,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Pixel};
 use maud::{Markup, html};
-use viewray_compare::{Verdict, report_page, unique_stem, verdict_badge};
+use viewray_compare::{FailureKind, Verdict, report_page, unique_stem, verdict_badge};
 use viewray_output::{Compression, encode_png, write_atomically};
 
 use crate::class::{Assignment, ClassSummary, StudentGrade, thumbnail};
@@ -120,8 +122,23 @@ fn failures_first(grades: &[StudentGrade]) -> Vec<usize> {
     order
 }
 
-fn verdict_class(verdict: Verdict) -> &'static str {
-    verdict.word()
+/// A cell's CSS classes: its verdict, and for a failure what failed.
+fn cell_class(verdict: Verdict, kind: Option<FailureKind>) -> String {
+    match kind {
+        Some(kind) => format!("cell {} {}", verdict.word(), kind.class()),
+        None => format!("cell {}", verdict.word()),
+    }
+}
+
+/// The mark of a failed cell: `?` missing, `!` unreadable, `✗` wrong camera, `~` wrong
+/// appearance.
+fn failure_mark(kind: Option<FailureKind>) -> &'static str {
+    match kind {
+        Some(FailureKind::Missing) => "?",
+        Some(FailureKind::Unreadable) => "!",
+        Some(FailureKind::Appearance) => "~",
+        Some(FailureKind::Camera) | None => "✗",
+    }
 }
 
 /// The page of the whole class.
@@ -131,7 +148,12 @@ fn class_page(
     student_stems: &[String],
 ) -> Markup {
     let names: Vec<&str> = report.assignment.names().collect();
-    let hardest = report.tally.hardest().map(|h| h.name.as_str());
+    let hardest: Vec<&str> = report
+        .tally
+        .hardest()
+        .iter()
+        .map(|h| h.name.as_str())
+        .collect();
     let body = html! {
         h1 { (report.title) }
         @for line in report.summary {
@@ -139,8 +161,11 @@ fn class_page(
         }
         p.legend {
             span.cell.pass { "✓" } " passed  "
-            span.cell.fail { "✗" } " failed (hover for the diagnosis, click for the \
-                student's page)  · " (report.rule)
+            span."cell fail camera" { "✗" } " wrong camera  "
+            span."cell fail appearance" { "~" } " wrong appearance  "
+            span."cell fail missing" { "?" } " missing  "
+            span."cell fail unreadable" { "!" } " unreadable  · each failure's diagnosis \
+                in its cell (the whole on hover and on the student's page)  · " (report.rule)
         }
         table.grid {
             thead {
@@ -159,9 +184,9 @@ fn class_page(
                     th.student { "passed by" }
                     td.count {}
                     @for tally in &report.tally.images {
-                        td class={ "rate" @if Some(tally.name.as_str()) == hardest { " hardest" } }
+                        td class={ "rate" @if hardest.contains(&tally.name.as_str()) { " hardest" } }
                             title={ (tally.name) ": passed by " (tally.passed) " of " (tally.total) } {
-                            (tally.percent()) "%"
+                            (tally.percent())
                         }
                     }
                 }
@@ -182,11 +207,19 @@ fn class_page(
                             } else {
                                 format!("{name}: {}: {note}", verdict.label())
                             };
-                            td class={ "cell " (verdict_class(verdict)) } title=(hover) {
+                            @let kind = image.outcome.failure_kind();
+                            td class=(cell_class(verdict, kind)) title=(hover) {
                                 @if verdict == Verdict::Pass {
                                     "✓"
                                 } @else {
-                                    a href={ (page) "#" (stem) } { "✗" }
+                                    a href={ (page) "#" (stem) } {
+                                        span.mark { (failure_mark(kind)) }
+                                        " "
+                                        span.what { (kind.map_or("failed", FailureKind::word)) }
+                                        @if let Some(key) = image.outcome.summary_key().filter(|k| Some(k.as_str()) != kind.map(FailureKind::word)) {
+                                            ": " span.why { (key) }
+                                        }
+                                    }
                                 }
                             }
                         }
@@ -221,6 +254,9 @@ fn student_page(
                 section.failure id=(stem) {
                     h2 { (verdict_badge(Verdict::Fail)) " " (name) }
                     p.diagnosis { (image.outcome.note()) }
+                    @if let Some(appearance) = image.outcome.appearance().filter(|a| a.id() != "same") {
+                        p.appearance { "appearance: " (appearance.id()) ": " (appearance.sentence()) }
+                    }
                     @if let Some(peak) = image.outcome.peak_flip() {
                         p.figures { "peak FLIP " (format!("{peak:.3}")) }
                     }
@@ -276,7 +312,17 @@ table.grid { border-collapse: collapse; font-size: 0.9em; }
 span.cell { display: inline-block; height: 1.3em; line-height: 1.3em; }
 .cell a { text-decoration: none; display: block; }
 .cell.pass { background: #3a3; }
-.cell.fail { background: #c22; font-weight: bold; }
+.cell.fail { background: #c22; font-size: 0.75em; line-height: 1.15; width: auto; min-width: 6em; max-width: 11em; padding: 0.15em 0.3em; text-align: left; }
+.cell.fail .mark { font-weight: bold; }
+.cell.fail .what { font-weight: bold; }
+.cell.fail .why { display: block; font-weight: normal; }
+span.cell.fail { min-width: 0; font-size: 1em; text-align: center; }
+.cell.fail.appearance { background: #e69f00; color: #000; }
+.cell.fail.missing { background: #fff; color: #333; border: 1px dashed #777; }
+.cell.fail.unreadable { background: #777; }
+@media print {
+  .cell { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+}
 .grid tbody tr:hover th, .grid tbody tr:hover td.count { background: #e8e8e8; }
 .grid tr.fail + tr.pass th, .grid tr.fail + tr.pass td { border-top: 2px solid #999; }
 .grid tr.rates td, .grid tr.rates th { border-bottom: 1px solid #ccc; color: #555; font-size: 0.85em; text-align: center; font-weight: normal; }

@@ -3,16 +3,21 @@
 //!
 //! ```text
 //! a pair:     {"name":..,"verdict":..,"peak_flip":..,"mean_flip":..,"threshold":..,
-//!              "diagnosis":[..],"transform":{..},"reasons":[..]}
+//!              "diagnosis":[..],"transform":{..},"reasons":[..],"judge":..,"camera":..,
+//!              "camera_diagnosis":..,"catalogue":[..],"appearance":..}
 //! an image:   {"student":..,"name":.., the pair's fields}
 //! summaries:  {"summary":{"total":..,"passed":..,"failed":..,"missing_or_unreadable":..,"extra":[..]}}
 //!             {"summary":{"students":..,"images":..,"passed_everything":..,"per_image":[..],
-//!              "hardest":..,"not_graded":[..]}}
+//!              "hardest":[..],"failures":{..},"not_graded":[..]}}
 //! ```
 //!
 //! FLIP figures, the transform's numbers and the threshold are rounded to 4 decimals; what
-//! a pair lacks (figures when it was not compared, a diagnosis when none was found) is
-//! `null`.
+//! a pair lacks (figures when it was not compared, a diagnosis when none was found, the
+//! camera when no scene judged it) is `null`. `judge` says which judgement decided
+//! (`camera`, `image` or `both`), `camera` is `right` or `wrong`, `catalogue` the ids of
+//! the lecture's mistakes that explain a wrong camera, `appearance` how the picture looks
+//! beside the reference (`same`, `gamma-missing`, `gamma-twice`, `brighter`, `darker`,
+//! `shading`, `noise`).
 
 use serde_json::{Map, Value, json};
 use viewray_compare::{Diagnosis, Outcome, Tally};
@@ -62,7 +67,12 @@ pub fn class_summary_line(summary: &ClassSummary, not_graded: &[String]) -> Valu
         "images": summary.images.len(),
         "passed_everything": summary.passed_everything,
         "per_image": per_image,
-        "hardest": summary.hardest().map(|i| i.name.clone()),
+        "hardest": summary.hardest().iter().map(|i| i.name.clone()).collect::<Vec<_>>(),
+        "failures": summary
+            .diagnoses
+            .iter()
+            .map(|(key, count)| (key.clone(), json!(count)))
+            .collect::<Map<String, Value>>(),
         "not_graded": not_graded,
     }})
 }
@@ -113,6 +123,30 @@ fn outcome_fields(line: &mut Map<String, Value>, outcome: &Outcome, threshold: f
             }),
     );
     line.insert("reasons".into(), json!(reasons));
+    let comparison = outcome.comparison();
+    line.insert(
+        "judge".into(),
+        comparison.map_or(Value::Null, |c| json!(c.judge.word())),
+    );
+    let camera = outcome.camera();
+    line.insert(
+        "camera".into(),
+        camera.map_or(Value::Null, |c| json!(c.word())),
+    );
+    line.insert(
+        "camera_diagnosis".into(),
+        camera
+            .filter(|c| !c.passed())
+            .map_or(Value::Null, |c| json!(c.diagnosis())),
+    );
+    line.insert(
+        "catalogue".into(),
+        json!(camera.map(|c| c.ids()).unwrap_or_default()),
+    );
+    line.insert(
+        "appearance".into(),
+        outcome.appearance().map_or(Value::Null, |a| json!(a.id())),
+    );
 }
 
 #[cfg(test)]
@@ -131,11 +165,11 @@ mod tests {
         let outcome = Outcome::Failed("missing".to_owned());
         assert_eq!(
             text(&pair_line("a.png", &outcome, 0.3)),
-            r#"{"name":"a.png","verdict":"fail","peak_flip":null,"mean_flip":null,"threshold":0.3,"diagnosis":null,"transform":null,"reasons":["missing"]}"#
+            r#"{"name":"a.png","verdict":"fail","peak_flip":null,"mean_flip":null,"threshold":0.3,"diagnosis":null,"transform":null,"reasons":["missing"],"judge":null,"camera":null,"camera_diagnosis":null,"catalogue":[],"appearance":null}"#
         );
         assert_eq!(
             text(&student_image_line("alice", "a.png", &outcome, 0.123_456)),
-            r#"{"student":"alice","name":"a.png","verdict":"fail","peak_flip":null,"mean_flip":null,"threshold":0.1235,"diagnosis":null,"transform":null,"reasons":["missing"]}"#
+            r#"{"student":"alice","name":"a.png","verdict":"fail","peak_flip":null,"mean_flip":null,"threshold":0.1235,"diagnosis":null,"transform":null,"reasons":["missing"],"judge":null,"camera":null,"camera_diagnosis":null,"catalogue":[],"appearance":null}"#
         );
     }
 
@@ -146,7 +180,7 @@ mod tests {
         let outcome = Outcome::from(judge(&image, &image, &InstructorThresholds::default()));
         assert_eq!(
             text(&pair_line("same.png", &outcome, 0.3)),
-            r#"{"name":"same.png","verdict":"pass","peak_flip":0.0,"mean_flip":0.0,"threshold":0.3,"diagnosis":null,"transform":null,"reasons":[]}"#
+            r#"{"name":"same.png","verdict":"pass","peak_flip":0.0,"mean_flip":0.0,"threshold":0.3,"diagnosis":null,"transform":null,"reasons":[],"judge":"image","camera":null,"camera_diagnosis":null,"catalogue":[],"appearance":"same"}"#
         );
     }
 
@@ -170,10 +204,11 @@ mod tests {
             students: 2,
             passed_everything: 1,
             images: vec![tally("a.png", 2), tally("b.png", 1)],
+            diagnoses: vec![("mirrored: u-sign".to_owned(), 1)],
         };
         assert_eq!(
             text(&class_summary_line(&class, &[])),
-            r#"{"summary":{"students":2,"images":2,"passed_everything":1,"per_image":[{"name":"a.png","passed":2,"total":2},{"name":"b.png","passed":1,"total":2}],"hardest":"b.png","not_graded":[]}}"#
+            r#"{"summary":{"students":2,"images":2,"passed_everything":1,"per_image":[{"name":"a.png","passed":2,"total":2},{"name":"b.png","passed":1,"total":2}],"hardest":["b.png"],"failures":{"mirrored: u-sign":1},"not_graded":[]}}"#
         );
     }
 }

@@ -11,15 +11,26 @@
 //!   against those maps by viewray-compare's shading-blind geometry judge, and the entry
 //!   whose map explains it best is named (with the entries that make the same picture).
 //!
-//! Where to start reading: [`PictureJudge::new`] and [`PictureJudge::judge`].
+//! - [`SceneJudge`]: the same, as the [`viewray_compare::CameraJudge`] that `viewray
+//!   compare` and `viewray grade` hand to viewray-compare, one per scene: its answers are
+//!   plain data in the catalogue's words ([`catalogue_entry`]), and when nothing of the
+//!   catalogue explains a picture it looks for a moved eye, labelling the scene from
+//!   there (module `eye`) so that a moved eye is named only when its picture is the
+//!   student's.
+//!
+//! Where to start reading: [`PictureJudge::new`] and [`PictureJudge::judge`], then
+//! [`SceneJudge`].
 //!
 //! **Invariant:** judge does no I/O and knows no command line: it takes a loaded scene
 //! and decoded pixels, and its words are the catalogue's.
 
 mod answers;
+mod eye;
 mod numbers;
 mod picture;
+mod scene_judge;
 
 pub use answers::{Answer, AnswerError, read_answers};
 pub use numbers::{CheckOptions, Checker, Diagnosis, Expected, IndexHint, Judged, Report};
 pub use picture::{CameraVerdict, Explanation, PictureJudge};
+pub use scene_judge::{SceneJudge, catalogue_entry};

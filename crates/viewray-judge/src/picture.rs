@@ -2,7 +2,9 @@
 //! scene, against the picture's edges.
 
 use viewray_camera::{Mistake, Mistakes};
-use viewray_compare::{CameraCandidates, GeometryVerdict, LabelMap, RgbaImage};
+use viewray_compare::{
+    CameraCandidates, GeometryJudgement, GeometryVerdict, LabelMap, PictureEdges, RgbaImage,
+};
 use viewray_render::object_labels;
 use viewray_scene::Scene;
 
@@ -126,14 +128,29 @@ impl PictureJudge {
         &self.entries
     }
 
+    /// The right camera's and the catalogue's label maps, prepared.
+    pub(crate) fn candidates(&self) -> &CameraCandidates {
+        &self.candidates
+    }
+
     /// Judges the camera of `picture`, a student's render of this judge's scene.
     pub fn judge(&self, picture: &RgbaImage) -> CameraVerdict {
-        let Some(judged) = self.candidates.judge(picture) else {
+        if picture.dimensions() != self.size() {
             return CameraVerdict::WrongSize {
                 found: picture.dimensions(),
                 expected: self.size(),
             };
-        };
+        }
+        let edges = PictureEdges::of(picture);
+        let judged = self
+            .candidates
+            .judge_edges(&edges)
+            .expect("the picture is the maps' size");
+        self.verdict(&judged)
+    }
+
+    /// The verdict of the candidates' judgement of a picture of this judge's size.
+    pub(crate) fn verdict(&self, judged: &GeometryJudgement) -> CameraVerdict {
         let explanation = |group: &[usize]| Explanation {
             mistakes: group
                 .iter()
@@ -157,12 +174,12 @@ impl PictureJudge {
                 .collect();
             (!group.is_empty()).then(|| explanation(&group))
         };
-        match judged.verdict {
+        match &judged.verdict {
             GeometryVerdict::Right => CameraVerdict::Right {
                 agreement: judged.right.agreement,
             },
             GeometryVerdict::Candidate(group) => CameraVerdict::Mistaken {
-                explanation: explanation(&group),
+                explanation: explanation(group),
                 right: judged.right.agreement,
             },
             GeometryVerdict::Unexplained => CameraVerdict::Unexplained {

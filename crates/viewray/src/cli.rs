@@ -209,6 +209,25 @@ pub(crate) enum Command {
     /// usage (REFERENCE missing or without PNG files, SUBMISSIONS not a folder or without
     /// student folders).
     Grade(crate::grade::GradeArgs),
+    /// Grade one student's submission for an autograding platform.
+    ///
+    /// ASSIGNMENT is an assignment file (RON, paths relative to it): its tests, each a
+    /// scene and what the student hands in, a picture (judged by its camera, its
+    /// appearance or both, as the assignment's `judge` says) or answers (judged as
+    /// `viewray check` judges them), with points and visibility; optionally the command
+    /// that runs the student's own program once per test (`{scene}` and `{output}`
+    /// replaced, in a copy of SUBMISSION, with a time limit). Writes RESULTS in the
+    /// platform's format (--format): per-test points and status, the diagnosis with the
+    /// formula line to fix and, where the format shows pictures, expected, yours and
+    /// difference. A results file is always written: when nothing can be graded (a
+    /// broken assignment, a missing submission) it says why. Prints one line per test.
+    /// Exit code 0 when every test passes, 1 when any fails, 2 when nothing could be
+    /// graded or on bad usage.
+    ///
+    /// `viewray autograde kit ASSIGNMENT --for gradescope|github -o OUT` writes what the
+    /// platform takes: Gradescope's autograder zip, or GitHub Classroom's workflow and
+    /// files.
+    Autograde(crate::autograde::AutogradeArgs),
     /// Draw one of the lecture's figures to a PNG or SVG.
     ///
     /// Every figure is computed from the camera code: each 3D point is placed by a

@@ -12,27 +12,29 @@
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
 use viewray_camera::Projection;
 use viewray_compare::{
-    CameraKind, Expectations, InstructorThresholds, Outcome, Report, ReportEntry, RgbaImage, Rules,
-    Tally, Verdict, judge_with, load_png, write_report,
+    CameraJudge, CameraKind, Expectations, InstructorThresholds, Judge, Outcome, Reference, Report,
+    ReportEntry, RgbaImage, Rules, Tally, Verdict, load_image, write_report,
 };
 use viewray_grade::{Counterpart, ReferenceImage, in_order, load_counterpart};
-use viewray_scene::{LoadOptions, SceneLoader};
+use viewray_judge::SceneJudge;
+use viewray_scene::{LoadOptions, Scene, SceneLoader};
 
 /// Exit code when a render failed.
 pub(crate) const EXIT_FAILED: u8 = 1;
 
 #[derive(Args, Debug)]
 pub(crate) struct CompareArgs {
-    /// The reference: a PNG file, or a folder of PNG files.
+    /// The reference: an image file (PNG, PPM/PGM or OpenEXR), or a folder of them.
     pub(crate) expected: PathBuf,
-    /// The render(s) to judge: a PNG file, or a folder whose files are paired with
-    /// EXPECTED's *.png files by exact name.
+    /// The render(s) to judge: an image file, or a folder whose files are paired with
+    /// EXPECTED's images by name (or by stem in another format: a.ppm answers a.png).
     pub(crate) actual: PathBuf,
     /// The perceptual threshold, in [0, 1]: the largest FLIP error allowed in the worst 3x3
     /// window after both images are blurred by 2 px (0: identical; 1: black against
@@ -54,6 +56,38 @@ pub(crate) struct CompareArgs {
     /// images by file stem (a.png <-> a.ron), or one scene for every image.
     #[arg(long, value_name = "SCENE")]
     pub(crate) scene: Option<PathBuf>,
+    /// Which judgement decides the verdict: `camera` (the render's edges against the
+    /// scene's, whatever its shading, gamma, brightness or noise; needs --scene, and is
+    /// the default with it), `image` (FLIP against the reference, the default without a
+    /// scene) or `both`. The other is reported, never failed.
+    #[arg(long, value_name = "WHAT", value_parser = parse_judge)]
+    pub(crate) judge: Option<Judge>,
+}
+
+/// Parses `--judge`: `camera`, `image` or `both`.
+pub(crate) fn parse_judge(text: &str) -> Result<Judge, String> {
+    [Judge::Camera, Judge::Image, Judge::Both]
+        .into_iter()
+        .find(|j| j.word() == text.trim())
+        .ok_or_else(|| format!("`{text}` is not a judgement: give camera, image or both"))
+}
+
+/// The judgement that decides: `judge` as given, else `camera` with a scene and `image`
+/// without one.
+///
+/// # Errors
+/// `--judge camera` or `both` without a scene.
+pub(crate) fn deciding(judge: Option<Judge>, scene: Option<&Path>) -> Result<Judge> {
+    match (judge, scene) {
+        (Some(judge), Some(_)) => Ok(judge),
+        (Some(Judge::Image) | None, None) => Ok(Judge::Image),
+        (Some(judge), None) => bail!(
+            "--judge {} needs --scene: the camera is judged against the scene the \
+             reference was rendered from",
+            judge.word()
+        ),
+        (None, Some(_)) => Ok(Judge::Camera),
+    }
 }
 
 /// Parses `--threshold`: a FLIP error in [0, 1].
@@ -83,14 +117,30 @@ pub(crate) struct Prepared {
     pub(crate) image: ReferenceImage,
     pub(crate) pixels: RgbaImage,
     pub(crate) expectations: Option<Expectations>,
+    /// The scene's camera judge, when a scene was given.
+    pub(crate) camera: Option<Arc<dyn CameraJudge>>,
 }
 
-/// Loads the reference images (in parallel) and their scenes' expectations.
+impl Prepared {
+    /// The reference, prepared to judge renders with `thresholds`, its camera judged when
+    /// its scene is known, `decides` deciding the verdicts.
+    pub(crate) fn reference(&self, thresholds: InstructorThresholds, decides: Judge) -> Reference {
+        let reference = Reference::new(self.pixels.clone(), thresholds, self.expectations);
+        match &self.camera {
+            Some(camera) => reference.with_camera(Arc::clone(camera), decides),
+            None => reference,
+        }
+    }
+}
+
+/// Loads the reference images (in parallel), their scenes' expectations and, with a
+/// scene, its camera judge (the scene labelled through its camera and the catalogue's
+/// mistaken ones, once per reference image).
 ///
 /// # Errors
-/// Bad input: a reference image that cannot be read or is not a PNG; a scene that does
-/// not exist or is not a valid scene file; a folder of scenes without the scene of some
-/// reference image.
+/// Bad input: a reference image that cannot be read or is not an image viewray reads; a
+/// scene that does not exist or is not a valid scene file; a folder of scenes without the
+/// scene of some reference image.
 pub(crate) fn prepare(images: &[ReferenceImage], scene: Option<&Path>) -> Result<Vec<Prepared>> {
     let scenes = match scene {
         Some(scene) => scene_files(images, scene)?,
@@ -100,15 +150,21 @@ pub(crate) fn prepare(images: &[ReferenceImage], scene: Option<&Path>) -> Result
         .par_iter()
         .zip(&scenes)
         .map(|(image, scene)| {
-            let pixels = load_png(&image.path)?;
-            let expectations = match scene {
-                Some(path) => expectations(path, pixels.width(), pixels.height())?,
-                None => None,
+            let pixels = load_image(&image.path)?;
+            let (expectations, camera) = match scene {
+                Some(path) => {
+                    let scene = load_scene(path, pixels.width(), pixels.height())?;
+                    let expectations = expectations(&scene);
+                    let judge: Arc<dyn CameraJudge> = Arc::new(SceneJudge::new(scene));
+                    (expectations, Some(judge))
+                }
+                None => (None, None),
             };
             Ok(Prepared {
                 image: image.clone(),
                 pixels,
                 expectations,
+                camera,
             })
         })
         .collect()
@@ -146,26 +202,28 @@ fn scene_files(images: &[ReferenceImage], scene: &Path) -> Result<Vec<Option<Pat
         .collect()
 }
 
-/// What a scene says camera mistakes look like, for a reference of `width` x `height`
-/// (the scene is loaded at that size, so that fields of view in degrees follow its
-/// aspect ratio): the principal point, the lens shift and the kind of projection.
-/// `None` for a panoramic camera, whose mistakes are not transforms of the picture.
-fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectations>> {
+/// The scene at `path`, loaded for a reference of `width` x `height` (so that fields of
+/// view in degrees follow its aspect ratio).
+fn load_scene(path: &Path, width: u32, height: u32) -> Result<Scene> {
     let options = LoadOptions {
         size: Some((width, height)),
         samples: None,
     };
-    let scene = SceneLoader::file(path).options(options).load()?.scene;
+    Ok(SceneLoader::file(path).options(options).load()?.scene)
+}
+
+/// What a scene says camera mistakes look like: the principal point, the lens shift and
+/// the kind of projection. `None` for a panoramic camera, whose mistakes are not
+/// transforms of the picture.
+fn expectations(scene: &Scene) -> Option<Expectations> {
     let projection = scene.camera().projection();
-    let Some(principal) = projection.principal_point() else {
-        return Ok(None);
-    };
+    let principal = projection.principal_point()?;
     let shift = match projection {
         Projection::Perspective(p) => p.shift,
         Projection::ThinLens(p) => p.shift,
         _ => glam::DVec2::ZERO,
     };
-    Ok(Some(Expectations {
+    Some(Expectations {
         principal_point: (principal.x, principal.y),
         shift: (shift.x, shift.y),
         camera: if projection.is_parallel() {
@@ -173,7 +231,7 @@ fn expectations(path: &Path, width: u32, height: u32) -> Result<Option<Expectati
         } else {
             CameraKind::Perspective
         },
-    }))
+    })
 }
 
 /// One pair to judge: the reference and what the ACTUAL side holds for it.
@@ -201,12 +259,16 @@ fn exit_code(tally: Tally) -> ExitCode {
 
 /// Runs `viewray compare`; prints its own errors and returns the exit code.
 pub(crate) fn run(args: &CompareArgs) -> ExitCode {
+    let decides = match deciding(args.judge, args.scene.as_deref()) {
+        Ok(decides) => decides,
+        Err(error) => return crate::failure(&error),
+    };
     let planned = plan(args);
     let (pairs, extra) = match planned {
         Ok(planned) => planned,
         Err(error) => return crate::failure(&error),
     };
-    match judge_all(args, pairs, &extra) {
+    match judge_all(args, decides, pairs, &extra) {
         Ok(tally) => exit_code(tally),
         Err(error) => crate::failure(&error),
     }
@@ -230,7 +292,7 @@ fn plan(args: &CompareArgs) -> Result<(Vec<Pair>, Vec<String>)> {
     match (expected.is_dir(), actual.is_dir()) {
         (false, false) => {
             // Files given directly: either unreadable is bad input.
-            load_png(actual)?;
+            load_image(actual)?;
             let mut reference = ReferenceImage::file(expected);
             reference.name = actual.file_name().map_or_else(
                 || actual.display().to_string(),
@@ -276,7 +338,12 @@ fn plan(args: &CompareArgs) -> Result<(Vec<Pair>, Vec<String>)> {
 
 /// Judges every pair, printing a row (or a JSON line) as each is done, then the extra
 /// files, the summary and, with `--report`, the report. Returns how the pairs fared.
-fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<Tally> {
+fn judge_all(
+    args: &CompareArgs,
+    decides: Judge,
+    pairs: Vec<Pair>,
+    extra: &[String],
+) -> Result<Tally> {
     let thresholds = thresholds(args.threshold);
     let name_width = pairs
         .iter()
@@ -286,8 +353,9 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
         .max(4);
     // The table's verdicts are coloured on a terminal (see `style`); JSON never is.
     let mut out = BufWriter::new(anstream::AutoStream::auto(std::io::stdout().lock()));
+    let cameras = args.scene.is_some();
     if !args.json {
-        writeln!(out, "{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")?;
+        writeln!(out, "{}", table_header(name_width, cameras))?;
         out.flush()?;
     }
     let keep_images = args.report.is_some();
@@ -295,7 +363,7 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
     let mut tally = Tally::default();
     in_order(
         &pairs,
-        |pair| judge_pair(pair, &thresholds, keep_images),
+        |pair| judge_pair(pair, thresholds, decides, keep_images),
         |judged| {
             tally.add(&judged.outcome);
             if args.json {
@@ -305,7 +373,7 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
                 writeln!(
                     out,
                     "{}",
-                    table_row(&judged.name, &judged.outcome, name_width)
+                    table_row(&judged.name, &judged.outcome, name_width, cameras)
                 )?;
             }
             out.flush()?;
@@ -351,17 +419,17 @@ fn judge_all(args: &CompareArgs, pairs: Vec<Pair>, extra: &[String]) -> Result<T
 }
 
 /// Loads and judges one pair; a missing or unreadable render is the pair's failure.
-fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, keep_images: bool) -> Judged {
+fn judge_pair(
+    pair: &Pair,
+    thresholds: InstructorThresholds,
+    decides: Judge,
+    keep_images: bool,
+) -> Judged {
     let reference = &pair.reference;
     let name = reference.image.name.clone();
     let (actual, outcome) = match load_counterpart(&pair.counterpart, &name) {
         Ok(actual) => {
-            let comparison = judge_with(
-                &reference.pixels,
-                &actual,
-                thresholds,
-                reference.expectations.as_ref(),
-            );
+            let comparison = reference.reference(thresholds, decides).judge(&actual);
             (Some(actual), Outcome::from(comparison))
         }
         Err(message) => (None, Outcome::Failed(message)),
@@ -378,8 +446,22 @@ fn judge_pair(pair: &Pair, thresholds: &InstructorThresholds, keep_images: bool)
     }
 }
 
-/// A row of the table: name, verdict, peak FLIP and the note.
-pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize) -> String {
+/// The table's header: with cameras judged (a scene given), the camera's and the
+/// appearance's columns too.
+fn table_header(name_width: usize, cameras: bool) -> String {
+    if cameras {
+        format!(
+            "{:name_width$}  VERDICT  CAMERA  PEAK FLIP  APPEARANCE     DIAGNOSIS",
+            "NAME"
+        )
+    } else {
+        format!("{:name_width$}  VERDICT  PEAK FLIP  DIAGNOSIS", "NAME")
+    }
+}
+
+/// A row of the table: name, verdict, (with `cameras`: the camera, `right` or `wrong`)
+/// peak FLIP, (the appearance) and the note.
+pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize, cameras: bool) -> String {
     let peak = outcome
         .peak_flip()
         .map_or_else(|| "-".to_owned(), |p| format!("{p:.3}"));
@@ -388,10 +470,19 @@ pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize) -> Str
         Verdict::Pass => crate::style::PASS,
         Verdict::Fail | Verdict::Error => crate::style::FAIL,
     };
-    let row = format!(
-        "{name:name_width$}  {}  {peak:9}  {}",
-        crate::style::padded(style, verdict.label(), 7),
-        outcome.note()
-    );
+    let verdict = crate::style::padded(style, verdict.label(), 7);
+    let row = if cameras {
+        let camera = outcome.camera().map_or("-", |c| c.word());
+        let appearance = outcome.appearance().map_or("-", |a| a.id());
+        format!(
+            "{name:name_width$}  {verdict}  {camera:6}  {peak:9}  {appearance:13}  {}",
+            outcome.note()
+        )
+    } else {
+        format!(
+            "{name:name_width$}  {verdict}  {peak:9}  {}",
+            outcome.note()
+        )
+    };
     row.trim_end().to_owned()
 }

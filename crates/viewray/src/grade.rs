@@ -1,5 +1,5 @@
 //! `viewray grade`: a class's renders judged against the reference images, one folder
-//! per student.
+//! per student (or a flat course-site download, `--flat`).
 //!
 //! Output: a table on stdout, one row per student in name order (passed of total, then
 //! each failure with its diagnosis, one per line), printed as each student is graded
@@ -14,27 +14,29 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
-use viewray_compare::{InstructorThresholds, Reference};
+use viewray_compare::{InstructorThresholds, Judge};
 use viewray_grade::{
     Assignment, ClassReport, ClassSummary, StudentGrade, Task, grade_class, listed,
-    write_class_report, write_gradebook,
+    write_class_report, write_feedback, write_gradebook,
 };
 
-use crate::compare::{parse_threshold, prepare, thresholds};
+use crate::compare::{deciding, parse_judge, parse_threshold, prepare, thresholds};
 
 #[derive(Args, Debug)]
 pub(crate) struct GradeArgs {
-    /// The reference images: a folder of PNG files, the assignment.
+    /// The reference images: a folder of image files (PNG, PPM/PGM or OpenEXR), the
+    /// assignment.
     pub(crate) reference: PathBuf,
     /// The class: a folder holding one folder per student, each with the student's
-    /// renders named as the reference images are.
+    /// renders named as the reference images are (any supported format: a.ppm answers
+    /// a.png; a student folder holding one folder alone is descended into).
     pub(crate) submissions: PathBuf,
     /// The perceptual threshold, in [0, 1], as `viewray compare` has it.
     #[arg(long, value_name = "X", value_parser = parse_threshold,
           default_value_t = InstructorThresholds::default().max_peak_flip)]
     pub(crate) threshold: f32,
     /// Write the gradebook to FILE: CSV, one line per student and image (student, image,
-    /// verdict, peak_flip, diagnosis).
+    /// verdict, camera, camera_diagnosis, peak_flip, appearance).
     #[arg(long, value_name = "FILE")]
     pub(crate) csv: Option<PathBuf>,
     /// Write an HTML report of the class into DIR (DIR/index.html): the class at a
@@ -50,6 +52,19 @@ pub(crate) struct GradeArgs {
     /// diagnoses then speak the lecture's terms.
     #[arg(long, value_name = "SCENE")]
     pub(crate) scene: Option<PathBuf>,
+    /// Which judgement decides the verdict, as `viewray compare` has it: `camera` (the
+    /// default with --scene), `image` (the default without) or `both`.
+    #[arg(long, value_name = "WHAT", value_parser = parse_judge)]
+    pub(crate) judge: Option<Judge>,
+    /// SUBMISSIONS is a flat folder, as Canvas and Moodle download a class ("download all
+    /// submissions"): the student is taken from each file's name
+    /// (`lovelaceada_12345_67890_tower.png`, `Ada Lovelace_12345_assignsubmission_file_tower.png`).
+    #[arg(long)]
+    pub(crate) flat: bool,
+    /// Write a text file per student into DIR (DIR/STUDENT.txt), to paste back into a
+    /// course site: each failure with its diagnosis and the formula to fix.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) feedback: Option<PathBuf>,
 }
 
 /// Runs `viewray grade`; prints its own errors and returns the exit code.
@@ -106,14 +121,19 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
             );
         }
     }
+    let decides = deciding(args.judge, args.scene.as_deref())?;
     let images = viewray_grade::reference_images(reference, "REFERENCE")?;
-    let class = viewray_grade::submissions(submissions, "SUBMISSIONS")?;
+    let class = if args.flat {
+        viewray_grade::flat_submissions(submissions, "SUBMISSIONS")?
+    } else {
+        viewray_grade::submissions(submissions, "SUBMISSIONS")?
+    };
     let thresholds = thresholds(args.threshold);
     let tasks: Vec<Task> = prepare(&images, args.scene.as_deref())?
         .into_par_iter()
         .map(|p| Task {
+            reference: p.reference(thresholds, decides),
             image: p.image,
-            reference: Reference::new(p.pixels, thresholds, p.expectations),
         })
         .collect();
     let assignment = Assignment { tasks };
@@ -155,11 +175,12 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
         viewray_json::write_line(&mut out, &line)?;
     } else {
         if !class.other.is_empty() {
-            writeln!(
-                out,
-                "not graded, not a folder in SUBMISSIONS: {}",
-                listed(&class.other)
-            )?;
+            let what = if args.flat {
+                "not graded, not named as a course site names submissions"
+            } else {
+                "not graded, not a folder in SUBMISSIONS"
+            };
+            writeln!(out, "{what}: {}", listed(&class.other))?;
         }
         for line in &lines {
             writeln!(out, "{line}")?;
@@ -171,19 +192,34 @@ fn grade(args: &GradeArgs) -> Result<ClassSummary> {
             .with_context(|| format!("cannot write the gradebook `{}`", path.display()))?;
         eprintln!("gradebook: {}", path.display());
     }
+    if let Some(directory) = &args.feedback {
+        write_feedback(directory, &assignment, &grades)
+            .with_context(|| format!("cannot write the feedback into `{}`", directory.display()))?;
+        eprintln!("feedback: {}", directory.display());
+    }
     if let Some(directory) = &args.report {
         let title = format!(
             "viewray grade {} {}",
             reference.display(),
             submissions.display()
         );
-        let rule = format!(
-            "a render passes when its peak FLIP is at most {} and no camera mistake shows",
-            args.threshold
-        );
+        let rule = match decides {
+            Judge::Image => format!(
+                "a render passes when its peak FLIP is at most {} and no camera mistake shows",
+                args.threshold
+            ),
+            Judge::Camera => "a render passes when its camera is right: its edges are the \
+                              scene's, whatever its shading"
+                .to_owned(),
+            Judge::Both => format!(
+                "a render passes when its camera is right and its peak FLIP is at most {}",
+                args.threshold
+            ),
+        };
         // The grid shows each image's pass rate: the page's summary is the rest.
         let headline: Vec<String> = std::iter::once(lines[0].clone())
             .chain(summary.hardest_line())
+            .chain(summary.diagnoses_line())
             .collect();
         let report = ClassReport {
             title: &title,
@@ -232,14 +268,15 @@ fn student_rows(grade: &StudentGrade, names: &[&str], width: usize) -> Vec<Strin
     rows
 }
 
-/// The summary lines: the headline, the pass rate of each image, the hardest image.
+/// The summary lines: the headline, the pass rate of each image, the hardest images, the
+/// failures counted by diagnosis.
 pub(crate) fn summary_lines(summary: &ClassSummary, threshold: f32) -> Vec<String> {
     let mut lines = vec![format!("{} (threshold {threshold})", summary.headline())];
     // The pass rates, wrapped at 80 columns.
     let mut line = String::from("passed per image:");
     for (index, image) in summary.images.iter().enumerate() {
         let item = format!(
-            " {} {}%{}",
+            " {} {}{}",
             image.name,
             image.percent(),
             if index + 1 < summary.images.len() {
@@ -259,6 +296,9 @@ pub(crate) fn summary_lines(summary: &ClassSummary, threshold: f32) -> Vec<Strin
     lines.push(line);
     if let Some(hardest) = summary.hardest_line() {
         lines.push(hardest);
+    }
+    if let Some(diagnoses) = summary.diagnoses_line() {
+        lines.push(diagnoses);
     }
     lines
 }

@@ -7,11 +7,12 @@
 //! The command line and the terminal: `cli` (the command tree, assembled from each
 //! command's arguments; `completions` and `man`), one module per command or family of
 //! commands (`render`, `animate`, `commands` for frame/rays/project/scene, `compare`,
-//! `check`, `trace`, `grade`, `figures`, `diagram`, `serve`, `interop` for export/import), and what they
-//! share below them: `values` (parsers of what is typed), `usage` (argument rewriting
-//! and the usage-error line), `input` (where a scene comes from, and a scene's error as
-//! printed), `output` (atomic files and folders, Ctrl-C), `style` (colours). Module
-//! dependencies point one way, from `cli` down.
+//! `check`, `trace`, `grade`, `autograde` (with its platform kits), `figures`, `diagram`,
+//! `serve`, `interop` for export/import), and what they share below them: `values`
+//! (parsers of what is typed), `usage` (argument rewriting and the usage-error line),
+//! `input` (where a scene comes from, and a scene's error as printed), `output` (atomic
+//! files and folders, Ctrl-C), `style` (colours). Module dependencies point one way, from
+//! `cli` down.
 //!
 //! # Invariant
 //!
@@ -33,6 +34,7 @@
 //! module.
 
 mod animate;
+mod autograde;
 mod check;
 mod cli;
 mod commands;
@@ -87,6 +89,7 @@ fn main() -> ExitCode {
         Command::Check(args) => return check::run(&args),
         Command::Compare(args) => return compare::run(&args),
         Command::Grade(args) => return grade::run(&args),
+        Command::Autograde(args) => return autograde::run(&args),
         Command::Figure(args) => figures::figure(&args),
         Command::Figures(args) => figures::figures(&args),
         Command::Export(args) => interop::export(&args),

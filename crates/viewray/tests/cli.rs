@@ -455,6 +455,7 @@ fn help_of_every_command_at_80_columns() {
         "trace",
         "compare",
         "grade",
+        "autograde",
         "figure",
         "figures",
         "scene",

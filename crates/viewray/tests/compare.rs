@@ -96,7 +96,7 @@ fn folders_are_paired_like_diff_r_and_every_problem_is_a_row() {
     assert!(row("small.png").ends_with("sizes differ: expected 96x72, actual 48x36"));
     assert_eq!(
         row("notes.png"),
-        "notes.png     FAIL     -          not a PNG: it does not start with the PNG signature"
+        "notes.png     FAIL     -          not an image viewray reads (PNG, PPM/PGM (P2, P3, P5, P6) or OpenEXR)"
     );
     assert_eq!(
         row("extra.png"),
@@ -152,7 +152,7 @@ fn a_problem_on_the_reference_side_or_a_file_given_directly_is_bad_input() {
     std::fs::write(expected.join("broken.png"), "not a picture").unwrap();
     let line = error_line(&["compare", s(&expected), s(&actual)]);
     assert!(
-        line.contains("broken.png") && line.contains("not a PNG"),
+        line.contains("broken.png") && line.contains("not an image viewray reads"),
         "{line}"
     );
     // Files given directly: either one unreadable is bad input.
@@ -160,7 +160,10 @@ fn a_problem_on_the_reference_side_or_a_file_given_directly_is_bad_input() {
     let notes = actual.join("notes.png");
     for args in [[s(&good), s(&notes)], [s(&notes), s(&good)]] {
         let line = error_line(&["compare", args[0], args[1]]);
-        assert!(line.contains("notes.png: not a PNG file"), "{line}");
+        assert!(
+            line.contains("notes.png: not an image viewray reads"),
+            "{line}"
+        );
     }
 }
 
@@ -317,7 +320,10 @@ fn bad_usage_is_one_line_and_exit_code_2() {
         error_line(&["compare", s(&file), s(dir.path())])
             .contains("give two PNG files or two folders")
     );
-    assert!(error_line(&["compare", s(&empty), s(&empty)]).contains("holds no *.png file"));
+    assert!(
+        error_line(&["compare", s(&empty), s(&empty)])
+            .contains("holds no image (*.png, *.ppm, *.pgm or *.exr file)")
+    );
     assert!(error_line(&["compare", s(&file), s(&file), "--threshold", "1.5"]).contains("[0, 1]"));
     assert!(error_line(&["compare", s(&file)]).contains("ACTUAL"));
 }

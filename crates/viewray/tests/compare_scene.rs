@@ -83,8 +83,17 @@ fn a_folder_of_scenes_words_each_diagnosis_in_the_lectures_terms() {
         dir.path().join("student"),
         dir.path().join("scenes"),
     );
-    let (with_scene, code) =
-        judged(&["compare", s(&reference), s(&student), "--scene", s(&scenes)]);
+    // The image judgement, worded with the scene (the camera judgement is the default
+    // with a scene: judge_matrix.rs holds it to the catalogue).
+    let (with_scene, code) = judged(&[
+        "compare",
+        s(&reference),
+        s(&student),
+        "--scene",
+        s(&scenes),
+        "--judge",
+        "image",
+    ]);
     assert_eq!(code, Some(1));
     let (in_pixels, _) = judged(&["compare", s(&reference), s(&student)]);
     for case in &cases {
@@ -128,12 +137,32 @@ fn one_scene_file_serves_a_pair_of_files() {
         s(&file("student", "png")),
         "--scene",
         s(&file("scenes", "ron")),
+        "--judge",
+        "image",
     ]);
     assert_eq!(out.status.code(), Some(1));
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.contains(
             "shifted 21 px up: the shift is missing (the scene's shift (sx, sy) is (0, 0.2))"
+        ),
+        "{stdout}"
+    );
+    // Judged by its camera (the default with a scene), the catalogue's entry is named
+    // with the line to fix.
+    let out = viewray(&[
+        "compare",
+        s(&file("reference", "png")),
+        s(&file("student", "png")),
+        "--scene",
+        s(&file("scenes", "ron")),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains(
+            "wrong   0.976      -              not shifted: shift-missing (the shift left out): \
+             fix direction = (u + sx) U + (v + sy) V - d W"
         ),
         "{stdout}"
     );
@@ -174,4 +203,24 @@ fn a_scene_that_is_missing_or_bad_is_bad_input() {
     .unwrap();
     let line = error_line(&["compare", s(&reference), s(&student), "--scene", s(&scenes)]);
     assert!(line.contains(".ron:2:"), "{line}");
+}
+
+/// The scenes of docs/mistakes.md judge viewray's own renders of them right, by camera.
+#[test]
+fn the_mistakes_pages_scenes_judge_their_own_renders_right() {
+    let dir = tempfile::tempdir().unwrap();
+    for scene in [
+        "fixtures/mistakes/perspective.ron",
+        "fixtures/mistakes/oblique.ron",
+    ] {
+        let path = support::repository().join(scene);
+        let png = dir.path().join("render.png");
+        let out = viewray(&["render", s(&path), "-o", s(&png)]);
+        assert!(out.status.success(), "{scene}");
+        let out = viewray(&["compare", s(&png), s(&png), "--scene", s(&path), "--json"]);
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let line: Value = serde_json::from_str(stdout.lines().next().unwrap()).unwrap();
+        assert_eq!(line["camera"], "right", "{scene}: {line}");
+        assert_eq!(out.status.code(), Some(0), "{scene}: {stdout}");
+    }
 }

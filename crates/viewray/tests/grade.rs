@@ -75,7 +75,7 @@ fn a_class_gets_a_row_per_student_a_summary_and_a_gradebook() {
         "bob         0/2  disc.png: mirrored left-right: check u = up x w",
         "                 moved.png: missing",
         "                 (not judged: notes.txt)",
-        "carol       0/2  disc.png: not a PNG: it does not start with the PNG signature",
+        "carol       0/2  disc.png: not an image viewray reads (PNG, PPM/PGM (P2, P3, P5, P6) or OpenEXR)",
         "                 moved.png: missing (found `Moved.png`: names must match exactly, \
          case included)",
         "                 (not judged: Moved.png)",
@@ -86,6 +86,7 @@ fn a_class_gets_a_row_per_student_a_summary_and_a_gradebook() {
         "5 students, 2 images each: 1 passed everything, 4 failed some (threshold 0.3)",
         "passed per image: disc.png 40%, moved.png 20%",
         "hardest image: moved.png, passed by 1 of 5 (20%)",
+        "failures: 4 missing, 1 mirrored left-right, 1 moved 12 px right, 1 unreadable",
     ];
     assert_eq!(stdout.lines().collect::<Vec<_>>(), expected, "{stdout}");
     let stderr = String::from_utf8(out.stderr).unwrap();
@@ -95,7 +96,15 @@ fn a_class_gets_a_row_per_student_a_summary_and_a_gradebook() {
     let mut reader = csv::Reader::from_path(&csv).unwrap();
     assert_eq!(
         reader.headers().unwrap(),
-        vec!["student", "image", "verdict", "peak_flip", "diagnosis"]
+        vec![
+            "student",
+            "image",
+            "verdict",
+            "camera",
+            "camera_diagnosis",
+            "peak_flip",
+            "appearance"
+        ]
     );
     let rows: Vec<Vec<String>> = reader
         .records()
@@ -111,16 +120,22 @@ fn a_class_gets_a_row_per_student_a_summary_and_a_gradebook() {
     assert_eq!(row("alice", "disc.png")[2..4].len(), 2);
     assert_eq!(row("alice", "disc.png")[2], "pass");
     assert_eq!(row("alice", "disc.png")[4], "");
-    let peak: f32 = row("alice", "moved.png")[3].parse().unwrap();
+    let peak: f32 = row("alice", "moved.png")[5].parse().unwrap();
     assert!(peak <= 0.3, "{peak}");
     let mirrored = row("bob", "disc.png");
     assert_eq!(mirrored[2], "fail");
-    assert!(mirrored[3].parse::<f32>().unwrap() > 0.3);
+    assert!(mirrored[5].parse::<f32>().unwrap() > 0.3);
+    // No scene: the camera is not judged, the appearance is (not for a moved picture).
+    assert_eq!((mirrored[3].as_str(), mirrored[6].as_str()), ("", ""));
+    assert_eq!(row("alice", "disc.png")[6], "same");
     assert_eq!(mirrored[4], "mirrored left-right: check u = up x w");
-    assert_eq!(row("bob", "moved.png")[2..], ["fail", "", "missing"]);
+    assert_eq!(
+        row("bob", "moved.png")[2..],
+        ["fail", "", "missing", "", ""]
+    );
     assert_eq!(
         row("carol", "disc.png")[4],
-        "not a PNG: it does not start with the PNG signature"
+        "not an image viewray reads (PNG, PPM/PGM (P2, P3, P5, P6) or OpenEXR)"
     );
     assert_eq!(
         row("dave", "moved.png")[4],
@@ -173,7 +188,10 @@ fn json_lines_are_compares_with_the_student() {
             "students": 5, "images": 2, "passed_everything": 1,
             "per_image": [{"name": "disc.png", "passed": 2, "total": 5},
                           {"name": "moved.png", "passed": 1, "total": 5}],
-            "hardest": "moved.png", "not_graded": ["grades.xlsx"]})
+            "hardest": ["moved.png"],
+            "failures": {"missing": 4, "mirrored left-right": 1, "moved 12 px right": 1,
+                         "unreadable": 1},
+            "not_graded": ["grades.xlsx"]})
     );
 }
 
@@ -209,8 +227,11 @@ fn the_report_shows_the_class_failures_first_and_a_page_per_student() {
     // The summary as the terminal prints it, the pass rates aside (the grid has them).
     let lines: Vec<&str> = stdout.lines().collect();
     let n = lines.len();
-    assert!(lines[n - 2].starts_with("passed per image:"));
-    assert_eq!(texts(&page, "p.summary"), [lines[n - 3], lines[n - 1]]);
+    assert!(lines[n - 3].starts_with("passed per image:"));
+    assert_eq!(
+        texts(&page, "p.summary"),
+        [lines[n - 4], lines[n - 2], lines[n - 1]]
+    );
     // The grid: the images as columns, the students as rows, the most failures first.
     assert_eq!(
         texts(&page, "table.grid thead tr:first-child th.image"),
@@ -228,16 +249,25 @@ fn the_report_shows_the_class_failures_first_and_a_page_per_student() {
     assert_eq!(
         cells,
         [
-            "cell fail",
-            "cell fail",
-            "cell fail",
-            "cell fail",
-            "cell fail",
-            "cell fail",
+            "cell fail camera",
+            "cell fail missing",
+            "cell fail unreadable",
+            "cell fail missing",
+            "cell fail missing",
+            "cell fail missing",
             "cell pass",
-            "cell fail",
+            "cell fail camera",
             "cell pass",
             "cell pass"
+        ]
+    );
+    // Each failure is worded in its cell, to read the page printed: what failed and why.
+    assert_eq!(
+        texts(&page, "table.grid tbody td.cell")[..3],
+        [
+            "✗ wrong camera: mirrored left-right",
+            "? missing",
+            "! unreadable"
         ]
     );
     // The diagnosis on hover; a failure links to its place on the student's page.
@@ -345,7 +375,11 @@ fn bad_usage_is_one_line_exit_code_2_and_writes_nothing() {
     let missing = dir.path().join("nowhere");
     let cases: [(&Path, &Path, &str); 5] = [
         (&missing, &submissions, "REFERENCE `"),
-        (&empty, &submissions, "holds no *.png file"),
+        (
+            &empty,
+            &submissions,
+            "holds no image (*.png, *.ppm, *.pgm or *.exr file)",
+        ),
         (&file, &submissions, "is not a folder"),
         (&reference, &file, "SUBMISSIONS"),
         (
@@ -381,7 +415,67 @@ fn bad_usage_is_one_line_exit_code_2_and_writes_nothing() {
     std::fs::write(reference.join("broken.png"), "not a picture").unwrap();
     let line = error_line(&["grade", s(&reference), s(&submissions)]);
     assert!(
-        line.contains("broken.png") && line.contains("not a PNG"),
+        line.contains("broken.png") && line.contains("not an image viewray reads"),
         "{line}"
     );
+}
+
+#[test]
+fn a_flat_download_is_graded_by_the_names_course_sites_give_with_feedback_per_student() {
+    let dir = tempfile::tempdir().unwrap();
+    let (reference, submissions) = class(dir.path());
+    let flat = dir.path().join("flat");
+    std::fs::create_dir(&flat).unwrap();
+    // Canvas names alice's files (a late resubmission among them), Moodle bob's.
+    for (from, to) in [
+        ("alice/disc.png", "alicesmith_12_34_disc.png"),
+        ("alice/moved.png", "alicesmith_late_12_35_moved-1.png"),
+        ("bob/disc.png", "Bob Jones_7_assignsubmission_file_disc.png"),
+    ] {
+        std::fs::copy(submissions.join(from), flat.join(to)).unwrap();
+    }
+    std::fs::write(flat.join("index.html"), "the course site's page").unwrap();
+    let feedback = dir.path().join("feedback");
+    let out = viewray(&[
+        "grade",
+        s(&reference),
+        s(&flat),
+        "--flat",
+        "--feedback",
+        s(&feedback),
+    ]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(
+        lines[..4],
+        [
+            "STUDENT     PASSED  FAILURES",
+            "Bob Jones      0/2  disc.png: mirrored left-right: check u = up x w",
+            "                    moved.png: missing",
+            "alicesmith     2/2",
+        ],
+        "{stdout}"
+    );
+    assert_eq!(
+        lines[4],
+        "not graded, not named as a course site names submissions: index.html"
+    );
+    let bob = std::fs::read_to_string(feedback.join("Bob_Jones.txt")).unwrap();
+    assert_eq!(
+        bob,
+        "Bob Jones: 0 of 2 images passed\n\
+         \n\
+         disc.png: wrong camera\n  mirrored left-right: check u = up x w\n\
+         \n\
+         moved.png: missing\n"
+    );
+    let alice = std::fs::read_to_string(feedback.join("alicesmith.txt")).unwrap();
+    assert_eq!(
+        alice,
+        "alicesmith: 2 of 2 images passed\n\npassed: disc.png, moved.png\n"
+    );
+    // Folders given as a flat class: bad usage, with a hint.
+    let line = support::error_line(&["grade", s(&reference), s(&submissions), "--flat"]);
+    assert!(line.contains("leave out --flat"), "{line}");
 }

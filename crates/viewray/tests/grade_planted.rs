@@ -80,7 +80,9 @@ fn every_planted_mistake_is_named_in_the_gradebook() {
         let csv = dir.path().join(format!("gradebook-{with_scene}.csv"));
         let mut args = vec!["grade", s(&reference), s(&submissions), "--csv", s(&csv)];
         if with_scene {
-            args.extend(["--scene", s(&scenes)]);
+            // The image judgement, worded with the scenes (the camera judgement, the
+            // default with scenes, is held to the catalogue by judge_matrix.rs).
+            args.extend(["--scene", s(&scenes), "--judge", "image"]);
         }
         let out = viewray(&args);
         assert_eq!(

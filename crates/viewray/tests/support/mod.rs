@@ -99,4 +99,5 @@ fn bad_input(args: &[&str], out: Output) -> String {
 
 pub(crate) mod http;
 pub(crate) mod pictures;
+pub(crate) mod platforms;
 pub(crate) mod student;
