@@ -154,7 +154,16 @@ fn a_mesh_placed_twice_is_loaded_once() {
 #[test]
 fn the_readme_example_scene_loads() {
     let readme = std::fs::read_to_string(fixtures().join("../README.md")).unwrap();
-    let start = readme.find("```ron\n").expect("README shows a scene") + "```ron\n".len();
+    // The first RON block of the section on scene files (other sections show other RON
+    // files, such as an assignment).
+    let section = readme
+        .find("## Scene files")
+        .expect("README has a section on scene files");
+    let start = section
+        + readme[section..]
+            .find("```ron\n")
+            .expect("README shows a scene")
+        + "```ron\n".len();
     let length = readme[start..].find("```").unwrap();
     // Its mesh path is relative to a file in fixtures/, as the fixtures' are.
     let path = fixtures().join("readme_example.ron");
