@@ -1,12 +1,15 @@
 """Blender's own projections of the scenes `cargo xtask interop` exported, Cycles' own
-rays for the panoramas, and Blender's glTF for the importer to read.
+rays for the panoramas, Cycles' pictures of a lens with blades, and Blender's glTF for
+the importer to read.
 
 Usage: python blender_check.py JOB.json RESULT.json   (python with the bpy module)
 
 JOB: {"cases": [{"name", "script" | "gltf", "size": [W, H], "points": [[x, y, z]...],
-                 "render": bool, "export_glb": path | null}]}
+                 "render": bool, "export_glb": path | null,
+                 "bokeh": {"samples": N, "path": exr} | absent}]}
 RESULT: {name: {"points": [[x, y] | null...], "directions": [[dx, dy, dz]...] (row by
-        row from the top, for "render"), "size": [W, H]}}
+        row from the top, for "render"), "intensity": [..] (row by row from the top,
+        for "bokeh"), "size": [W, H]}}
 Points are image coordinates (x from the left, y from the top, in pixels) from
 bpy_extras.object_utils.world_to_camera_view, Blender's own camera projection (sensor
 fit, shift, pixel aspect, orthographic scale). A glTF file is imported with Blender's
@@ -76,6 +79,44 @@ def render_directions(scene, path):
     return out
 
 
+def render_bokeh(scene, job):
+    """Renders the scene with every material as pure emission of its colour (strength 1)
+    on its black world, with Cycles: many samples, no denoising, no adaptive sampling,
+    its narrowest pixel filter, no bounces (the camera sees the lamps directly). Returns
+    each pixel's intensity, the mean of red, green and blue, row by row from the top."""
+    for material in bpy.data.materials:
+        material.use_nodes = True
+        nodes = material.node_tree.nodes
+        nodes.clear()
+        emission = nodes.new("ShaderNodeEmission")
+        emission.inputs["Color"].default_value = material.diffuse_color
+        emission.inputs["Strength"].default_value = 1.0
+        output = nodes.new("ShaderNodeOutputMaterial")
+        material.node_tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = job["samples"]
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.filter_width = 0.01
+    scene.cycles.max_bounces = 0
+    scene.cycles.seed = 0
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = job["path"]
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(job["path"])
+    width, height = image.size
+    pixels = list(image.pixels)
+    out = []
+    for row in range(height):
+        source = height - 1 - row  # Blender images are stored bottom row first
+        for col in range(width):
+            i = 4 * (source * width + col)
+            out.append(sum(pixels[i + c] for c in range(3)) / 3.0)
+    return out
+
+
 def main():
     job = json.load(open(sys.argv[1]))
     result = {}
@@ -108,6 +149,8 @@ def main():
             )
         if case.get("render"):
             entry["directions"] = render_directions(scene, case["render_path"])
+        if case.get("bokeh"):
+            entry["intensity"] = render_bokeh(scene, case["bokeh"])
         result[case["name"]] = entry
         print('case', case['name'], time.time() - started, file=sys.stderr)
     json.dump(result, open(sys.argv[2], "w"))

@@ -12,7 +12,10 @@ use std::fmt;
 use std::path::Path;
 
 use glam::{DVec2, DVec3};
-use viewray_camera::{Camera, Frame, Oblique, Perspective, Projection, ThinLens};
+use viewray_camera::{
+    Camera, Frame, Iris, Oblique, Perspective, Projection, SensorFit, ThinLens,
+    aperture_from_f_number,
+};
 use viewray_scene::{Ease, LoadOptions, Scene, SceneError};
 
 /// One camera of a frame, with a caption of its numbers.
@@ -102,6 +105,8 @@ pub fn all_demos() -> Vec<Demo> {
     const TOWERS: (&str, &str) = ("towers.ron", include_str!("../scenes/towers.ron"));
     const SPHERES: (&str, &str) = ("spheres.ron", include_str!("../scenes/spheres.ron"));
     const CUBE: (&str, &str) = ("cube.ron", include_str!("../scenes/cube.ron"));
+    const TABLETOP: (&str, &str) = ("tabletop.ron", include_str!("../scenes/tabletop.ron"));
+    const LAMPS: (&str, &str) = ("lamps.ron", include_str!("../scenes/lamps.ron"));
     let demo = |name, summary, scene, path| Demo {
         name,
         summary,
@@ -149,6 +154,21 @@ pub fn all_demos() -> Vec<Demo> {
             SPHERES,
             focus_pull,
         ),
+        demo(
+            "lens-tilt",
+            "a 50 mm lens over a tabletop tilting forward from 0 to 11.5 degrees: the plane of focus swings from upright, across the posts, down onto the table",
+            TABLETOP,
+            lens_tilt,
+        ),
+        Demo {
+            ease: Ease::Linear,
+            ..demo(
+                "bokeh",
+                "the aperture's blades, 5, 6, 7, 8, 10, 12, 16, then round: the out-of-focus lamps take the aperture's shape",
+                LAMPS,
+                bokeh,
+            )
+        },
         Demo {
             ease: Ease::Linear,
             looping: true,
@@ -361,6 +381,9 @@ fn thin_lens(aperture: f64, focus: f64, width: u32, height: u32) -> Camera {
         shift: DVec2::ZERO,
         aperture,
         focus,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     camera(
         looking(DVec3::new(0.0, 0.6, 0.0), DVec3::NEG_Z),
@@ -386,6 +409,92 @@ fn focus_pull(u: f64, width: u32, height: u32) -> Vec<Shot> {
     vec![shot(
         thin_lens(0.15, f, width, height),
         format!("$f$ = {f:.2},  $r$ = 0.15"),
+    )]
+}
+
+/// The tabletop's eye: 25 cm above the table, looking level down `-z`.
+const TABLETOP_EYE: DVec3 = DVec3::new(0.0, 0.25, 0.6);
+/// The tabletop lens's focal length, mm, and f-number.
+const TABLETOP_LENS: (f64, f64) = (50.0, 2.0);
+
+/// The lens tilt: a 50 mm lens at f/2 (on a 36 mm wide sensor, shifted down a third of
+/// the picture to see more table) 25 cm above a table, tilting forward from 0 to
+/// asin(50 mm / 25 cm) = 11.54 degrees, the tilt that lays its hinge line on the table,
+/// while focused at `f = F / (1 - cos 11.54 deg) = 2.475` m, which then lays the plane of
+/// focus on the table. Untilted the plane stands upright 2.475 m away, beyond the posts;
+/// as the lens tilts it swings down about a hinge line that comes up toward the table
+/// (`J = F / sin(tilt)` below the lens), across the posts, until the table is sharp from
+/// front to back and only the posts' tops blur.
+fn lens_tilt(u: f64, width: u32, height: u32) -> Vec<Shot> {
+    let (focal_length, f_number) = TABLETOP_LENS;
+    let (f, h) = (focal_length / 1000.0, TABLETOP_EYE.y);
+    let last = (f / h).asin();
+    let focus = f / (1.0 - last.cos());
+    let tilt = mix(0.0, last, u);
+    let mut pinhole = Perspective::from_focal_length(
+        focal_length,
+        DVec2::new(36.0, 24.0),
+        SensorFit::Horizontal,
+        aspect(width, height),
+    )
+    .expect("a valid physical camera");
+    pinhole.shift = DVec2::new(0.0, -pinhole.viewport.y / 3.0);
+    let aperture = aperture_from_f_number(focal_length, f_number).expect("a valid f-number");
+    let projection = Projection::ThinLens(ThinLens {
+        tilt,
+        ..ThinLens::new(pinhole, aperture, focus)
+    });
+    let caption = if tilt > 0.0 {
+        format!(
+            "lens tilt {:.1}°,  hinge line {:.2} m below the lens",
+            tilt.to_degrees(),
+            f / tilt.sin()
+        )
+    } else {
+        format!("lens tilt 0°,  plane of focus upright {focus:.2} m ahead")
+    };
+    vec![shot(
+        camera(
+            looking(TABLETOP_EYE, DVec3::NEG_Z),
+            projection,
+            width,
+            height,
+        ),
+        caption,
+    )]
+}
+
+/// The bokeh demo's blades, in order; 0 is round.
+const BLADES: [u32; 8] = [5, 6, 7, 8, 10, 12, 16, 0];
+
+/// Bokeh: the lamps' thin lens (`r = 0.15`, focused at 2 on the red ball, 40 degrees
+/// tall) with 5, 6, 7, 8, 10, 12 and 16 blades, each for an eighth of the time, then
+/// round; the blades turned by 90 degrees, so that an edge lies flat on top. Each lamp
+/// far behind the ball pictures the aperture, upright.
+fn bokeh(u: f64, width: u32, height: u32) -> Vec<Shot> {
+    // Whole steps of an eighth; the last frame (u = 1) is round.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let step = ((u * BLADES.len() as f64) as usize).min(BLADES.len() - 1);
+    let blades = BLADES[step];
+    let pinhole = Perspective::from_fov_y(40f64.to_radians(), aspect(width, height))
+        .expect("a valid field of view");
+    let projection = Projection::ThinLens(ThinLens {
+        iris: Iris::from_degrees(blades, 90.0).expect("the demo's blades are valid"),
+        ..ThinLens::new(pinhole, 0.15, 2.0)
+    });
+    let caption = if blades == 0 {
+        "round aperture".to_owned()
+    } else {
+        format!("{blades} blades")
+    };
+    vec![shot(
+        camera(
+            looking(DVec3::new(0.0, 0.5, 3.0), DVec3::NEG_Z),
+            projection,
+            width,
+            height,
+        ),
+        caption,
     )]
 }
 

@@ -198,3 +198,62 @@ fn frames_that_would_not_fit_in_memory_are_refused() {
         "frames must be between 1 and 10000, found 0"
     );
 }
+
+#[test]
+fn the_lens_tilt_lays_the_plane_of_focus_on_the_table() {
+    let demo = demo_by_name("lens-tilt").unwrap();
+    let camera = |frame| demo.shots(frame, 9, 480, 270)[0].camera;
+    // Untilted: the upright plane 2.475 m ahead, f = F / (1 - cos(asin(F / h))) with
+    // F = 50 mm and h = 25 cm: 0.05 / (1 - sqrt(0.96)).
+    let focus = 0.05 / (1.0 - 0.96f64.sqrt());
+    let first = camera(0);
+    let plane = first.focus_plane().unwrap();
+    assert!(first.tilted_focus().is_none());
+    assert!(plane.normal.abs_diff_eq(DVec3::Z, 1e-15));
+    assert!(
+        (plane.point.z - (0.6 - focus)).abs() < 1e-12,
+        "{}",
+        plane.point
+    );
+    // Tilted asin(0.2) = 11.54 degrees at the end: the hinge line F / sin = 0.25 below
+    // the lens, on the table, and the plane of focus the table itself.
+    let last = camera(8);
+    let hinge = last.tilted_focus().unwrap().hinge_line;
+    assert!(
+        hinge.point.abs_diff_eq(DVec3::new(0.0, 0.0, 0.6), 1e-12),
+        "{}",
+        hinge.point
+    );
+    let plane = last.focus_plane().unwrap();
+    assert!(
+        plane.normal.abs_diff_eq(DVec3::Y, 1e-12),
+        "{}",
+        plane.normal
+    );
+    assert!(plane.point.y.abs() < 1e-12, "{}", plane.point);
+    // Between, the hinge line rises toward the table as the tilt grows.
+    let middle = camera(4).tilted_focus().unwrap().hinge_line.point.y;
+    assert!(middle < 0.0 && middle > -0.5, "{middle}");
+}
+
+#[test]
+fn the_bokeh_demo_steps_through_the_blades_to_round() {
+    let demo = demo_by_name("bokeh").unwrap();
+    let blades: Vec<u32> = (0..16)
+        .map(
+            |frame| match demo.shots(frame, 16, 480, 270)[0].camera.projection() {
+                Projection::ThinLens(p) => p.iris.blades,
+                _ => unreachable!("a thin lens"),
+            },
+        )
+        .collect();
+    // Sixteen frames, two for each of the eight apertures.
+    assert_eq!(
+        blades,
+        [5, 5, 6, 6, 7, 7, 8, 8, 10, 10, 12, 12, 16, 16, 0, 0]
+    );
+    let captions: Vec<String> = [0, 15]
+        .map(|frame| demo.shots(frame, 16, 480, 270)[0].caption.clone().unwrap())
+        .to_vec();
+    assert_eq!(captions, ["5 blades", "round aperture"]);
+}

@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
 use crate::image_limits::check_not_empty;
-use crate::{CameraError, Frame, Mistake, Mistakes, Projection, sample_unit_disk_concentric};
+use crate::{CameraError, Frame, Mistake, Mistakes, Plane3, Projection, TiltedFocus};
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///
@@ -14,7 +14,9 @@ use crate::{CameraError, Frame, Mistake, Mistakes, Projection, sample_unit_disk_
 /// a position on the whole film in raster coordinates, while `p_film` here is only the
 /// offset `(ox, oy)` inside the pixel, from its top-left corner; [`Camera::generate_ray`]
 /// adds the pixel's `(col, row)`. Both fields are points of the unit square `[0, 1)^2`;
-/// `p_lens` is mapped to the unit disk by [`sample_unit_disk_concentric`].
+/// `p_lens` is mapped to the aperture by its [`crate::Iris`] (the unit disk by
+/// [`crate::sample_unit_disk_concentric`], a polygon of blades by
+/// [`crate::sample_regular_polygon`]).
 /// [`CameraSample::CENTER`] is the pixel centre and the lens centre, the lecture's
 /// sample. (The offset `(ox, oy)` is not the lens shift `(sx, sy)` of [`Perspective`].)
 ///
@@ -321,11 +323,29 @@ impl Camera {
     /// [`Camera::generate_ray_through`] for every family: the camera-space rule, then the
     /// frame transform.
     fn generate_general_ray(&self, image: DVec2, p_lens: DVec2) -> Option<DRay> {
-        let lens = if self.projection.has_lens() {
-            sample_unit_disk_concentric(p_lens)
+        self.ray_at_lens_point(image, self.projection.lens_point(p_lens))
+    }
+
+    /// The viewing ray through the continuous image point `image` from the lens point
+    /// `lens` given in unit-disk coordinates, not as a sample of the unit square: for a
+    /// camera with a lens the ray starts at `e + r (lx U + ly V)` (the lens point
+    /// `(lx, ly)`, which [`crate::Iris::contains`] says is on the aperture or not), and
+    /// every ray of one image point meets the others on the plane of focus
+    /// ([`Camera::focus_plane`]). A camera without a lens ignores `lens`.
+    ///
+    /// `viewray rays --lens LX,LY` prints these rays, so that a student can check a thin
+    /// lens's rays by hand. `None` where the projection has no ray.
+    pub fn generate_ray_at_lens(&self, image: DVec2, lens: DVec2) -> Option<DRay> {
+        if self.projection.has_lens() {
+            self.ray_at_lens_point(image, lens)
         } else {
-            DVec2::ZERO
-        };
+            self.generate_ray_through(image, DVec2::splat(0.5))
+        }
+    }
+
+    /// The camera-space rule through `image` from the unit-disk lens point `lens`, then
+    /// the frame transform (with the mistakes' changes).
+    fn ray_at_lens_point(&self, image: DVec2, lens: DVec2) -> Option<DRay> {
         let image = if self.mistakes.moves_pixels() {
             self.mistakes.image_point(image, self.size())
         } else {
@@ -402,6 +422,32 @@ impl Camera {
         }
         let q = self.frame.camera_from_world_point(p);
         self.projection.project_camera_space(q, self.size())
+    }
+
+    /// The plane of sharp focus of a camera with a lens: its point nearest the lens
+    /// centre and its unit normal toward the lens, so `e - f w` and `w` for an untilted
+    /// thin lens (for an orthographic lens: `e - f w`, `f` from the image plane). A
+    /// tilted thin lens's plane passes through its Scheimpflug and hinge lines
+    /// ([`Camera::tilted_focus`]). `None` without a lens.
+    pub fn focus_plane(&self) -> Option<Plane3> {
+        match &self.projection {
+            Projection::ThinLens(p) => Some(p.focus_plane(&self.frame)),
+            Projection::Orthographic(o) => o.lens.map(|lens| Plane3 {
+                point: self.frame.e() - lens.focus * self.frame.w(),
+                normal: self.frame.w(),
+            }),
+            _ => None,
+        }
+    }
+
+    /// The sensor, lens, front focal and focus planes of a tilted (or swung) thin lens,
+    /// with its Scheimpflug and hinge lines, in world coordinates; `None` for every
+    /// other camera (an untilted lens's lines lie at infinity).
+    pub fn tilted_focus(&self) -> Option<TiltedFocus> {
+        match &self.projection {
+            Projection::ThinLens(p) => p.tilted_focus(&self.frame),
+            _ => None,
+        }
     }
 
     /// The pixel `(row, col)` holding the continuous image point `image`, or `None` if it
@@ -576,13 +622,11 @@ mod tests {
                     shift: shift.into(),
                 }),
                 1 => Projection::Orthographic(crate::Orthographic { viewport, lens: None }),
-                2 => Projection::ThinLens(crate::ThinLens {
-                    distance: 1.0,
-                    viewport,
-                    shift: shift.into(),
-                    aperture: 0.2,
-                    focus: 3.0,
-                }),
+                2 => Projection::ThinLens(crate::ThinLens::new(
+                    Perspective { distance: 1.0, viewport, shift: shift.into() },
+                    0.2,
+                    3.0,
+                )),
                 _ => Projection::Fisheye(crate::Fisheye { fov: 3.0 }),
             };
             let camera = Camera::new(frame.unwrap(), projection, size.0, size.1).unwrap();

@@ -43,6 +43,18 @@ pub enum CameraError {
         /// The offending value.
         value: f64,
     },
+    /// A tilted lens focused at or within its focal length: its sensor would lie at
+    /// infinity or in front of it.
+    #[error(
+        "a tilted lens focuses beyond its focal length: focus must be greater than the focal \
+         length d = {focal_length}, found {focus}"
+    )]
+    FocusWithinFocalLength {
+        /// `f`.
+        focus: f64,
+        /// `F = d`.
+        focal_length: f64,
+    },
     /// The image has no pixels ([`ImageLimitError::Empty`]).
     #[error(transparent)]
     Image(#[from] ImageLimitError),

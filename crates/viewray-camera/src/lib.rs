@@ -8,6 +8,11 @@
 //!   `lens`), [`Camera`] (a frame, a projection and an image size: [`Camera::generate_ray`]
 //!   and its block and differential forms, [`Camera::project`]; `camera`), the taxonomy
 //!   [`Preset`]s (`presets`) and the lens's sample points (`sampling`).
+//! - The thin lens's movements and iris: a tilted or swung lens's plane of focus, its
+//!   Scheimpflug and hinge lines ([`TiltedFocus`], [`Camera::focus_plane`]; `scheimpflug`)
+//!   and the aperture's blades ([`Iris`]; `iris`), with the ray through a chosen lens
+//!   point ([`Camera::generate_ray_at_lens`]).
+//! - The lecture's catalogue of mistakes ([`Mistake`], [`Mistakes`]; `mistakes`).
 //! - viewray's image limits: the largest image and the most samples per pixel, and the
 //!   one check of a size and a sample count against them ([`ImageLimits`],
 //!   [`ImageLimitError`]; `image_limits`), which scene files, the command line and the
@@ -20,11 +25,6 @@
 //! are rejected where a value is built ([`Frame::from_eye_view_up`], [`Camera::new`]),
 //! so a [`Camera`] that exists always produces finite rays, and [`Camera::project`]
 //! inverts [`Camera::generate_ray`] for every family.
-//!
-//! # Where to start reading
-//!
-//! `camera` (the pixel -> ray rule and its inverse), then `projection` (each family's
-//! formula, the table below) and `frame`.
 //!
 //! # Conventions
 //!
@@ -85,18 +85,29 @@
 //!   that every point lands in `[0, W)`. `y = 0` looks straight up and `y = H` straight
 //!   down.
 //! - **The eye itself** has no direction: panoramic cameras do not project it.
+//! - **Lens tilt and swing** lie strictly between -90 and 90 degrees (at 90 the lens
+//!   would stand edge-on to the sensor); a tilted lens focuses strictly beyond its focal
+//!   length (`f > d`). A pixel whose centre ray meets the plane of focus behind the eye
+//!   or runs parallel to it has no sharp point in front of the lens: its rays spread
+//!   from the virtual one (see the module `scheimpflug`).
+//! - **Blades**: 0 (round) or 3 to 64; a rotation is any angle, wrapped into
+//!   `[-180, 180)` degrees. A lens point on the aperture's edge is on the aperture
+//!   ([`Iris::contains`]); the unit square's edges map exactly onto the polygon's edges.
 //!
 //! # Families
 //!
 //! `(sx, sy)` is the lens shift of the perspective families (zero unless a scene sets
 //! one), `d` the distance to the image plane, `r` the lens radius, `f` the focus
-//! distance, `(lx, ly)` the lens sample in the unit disk, `L` and `phi` the oblique
-//! ratio and angle.
+//! distance, `(lx, ly)` the lens point in unit-disk coordinates (the lens sample mapped
+//! to the aperture, an [`Iris`]: the unit disk, or a polygon of blades inscribed in it),
+//! `L` and `phi` the oblique ratio and angle, `c` the pinhole direction
+//! `(u+sx) U + (v+sy) V - d W`.
 //!
 //! | family | origin | direction |
 //! |---|---|---|
 //! | [`Perspective`] | `e` | `(u+sx) U + (v+sy) V - d W` |
 //! | [`ThinLens`] | `e + r(lx U + ly V)` | `(f/d)((u+sx) U + (v+sy) V - d W) - r(lx U + ly V)` |
+//! | [`ThinLens`], tilted | `e + r(lx U + ly V)` | `(F / m.c) c - r(lx U + ly V)`: through the point where `c` meets the plane of focus `m.P = F` |
 //! | [`Orthographic`] | `e + u U + v V` | `-W` |
 //! | [`Oblique`] | `e + u U + v V` | `-W - L (cos phi U + sin phi V)` |
 //! | [`Projection::Equirectangular`] | `e` | longitude and latitude from `(x, y)` |
@@ -104,16 +115,32 @@
 //!
 //! The classical taxonomy (multiview, axonometric, oblique, one/two/three-point
 //! perspective) is a set of [`Preset`]s over these rules.
+//!
+//! A tilted or swung thin lens (a view camera's movements, `F = d` its focal length)
+//! focuses on a plane through its Scheimpflug and hinge lines, `m = n + (1 - F/f) W`
+//! with `n` the lens's axis; the module `scheimpflug` derives it and writes the rule
+//! for the centre ray's meeting point behind the eye or at infinity.
+//!
+//! # Where to start reading
+//!
+//! `camera` (the pixel -> ray rule and its inverse: the pixel mapping, the frame
+//! transform, `project`), then `projection` (each family's formula, the table above) and
+//! `frame`, which builds the basis; `lens` the fields of view and physical cameras,
+//! `presets` the taxonomy, `mistakes` the lecture's catalogue of wrong formulas. The
+//! lens: `sampling` maps lens samples to the unit disk or a polygon, `iris` is the
+//! aperture's shape, `scheimpflug` the tilted lens's plane of focus and rays.
 
 mod camera;
 mod error;
 mod frame;
 mod image_limits;
+mod iris;
 mod lens;
 mod mistakes;
 mod presets;
 mod projection;
 mod sampling;
+mod scheimpflug;
 
 pub use camera::{Camera, CameraSample, RayDifferential, pixel_to_image_plane};
 pub(crate) use camera::{image_plane_to_image, image_to_image_plane};
@@ -122,6 +149,7 @@ pub use frame::Frame;
 pub use image_limits::{
     ImageLimitError, ImageLimits, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
 };
+pub use iris::Iris;
 pub use lens::{FovAxis, MILLIMETRES_PER_UNIT, SensorFit, aperture_from_f_number};
 pub use mistakes::{Entry, Mistake, Mistakes};
 pub use presets::{PARALLEL_EYE_DISTANCE, PRESET_FOV_Y_DEGREES, Preset};
@@ -129,4 +157,5 @@ pub use projection::{
     Fisheye, FisheyePoint, Lens, Oblique, Orthographic, Perspective, Projection, ThinLens,
     equirectangular_angles,
 };
-pub use sampling::sample_unit_disk_concentric;
+pub use sampling::{sample_regular_polygon, sample_unit_disk_concentric};
+pub use scheimpflug::{Line3, Plane3, TiltedFocus};

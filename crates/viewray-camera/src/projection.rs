@@ -54,7 +54,8 @@ pub struct Perspective {
 
 /// A perspective camera with a thin lens of radius `r` focused at distance `f`.
 ///
-/// `(lx, ly)` is a point of the unit disk (the lens sample):
+/// `(lx, ly)` is a point of the aperture in unit-disk coordinates (the lens sample,
+/// mapped by the [`Iris`]: the unit disk, or a polygon of blades inscribed in it):
 ///
 /// ```text
 /// origin    = e + r (lx U + ly V)
@@ -63,6 +64,13 @@ pub struct Perspective {
 ///
 /// Every ray of one image point passes through the same point of the focus plane (at
 /// `t = 1`); with the lens centre `(0, 0)` it is the pinhole ray scaled by `f / d`.
+///
+/// A lens tilted by `alpha` about `U` or swung by `beta` about `V` (a view camera's
+/// movements; `F = d` is then its focal length) focuses on a plane that passes through
+/// the Scheimpflug line and the hinge line instead: see the module `scheimpflug` for
+/// its formulas, [`crate::Camera::focus_plane`] and [`crate::Camera::tilted_focus`].
+///
+/// [`Iris`]: crate::Iris
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThinLens {
     /// `d`: the distance from the eye to the image plane.
@@ -71,10 +79,20 @@ pub struct ThinLens {
     pub viewport: DVec2,
     /// `(sx, sy)`: the viewport's shift on the image plane.
     pub shift: DVec2,
-    /// `r`: the lens radius.
+    /// `r`: the lens radius (a polygon's circumradius).
     pub aperture: f64,
-    /// `f`: the distance from the eye to the plane in focus.
+    /// `f`: the distance from the eye to the plane in focus (of the untilted lens, which
+    /// fixes where the sensor sits).
     pub focus: f64,
+    /// `alpha`: the lens plane's tilt about `U`, in radians, strictly between `-pi/2` and
+    /// `pi/2`; positive turns its top toward the scene (the plane of focus swings down
+    /// toward the ground ahead). Zero for the lecture's thin lens.
+    pub tilt: f64,
+    /// `beta`: the lens plane's swing about `V` (after the tilt), in radians, strictly
+    /// between `-pi/2` and `pi/2`; positive turns its right side toward the scene.
+    pub swing: f64,
+    /// The aperture's shape: round, or a polygon of blades.
+    pub iris: crate::Iris,
 }
 
 /// A thin lens for a parallel camera: radius `r`, focus plane at distance `f`.
@@ -224,10 +242,27 @@ impl ThinLens {
         }
     }
 
+    /// An untilted thin lens with a round aperture over the pinhole camera `pinhole`:
+    /// the lecture's thin lens.
+    pub fn new(pinhole: Perspective, aperture: f64, focus: f64) -> ThinLens {
+        ThinLens {
+            distance: pinhole.distance,
+            viewport: pinhole.viewport,
+            shift: pinhole.shift,
+            aperture,
+            focus,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: crate::Iris::ROUND,
+        }
+    }
+
     fn validate(&self) -> Result<(), CameraError> {
         self.pinhole().validate()?;
         check_positive("aperture", self.aperture)?;
-        check_positive("focus", self.focus)
+        check_positive("focus", self.focus)?;
+        self.validate_tilt()?;
+        self.iris.validate()
     }
 }
 
@@ -455,8 +490,24 @@ impl Projection {
         }
     }
 
+    /// The shape of the aperture of a camera with a lens: the thin lens's [`Iris`],
+    /// the round one of an orthographic lens; `None` without a lens.
+    ///
+    /// [`Iris`]: crate::Iris
+    pub fn iris(&self) -> Option<crate::Iris> {
+        match self {
+            Projection::ThinLens(p) => Some(p.iris),
+            Projection::Orthographic(Orthographic { lens: Some(_), .. }) => {
+                Some(crate::Iris::ROUND)
+            }
+            _ => None,
+        }
+    }
+
     /// Checks every parameter: viewport, distance, aperture and focus positive and
-    /// finite; shift and angles finite; a fisheye's field of view in (0, 2 pi].
+    /// finite; shift and angles finite; a fisheye's field of view in (0, 2 pi]; a thin
+    /// lens's tilt and swing within (-90, 90) degrees (focused beyond its focal length
+    /// when tilted) and its blades 0 or 3 to 64.
     ///
     /// # Errors
     /// The first invalid parameter, named in the lecture's notation.
@@ -469,6 +520,13 @@ impl Projection {
             Projection::Equirectangular => Ok(()),
             Projection::Fisheye(p) => p.validate(),
         }
+    }
+
+    /// The lens point, in unit-disk coordinates, of the lens sample `p_lens` in the unit
+    /// square (see [`crate::Iris::sample`]); the centre for a camera without a lens.
+    #[inline]
+    pub(crate) fn lens_point(&self, p_lens: DVec2) -> DVec2 {
+        self.iris().map_or(DVec2::ZERO, |iris| iris.sample(p_lens))
     }
 
     /// The viewing ray, in camera coordinates, through the continuous image point
@@ -486,6 +544,7 @@ impl Projection {
                 origin: DVec3::ZERO,
                 direction: p.direction(uv()),
             },
+            Projection::ThinLens(p) if p.is_tilted() => p.tilted_ray(uv(), lens),
             Projection::ThinLens(p) => {
                 // Point on the lens, then the direction through the point of the focus
                 // plane that the pinhole ray reaches at t = 1.

@@ -1,6 +1,7 @@
-//! Mapping lens samples to the unit disk.
+//! Mapping lens samples to the aperture: the unit disk of a round lens, or the regular
+//! polygon of a lens with blades.
 
-use std::f64::consts::FRAC_PI_4;
+use std::f64::consts::{FRAC_PI_4, PI, TAU};
 
 use glam::DVec2;
 
@@ -31,6 +32,44 @@ pub fn sample_unit_disk_concentric(p: DVec2) -> DVec2 {
     };
     let (sin, cos) = theta.sin_cos();
     r * DVec2::new(cos, sin)
+}
+
+/// Maps a point of the unit square `[0, 1)^2` to the regular polygon of `blades` corners
+/// inscribed in the unit circle and turned by `rotation` (radians), uniformly: equal
+/// areas of the square go to equal areas of the polygon.
+///
+/// The polygon is Blender Cycles' (`regular_polygon_sample`): its corners lie on the unit
+/// circle at the angles `rotation + (2k + 1) pi / N`, so the middle of one edge lies at
+/// the angle `rotation` from `u` (toward `v`), at the distance `cos(pi / N)` from the
+/// centre. Cycles picks the polygon's wedge from the first number and a point of that
+/// triangle from both; here the square goes first to the unit disk by the concentric
+/// mapping (the disk point at radius `r` and angle `theta`), and then
+///
+/// ```text
+/// x = ((theta - rotation) / (2 pi / N) + 1/2) mod N,   k = floor(x),   t = x - k
+/// a = rotation + (2k - 1) pi / N,   b = rotation + (2k + 1) pi / N
+/// point = r ((1 - t) (cos a, sin a) + t (cos b, sin b))
+/// ```
+///
+/// the wedge `k` of the disk to the polygon's triangle between the centre and the edge
+/// from corner `a` to corner `b`. `r^2` and `theta` are uniform and independent on the
+/// disk, and `r^2` and `t` are the same in the triangle, so the density is the same
+/// everywhere in the polygon (Cycles' density, from other points of the square). What
+/// the concentric start keeps: the square's centre `(0.5, 0.5)` is the polygon's centre
+/// (the lens centre of one sample per pixel), neighbouring points stay neighbours, and
+/// the square's edges land exactly on the polygon's edges.
+pub fn sample_regular_polygon(p: DVec2, blades: u32, rotation: f64) -> DVec2 {
+    let disk = sample_unit_disk_concentric(p);
+    let (r, theta) = (disk.length(), disk.y.atan2(disk.x));
+    let corners = f64::from(blades);
+    let x = ((theta - rotation) / (TAU / corners) + 0.5).rem_euclid(corners);
+    let k = x.floor();
+    let t = x - k;
+    let corner = |j: f64| {
+        let (sin, cos) = (rotation + j * PI / corners).sin_cos();
+        DVec2::new(cos, sin)
+    };
+    r * corner(2.0 * k - 1.0).lerp(corner(2.0 * k + 1.0), t)
 }
 
 #[cfg(test)]

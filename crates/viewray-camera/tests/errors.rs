@@ -73,6 +73,9 @@ fn thin_lens_parameters() {
             shift: pinhole.shift,
             aperture,
             focus,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         })
     };
     let good = perspective(1.0, (1.0, 1.0), (0.0, 0.0));

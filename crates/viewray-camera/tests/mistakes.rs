@@ -367,6 +367,9 @@ fn which_family_each_entry_fits() {
         shift: DVec2::ZERO,
         aperture: 0.1,
         focus: 3.0,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     let fits = |projection: &Projection| -> Vec<&str> {
         Mistake::ALL

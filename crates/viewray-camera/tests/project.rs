@@ -51,6 +51,9 @@ fn planar_projection() -> impl Strategy<Value = Projection> {
                     shift,
                     aperture,
                     focus,
+                    tilt: 0.0,
+                    swing: 0.0,
+                    iris: viewray_camera::Iris::ROUND,
                 })
             }
         ),
@@ -246,7 +249,10 @@ fn invalid_parameters_are_errors() {
             viewport: DVec2::ONE,
             shift: DVec2::ZERO,
             aperture: 0.1,
-            focus: 0.0
+            focus: 0.0,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         })),
         Err(NotPositive { name: "focus", .. })
     ));
@@ -300,13 +306,15 @@ fn the_principal_point_is_where_the_optical_axis_meets_the_image() {
         .generate_ray_through(found * DVec2::new(30.0, 20.0), DVec2::splat(0.5))
         .unwrap();
     assert!(ray.direction.truncate().length() < 1e-12, "{ray:?}");
-    let thin = Projection::ThinLens(ThinLens {
-        distance: 2.0,
-        viewport,
-        shift,
-        aperture: 0.1,
-        focus: 4.0,
-    });
+    let thin = Projection::ThinLens(ThinLens::new(
+        Perspective {
+            distance: 2.0,
+            viewport,
+            shift,
+        },
+        0.1,
+        4.0,
+    ));
     assert_eq!(thin.principal_point(), Some(found));
     let oblique = Projection::Oblique(Oblique {
         viewport,

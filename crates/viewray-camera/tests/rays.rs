@@ -181,6 +181,9 @@ fn families() -> Vec<(&'static str, Camera)> {
                     shift: DVec2::ZERO,
                     aperture: 0.1,
                     focus: 4.0,
+                    tilt: 0.0,
+                    swing: 0.0,
+                    iris: viewray_camera::Iris::ROUND,
                 }),
             ),
         ),
@@ -282,6 +285,9 @@ fn ray_differentials_step_by_the_lecture_pixel_size() {
         shift: DVec2::ZERO,
         aperture: 0.2,
         focus: 6.0,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     }));
     for (camera, scale) in [(perspective, 1.0), (thin_lens, 6.0 / 3.0)] {
         let d = camera
@@ -352,6 +358,9 @@ fn lenses_and_slanted_rays_by_hand() {
         shift: DVec2::new(0.5, 0.0),
         aperture: 0.1,
         focus: 6.0,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     }));
     check(&thin_lens, right_of_lens, [0.1, 0.0, 0.0], [5.9, 1.5, -6.0]);
     check(&thin_lens, CameraSample::CENTER, [0.0; 3], [6.0, 1.5, -6.0]);

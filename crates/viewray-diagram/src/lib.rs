@@ -27,7 +27,7 @@
 //! Where to start reading: `sketch` (the figure builder: the display list, and the record
 //! of every camera ray drawn) and `view` (how a figure places world points), then one
 //! module per figure (`canonical`, `image_plane`, `assumptions`, `frame`,
-//! `viewing_rays`, `taxonomy`, `distortions`, `thin_lens`), `side` (the pieces the
+//! `viewing_rays`, `taxonomy`, `distortions`, `thin_lens`, `scheimpflug`), `side` (the pieces the
 //! side-view figures share) and `camera_side` (the side view of any camera; its module
 //! doc is the map). `pictures` and `rendered` make the pictures inside figures, `clip`
 //! keeps them inside their image, and `style` is the visual language. Numbers in labels
@@ -50,6 +50,7 @@ mod frame;
 mod image_plane;
 mod pictures;
 mod rendered;
+mod scheimpflug;
 mod side;
 mod sketch;
 mod style;
@@ -77,6 +78,7 @@ use crate::frame::{camera_frame, camera_frame_square};
 use crate::image_plane::pixel_to_image_plane;
 use crate::pictures::Pictures;
 use crate::rendered::RenderedPictures;
+use crate::scheimpflug::scheimpflug;
 use crate::taxonomy::taxonomy;
 use crate::thin_lens::thin_lens;
 use crate::view::FigureView;
@@ -232,6 +234,11 @@ pub fn all_figures() -> Vec<NamedFigure> {
             name: "thin_lens",
             summary: "Thin lens: one pixel's cone of rays meets at the focus plane; pictures at two apertures",
             draw: thin_lens,
+        },
+        NamedFigure {
+            name: "scheimpflug",
+            summary: "A tilted lens: sensor, lens and plane of focus meet in the Scheimpflug line; the hinge line",
+            draw: |_| scheimpflug(),
         },
     ]
 }

@@ -37,6 +37,9 @@ pub(crate) fn thin_lens_camera(aperture: f64) -> Camera {
         shift: DVec2::ZERO,
         aperture,
         focus: FOCUS,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     Camera::new(frame, projection, 240, 180).expect("a valid thin-lens camera")
 }

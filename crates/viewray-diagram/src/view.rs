@@ -10,6 +10,9 @@ use viewray_draw::{Mapping, Rect};
 /// Every 3D element of a figure is placed through one of these, so a figure can be
 /// checked against the camera that it shows: a [`CameraView`] is a viewray [`Camera`]
 /// (its [`Camera::project`]), a [`SideView`] draws the y-z plane in world units.
+// A camera is a few hundred bytes; a figure builds a handful of views and copies them
+// into the record of the rays it draws, so boxing the camera would only add allocations.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum FigureView {
     /// Through a camera onto a rectangle of the figure.

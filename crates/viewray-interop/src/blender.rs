@@ -20,6 +20,11 @@
 //! - **Thin lens.** `dof.focus_distance = f`; Cycles turns `aperture_fstop` into the lens
 //!   radius `lens / (2 N)` (mm to metres: `r = lens / 1000 / (2 N)`), or `1 / (2 N)` for
 //!   an orthographic camera: viewray writes `N = lens / 1000 / (2 r)` or `1 / (2 r)`.
+//! - **Blades.** `dof.aperture_blades = N` and `dof.aperture_rotation` (radians, in
+//!   `[-pi, pi]`) are viewray's blades and rotation exactly: Cycles' polygon
+//!   (`regular_polygon_sample`) is inscribed in the lens's circle, its corners at
+//!   `rotation + (2k + 1) pi / N` from the camera's `+x` toward `+y`, as viewray's. Blender
+//!   takes at most 16 blades.
 //! - **Panorama** (Cycles): `EQUIRECTANGULAR` over the whole sphere, and
 //!   `FISHEYE_EQUIDISTANT` with `fisheye_fov = F`. Cycles maps the fisheye's image circle
 //!   onto the whole frame, so it is a circle only in a square image: viewray's fisheye
@@ -28,13 +33,14 @@
 //!   `P` gives the intensity `P / (4 pi)` (`P = 4 pi^2 I`); the world colour is the
 //!   background; viewray's ambient light has no counterpart.
 //! - **Cannot be expressed**: an oblique camera, a fisheye on a non-square image, a
-//!   fisheye narrower than Blender's 10 degrees.
+//!   fisheye narrower than Blender's 10 degrees, a tilted or swung lens (Cycles' lens
+//!   stays parallel to its sensor), more than 16 blades.
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 
 use glam::{DVec2, Vec3};
-use viewray_camera::Projection;
+use viewray_camera::{Iris, Projection};
 use viewray_scene::Shading;
 
 use crate::common::{Parts, Shape, ToolLight, TriangleMesh, num, num32};
@@ -42,6 +48,9 @@ use crate::{ExportError, Format};
 
 /// Blender's default sensor width, mm.
 const SENSOR_WIDTH: f64 = 36.0;
+
+/// The most aperture blades Blender takes (`aperture_blades` runs 0 to 16).
+const MAX_BLADES: u32 = 16;
 
 fn lacks(what: impl Into<String>) -> ExportError {
     ExportError::new(Format::Blender, what)
@@ -95,12 +104,14 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
         );
         lens
     };
-    let dof = |out: &mut String, f_number: f64, focus: f64| {
+    let dof = |out: &mut String, f_number: f64, focus: f64, iris: Iris| {
         let _ = writeln!(
             out,
-            "cam.dof.use_dof = True\ncam.dof.focus_distance = {}\ncam.dof.aperture_fstop = {}\ncam.dof.aperture_blades = 0\ncam.dof.aperture_ratio = 1.0",
+            "cam.dof.use_dof = True\ncam.dof.focus_distance = {}\ncam.dof.aperture_fstop = {}\ncam.dof.aperture_blades = {}\ncam.dof.aperture_rotation = {}\ncam.dof.aperture_ratio = 1.0",
             num(focus),
-            num(f_number)
+            num(f_number),
+            iris.blades,
+            num(iris.rotation)
         );
     };
     match camera.projection() {
@@ -109,8 +120,24 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
             pixel_aspect = aspect_of(p.viewport, width, height);
         }
         Projection::ThinLens(t) => {
+            if t.is_tilted() {
+                return Err(lacks(
+                    "has no lens tilt or swing: Cycles' thin lens stays parallel to its sensor",
+                ));
+            }
+            if t.iris.blades > MAX_BLADES {
+                return Err(lacks(format!(
+                    "takes at most {MAX_BLADES} aperture blades (aperture_blades), not {}",
+                    t.iris.blades
+                )));
+            }
             let lens = perspective(&mut out, t.distance, t.viewport, t.shift);
-            dof(&mut out, lens / 1000.0 / (2.0 * t.aperture), t.focus);
+            dof(
+                &mut out,
+                lens / 1000.0 / (2.0 * t.aperture),
+                t.focus,
+                t.iris,
+            );
             pixel_aspect = aspect_of(t.viewport, width, height);
         }
         Projection::Orthographic(o) => {
@@ -120,7 +147,12 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
                 num(o.viewport.x)
             );
             if let Some(lens) = o.lens {
-                dof(&mut out, 1.0 / (2.0 * lens.aperture), lens.focus);
+                dof(
+                    &mut out,
+                    1.0 / (2.0 * lens.aperture),
+                    lens.focus,
+                    Iris::ROUND,
+                );
             }
             pixel_aspect = aspect_of(o.viewport, width, height);
         }

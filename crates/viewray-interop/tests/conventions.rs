@@ -259,6 +259,45 @@ fn blender_f_stop_gives_back_the_f_number() {
 }
 
 #[test]
+fn blender_takes_the_blades_and_their_rotation_exactly() {
+    // Six blades turned by -30 degrees (written as 330: wrapped by a whole turn): Cycles'
+    // aperture_blades and aperture_rotation, in radians.
+    let text = export(
+        &scene(
+            300,
+            200,
+            "ThinLens(focal_length: 50.0, f_number: 2.8, focus: 5.0, blades: 6, \
+             blade_rotation: 330.0)",
+        ),
+        Format::Blender,
+    );
+    contains(&text, "cam.dof.aperture_blades = 6\n");
+    let rotation: f64 = text
+        .split("cam.dof.aperture_rotation = ")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(rotation, (-30f64).to_radians());
+    // A round lens is Cycles' round one.
+    let text = export(
+        &scene(
+            300,
+            200,
+            "ThinLens(focal_length: 50.0, f_number: 2.8, focus: 5.0)",
+        ),
+        Format::Blender,
+    );
+    contains(
+        &text,
+        "cam.dof.aperture_blades = 0\ncam.dof.aperture_rotation = 0.0\n",
+    );
+}
+
+#[test]
 fn blender_non_square_pixels_are_a_pixel_aspect() {
     // 2 x 1 on a 100 x 100 image: pixels twice as wide as tall.
     let text = export(
@@ -450,6 +489,63 @@ fn a_camera_a_tool_cannot_express_is_refused_with_what_it_lacks() {
             "Orthographic(height: 2.0, aperture: 0.1, focus: 3.0)",
             "Mitsuba 3 has no orthographic camera with a lens",
         ),
+        // Tilted lenses and blades: only Blender has blades, no one tilts.
+        (
+            Format::Blender,
+            100,
+            100,
+            "ThinLens(focal_length: 90.0, f_number: 4.0, focus: 5.0, lens_tilt: 3.0)",
+            "Blender has no lens tilt or swing",
+        ),
+        (
+            Format::Mitsuba,
+            100,
+            100,
+            "ThinLens(focal_length: 90.0, f_number: 4.0, focus: 5.0, lens_swing: -2.0)",
+            "Mitsuba 3 has no lens tilt or swing",
+        ),
+        (
+            Format::Pbrt,
+            100,
+            100,
+            "ThinLens(focal_length: 90.0, f_number: 4.0, focus: 5.0, lens_tilt: 3.0)",
+            "pbrt-v4 has no lens tilt or swing",
+        ),
+        (
+            Format::Mitsuba,
+            100,
+            100,
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 5)",
+            "Mitsuba 3 has no aperture blades",
+        ),
+        (
+            Format::Pbrt,
+            100,
+            100,
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 5)",
+            "pbrt-v4 has no aperture blades",
+        ),
+        (
+            Format::Blender,
+            100,
+            100,
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 17)",
+            "Blender takes at most 16 aperture blades",
+        ),
+        (
+            Format::Gltf,
+            100,
+            100,
+            "ThinLens(focal_length: 90.0, f_number: 4.0, focus: 5.0, lens_tilt: 3.0)",
+            "glTF has no lens",
+        ),
+        (
+            Format::Three,
+            100,
+            100,
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 5)",
+            "three.js has no lens",
+        ),
     ];
     for (format, width, height, projection, wanted) in cases {
         let error = viewray_interop::export(&scene(width, height, projection), format, "out")
@@ -472,6 +568,10 @@ fn a_camera_a_tool_cannot_express_is_refused_with_what_it_lacks() {
         (
             Format::Blender,
             "Orthographic(height: 2.0, aperture: 0.1, focus: 3.0)",
+        ),
+        (
+            Format::Blender,
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 16)",
         ),
         (Format::Three, "Perspective(fov_y: 40.0, shift: (0.1, 0.2))"),
     ] {

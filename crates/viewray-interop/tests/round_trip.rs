@@ -52,6 +52,10 @@ fn expressible(format: Format, camera: &Camera) -> bool {
     };
     match (format, camera.projection()) {
         (_, Projection::Oblique(_)) => false,
+        // No tool tilts a lens; only Blender has blades, at most 16.
+        (_, Projection::ThinLens(t)) if t.tilt != 0.0 || t.swing != 0.0 => false,
+        (Format::Blender, Projection::ThinLens(t)) => t.iris.blades <= 16,
+        (Format::Mitsuba | Format::Pbrt, Projection::ThinLens(t)) if t.iris.blades != 0 => false,
         (Format::Mitsuba, Projection::Perspective(p)) => square(p.viewport),
         (Format::Mitsuba, Projection::ThinLens(t)) => square(t.viewport) && t.shift == DVec2::ZERO,
         (Format::Mitsuba | Format::Three | Format::Gltf, Projection::Orthographic(o)) => {

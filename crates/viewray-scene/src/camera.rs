@@ -7,8 +7,8 @@ use std::path::Path;
 use glam::{DVec2, DVec3};
 use ron::value::RawValue;
 use viewray_camera::{
-    Camera, Fisheye, FovAxis, Frame, Lens, Oblique, Orthographic, Perspective, Preset, Projection,
-    SensorFit, ThinLens, aperture_from_f_number,
+    Camera, Fisheye, FovAxis, Frame, Iris, Lens, Oblique, Orthographic, Perspective, Preset,
+    Projection, SensorFit, ThinLens, aperture_from_f_number,
 };
 
 use crate::SceneError;
@@ -222,7 +222,8 @@ fn perspective(def: &PerspectiveDef, aspect: f64) -> Result<Perspective, String>
 }
 
 /// The thin lens: a perspective window and a lens of radius `aperture`, or of a focal
-/// length's `f_number`, focused at `focus`.
+/// length's `f_number`, focused at `focus`, tilted and swung (a physical camera's only),
+/// with its blades.
 fn thin_lens(def: &ThinLensDef, aspect: f64) -> Result<ThinLens, String> {
     let pinhole = perspective(&def.perspective, aspect)?;
     let aperture = match (def.aperture, def.f_number, def.perspective.focal_length) {
@@ -246,12 +247,19 @@ fn thin_lens(def: &ThinLensDef, aspect: f64) -> Result<ThinLens, String> {
                 .to_owned());
         }
     };
+    if (def.lens_tilt != 0.0 || def.lens_swing != 0.0) && def.perspective.focal_length.is_none() {
+        return Err(
+            "`lens_tilt` and `lens_swing` tilt the lens of a physical camera: give \
+             `focal_length` (mm) with them (the plane of focus turns about the hinge line, \
+             focal_length / sin(tilt) from the lens)"
+                .to_owned(),
+        );
+    }
     Ok(ThinLens {
-        distance: pinhole.distance,
-        viewport: pinhole.viewport,
-        shift: pinhole.shift,
-        aperture,
-        focus: def.focus,
+        tilt: def.lens_tilt.to_radians(),
+        swing: def.lens_swing.to_radians(),
+        iris: Iris::from_degrees(def.blades, def.blade_rotation).map_err(|e| e.to_string())?,
+        ..ThinLens::new(pinhole, aperture, def.focus)
     })
 }
 

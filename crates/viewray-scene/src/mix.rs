@@ -123,6 +123,10 @@ fn mix_projection(a: &ProjectionDef, b: &ProjectionDef, s: f64) -> Result<Projec
             aperture: mix_option("aperture", a.aperture, b.aperture, s)?,
             f_number: mix_option("f_number", a.f_number, b.f_number, s)?,
             focus: a.focus.mix(&b.focus, s),
+            lens_tilt: a.lens_tilt.mix(&b.lens_tilt, s),
+            lens_swing: a.lens_swing.mix(&b.lens_swing, s),
+            blades: same("blades", Some(a.blades), Some(b.blades))?.unwrap_or(a.blades),
+            blade_rotation: a.blade_rotation.mix(&b.blade_rotation, s),
         }),
         (P::Orthographic(a), P::Orthographic(b)) => P::Orthographic(OrthographicDef {
             viewport: mix_option("viewport", a.viewport, b.viewport, s)?,

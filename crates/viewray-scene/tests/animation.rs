@@ -70,6 +70,9 @@ fn thin_lens(eye: DVec3, view: DVec3, d: f64, shift: DVec2, aperture: f64, focus
         shift,
         aperture,
         focus,
+        tilt: 0.0,
+        swing: 0.0,
+        iris: viewray_camera::Iris::ROUND,
     });
     Camera::new(frame, projection, 64, 48).unwrap()
 }
@@ -196,6 +199,51 @@ fn physical_cameras_mix_their_focal_length_and_keep_their_fit() {
     assert_eq!(
         error.message(),
         "animation: key 2: the keys give different `fit`: it is a choice, not a number, so \
+         every key of an animation gives the same"
+    );
+}
+
+#[test]
+fn tilts_and_blade_rotations_mix_while_blades_stay_the_same() {
+    let keyed = |blades_b: u32| {
+        format!(
+            "(camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                       projection: ThinLens(focal_length: 50.0, f_number: 2.0, focus: 3.0)),
+              animation: (keys: [
+                  (t: 0.0, camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                                    projection: ThinLens(focal_length: 50.0, f_number: 2.0, focus: 3.0,
+                                                         blades: 6, blade_rotation: -20.0))),
+                  (t: 1.0, camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                                    projection: ThinLens(focal_length: 50.0, f_number: 2.0, focus: 3.0,
+                                                         lens_tilt: 8.0, lens_swing: -4.0,
+                                                         blades: {blades_b}, blade_rotation: 40.0))),
+              ]))"
+        )
+    };
+    let (_, animation) = animated(&keyed(6));
+    let half = animation.keys[0]
+        .camera
+        .mix(&animation.keys[1].camera, 0.5)
+        .unwrap()
+        .camera(320, 240)
+        .unwrap();
+    let written = SceneLoader::text(
+        "(camera: (eye: (0.0, 1.0, 5.0), view: (0.0, 0.0, -1.0),
+                   projection: ThinLens(focal_length: 50.0, f_number: 2.0, focus: 3.0,
+                                        lens_tilt: 4.0, lens_swing: -2.0,
+                                        blades: 6, blade_rotation: 10.0)))",
+        Path::new("s.ron"),
+    )
+    .load()
+    .unwrap()
+    .scene;
+    assert_eq!(half, written.camera().with_image_size(320, 240).unwrap());
+    let error = SceneLoader::text(&keyed(5), Path::new("blades.ron"))
+        .load()
+        .unwrap_err();
+    assert_eq!(
+        error.message(),
+        "animation: key 2: the keys give different `blades`: it is a choice, not a number, so \
          every key of an animation gives the same"
     );
 }

@@ -141,6 +141,9 @@ fn every_projection_reads_back_exactly() {
             shift,
             aperture: viewray_camera::aperture_from_f_number(35.0, 2.8).unwrap(),
             focus: 4.0,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         }),
     );
     let lens = Lens {

@@ -116,6 +116,15 @@ const PROJECTIONS: &[&str] = &[
     "ThinLens(fov_y: 40.0, aperture: -0.1, focus: 2.0)",
     "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 0.0)",
     "ThinLens(focal_length: 50.0, f_number: 0.0, focus: 2.0)",
+    // A tilted lens and its blades.
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, lens_tilt: 5.0, lens_tilt: 6.0)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blades: 6.0)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blades: -6)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blade_rotation: \"up\")",
+    "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 2.0, lens_swing: 3.0)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blades: 2)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, lens_tilt: -90.0)",
+    "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 0.05, lens_tilt: 5.0)",
 ];
 
 const MIXES: &[(&str, &str)] = &[
@@ -188,6 +197,14 @@ const MIXES: &[(&str, &str)] = &[
     (
         "Oblique(height: 1.0, ratio: 0.5, angle: 30.0)",
         "Oblique(viewport: (1.0, 1.0), ratio: 1.0, angle: 45.0)",
+    ),
+    (
+        "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blades: 6)",
+        "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blades: 5)",
+    ),
+    (
+        "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, lens_tilt: 4.0)",
+        "ThinLens(focal_length: 50.0, f_number: 2.0, focus: 2.0, blade_rotation: 30.0)",
     ),
     ("Fisheye(fov: 90.0)", "Fisheye(fov: 180.0)"),
     ("Equirectangular", "Equirectangular"),

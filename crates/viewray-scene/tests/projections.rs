@@ -95,6 +95,9 @@ fn a_thin_lens_takes_an_f_number() {
             shift: DVec2::ZERO,
             aperture: viewray_camera::aperture_from_f_number(50.0, 2.8).unwrap(),
             focus: 5.0,
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
         })
     );
 }
@@ -111,4 +114,104 @@ fn the_viewport_follows_a_new_image_size() {
         };
         assert!((p.viewport.x / p.viewport.y - 0.5).abs() < 1e-12, "{text}");
     }
+}
+
+#[test]
+fn a_thin_lens_tilts_swings_and_has_blades_in_degrees() {
+    let lens = |text: &str| match projection(300, 200, text, None) {
+        Projection::ThinLens(lens) => lens,
+        other => panic!("{text}: {other:?}"),
+    };
+    let physical = "focal_length: 90.0, sensor: (36.0, 24.0), f_number: 4.0, focus: 5.0";
+    let plain = lens(&format!("ThinLens({physical})"));
+    assert_eq!((plain.tilt, plain.swing), (0.0, 0.0));
+    assert_eq!(plain.iris, viewray_camera::Iris::ROUND);
+    let moved = lens(&format!(
+        "ThinLens({physical}, lens_tilt: 3.0, lens_swing: -2.5, blades: 6, blade_rotation: 15.0)"
+    ));
+    assert_eq!(moved.tilt, 3f64.to_radians());
+    assert_eq!(moved.swing, (-2.5f64).to_radians());
+    assert_eq!(
+        moved.iris,
+        viewray_camera::Iris::from_degrees(6, 15.0).unwrap()
+    );
+    // Everything else is the untilted lens's.
+    assert_eq!(
+        ThinLens {
+            tilt: 0.0,
+            swing: 0.0,
+            iris: viewray_camera::Iris::ROUND,
+            ..moved
+        },
+        plain
+    );
+    // A negative rotation, or more than a turn, is the same polygon: wrapped into
+    // [-180, 180) degrees.
+    let wrapped = |degrees: &str| {
+        lens(&format!(
+            "ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 5, blade_rotation: {degrees})"
+        ))
+        .iris
+        .rotation
+    };
+    assert_eq!(wrapped("-30.0"), (-30f64).to_radians());
+    assert_eq!(wrapped("330.0"), (-30f64).to_radians());
+    assert_eq!(wrapped("690.0"), (-30f64).to_radians());
+    assert_eq!(wrapped("180.0"), (-180f64).to_radians());
+    // Blades without a physical lens are fine; a tilt is not.
+    assert_eq!(
+        lens("ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, blades: 3)")
+            .iris
+            .blades,
+        3
+    );
+}
+
+#[test]
+fn bad_tilts_and_blades_name_the_camera_s_line_and_column() {
+    let error = |projection: &str| {
+        let text = format!(
+            "(image: (width: 30, height: 20),\n camera: (eye: (0.0, 0.0, 5.0), \
+             look_at: (0.0, 0.0, 0.0),\n    projection: {projection}))"
+        );
+        SceneLoader::text(&text, Path::new("lens.ron"))
+            .load()
+            .unwrap_err()
+            .to_string()
+    };
+    let physical = "focal_length: 90.0, f_number: 4.0, focus: 5.0";
+    assert_eq!(
+        error(&format!("ThinLens({physical}, lens_tilt: 90.0)")),
+        "lens.ron:2:10: camera: lens_tilt must be strictly between -90 and 90 degrees, found 90"
+    );
+    assert_eq!(
+        error(&format!("ThinLens({physical}, lens_swing: -95.5)")),
+        "lens.ron:2:10: camera: lens_swing must be strictly between -90 and 90 degrees, found \
+         -95.5"
+    );
+    assert_eq!(
+        error(&format!("ThinLens({physical}, blades: 1)")),
+        "lens.ron:2:10: camera: blades must be 0 (a round lens) or 3 to 64 (a polygon), found 1"
+    );
+    assert_eq!(
+        error(&format!("ThinLens({physical}, blades: 65)")),
+        "lens.ron:2:10: camera: blades must be 0 (a round lens) or 3 to 64 (a polygon), found 65"
+    );
+    assert_eq!(
+        error("ThinLens(focal_length: 90.0, f_number: 4.0, focus: 0.05, lens_tilt: 1.0)"),
+        "lens.ron:2:10: camera: a tilted lens focuses beyond its focal length: focus must be \
+         greater than the focal length d = 0.09, found 0.05"
+    );
+    assert!(
+        error("ThinLens(fov_y: 40.0, aperture: 0.1, focus: 3.0, lens_swing: 1.0)").starts_with(
+            "lens.ron:2:10: camera: `lens_tilt` and `lens_swing` tilt the lens of \
+                          a physical camera: give `focal_length` (mm)"
+        )
+    );
+    // A blade count is a whole number.
+    assert!(
+        error(&format!("ThinLens({physical}, blades: 5.5)")).starts_with("lens.ron:3:"),
+        "{}",
+        error(&format!("ThinLens({physical}, blades: 5.5)"))
+    );
 }

@@ -209,6 +209,64 @@ function buildControls() {
       title: "focus distance <i>f</i>", label: "<i>f</i>", min: 0.1, max: 40, step: 0.05, fallback: 5,
     });
   }
+  if (kind === "ThinLens") lensMovementControls(params, projection);
+}
+
+// A thin lens's tilt and swing (a physical lens's: they need its focal length) and its
+// aperture's blades and their rotation. Zero tilt, swing and rotation and a round
+// aperture are left out of the RON.
+function lensMovementControls(container, projection) {
+  const degrees = (key, title, label, min, max, step) => {
+    const g = group(container, key, title);
+    slider(g.div, {
+      id: key, group: key, name: key, label, min, max, step,
+      get: () => numberOf(field(projection, key), 0),
+      set: (v) => (v === 0 ? removeField(projection, key) : setField(projection, key, num(v))),
+    });
+    g.finish();
+  };
+  if (field(projection, "focal_length")) {
+    degrees("lens_tilt", "lens tilt <i>α</i> (degrees, about <b>u</b>: + turns its top toward the scene)",
+      "<i>α</i>", -30, 30, 0.1);
+    degrees("lens_swing", "lens swing <i>β</i> (degrees, about <b>v</b>: + turns its right toward the scene)",
+      "<i>β</i>", -30, 30, 0.1);
+  } else {
+    note(container, "Tilt and swing move a physical lens: give it a <code>focal_length</code> (mm) in the RON.");
+  }
+  const blades = numberOf(field(projection, "blades"), 0);
+  const g = group(container, "blades", "aperture blades (a polygon, as Cycles' <i>aperture_blades</i>)");
+  const label = document.createElement("label");
+  label.className = "row wide";
+  label.textContent = "blades ";
+  const select = document.createElement("select");
+  select.id = "blades";
+  for (const n of [0, 3, 4, 5, 6, 7, 8, 9, 10, 12, 16]) {
+    const option = document.createElement("option");
+    option.value = String(n);
+    option.textContent = n === 0 ? "round" : String(n);
+    select.append(option);
+  }
+  if (![...select.options].some((o) => Number(o.value) === blades)) {
+    const option = document.createElement("option");
+    option.value = String(blades);
+    option.textContent = String(blades);
+    select.append(option);
+  }
+  select.value = String(blades);
+  label.append(select);
+  g.div.append(label);
+  select.addEventListener("change", () => {
+    lastCameraControl = "blades";
+    const n = Number(select.value);
+    if (n === 0) removeField(projection, "blades");
+    else setField(projection, "blades", { kind: "num", value: n, text: String(n) });
+    buildControls();
+    commit("full");
+  });
+  g.finish();
+  if (blades !== 0) {
+    degrees("blade_rotation", "blade rotation (degrees, from <b>u</b> toward <b>v</b>)", "rot", -180, 180, 1);
+  }
 }
 
 function presetNote(kind) {

@@ -7,7 +7,9 @@ use std::time::Instant;
 use serde_json::json;
 use viewray_camera::{Camera, CameraSample, ImageLimits};
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_json::{PixelIndices, frame_line, project_line, ray_line, trace_lines, trace_text};
+use viewray_json::{
+    PixelIndices, camera_frame_line, project_line, ray_line, trace_lines, trace_text,
+};
 use viewray_output::Compression;
 use viewray_render::{RenderSettings, View, render_view, trace_pixel};
 use viewray_scene::parse_camera;
@@ -67,8 +69,9 @@ const JSON_LINES: &str = "application/x-ndjson";
 pub(crate) enum Route {
     /// The reply, computed.
     Now(Reply),
-    /// A render, its parameters valid and within the limits.
-    Render(View),
+    /// A render, its parameters valid and within the limits (boxed: a camera with a lens
+    /// is a few hundred bytes).
+    Render(Box<View>),
     /// A slide: a render with the views and numbers around it.
     Slide(Box<SlideRequest>),
 }
@@ -102,7 +105,9 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
             "text/plain; charset=utf-8",
             served.text.as_bytes(),
         ))),
-        "/api/render" => render_view_of(served, limits, query).map(Route::Render),
+        "/api/render" => {
+            render_view_of(served, limits, query).map(|view| Route::Render(Box::new(view)))
+        }
         "/api/frame" => frame(served, limits, query).map(Route::Now),
         "/api/rays" => rays(served, limits, query).map(Route::Now),
         "/api/project" => project(served, limits, query).map(Route::Now),
@@ -198,12 +203,13 @@ pub(crate) fn render(served: &ServedScene, view: &View) -> Reply {
     }
 }
 
-/// `/api/frame`: the line of `viewray frame`.
+/// `/api/frame`: the line of `viewray frame SCENE` (with the plane of focus and hinge
+/// line of a camera with a lens).
 fn frame(served: &ServedScene, limits: &Limits, query: &str) -> Result<Reply, BadRequest> {
     let query = Query::parse(query, &FRAME, &[])?;
     let size = geometry_size(served, &query)?;
     let camera = camera(served, limits, &query, size)?;
-    Ok(json_lines(&[frame_line(camera.frame())]))
+    Ok(json_lines(&[camera_frame_line(&camera)]))
 }
 
 /// `/api/rays`: the line of `viewray rays --pixel R,C` (or `--one-based --pixel I,J`).

@@ -54,12 +54,20 @@ pub(crate) enum Command {
     /// its camera, presets included. Prints one JSON line:
     ///
     ///     {"e":[..],"u":[..],"v":[..],"w":[..]}
+    ///
+    /// A scene's camera with a lens adds its plane of sharp focus (its point nearest
+    /// the lens centre and its unit normal toward the lens), and a tilted lens its
+    /// hinge line (the point nearest the lens centre, the direction w x n):
+    ///
+    ///     "focus_plane":{"point":[..],"normal":[..]}
+    ///     "hinge_line":{"point":[..],"direction":[..]}
     #[command(verbatim_doc_comment)]
     Frame(crate::commands::FrameArgs),
     /// Print the viewing rays of pixels, with their image-plane points u, v
     ///
     /// Each ray goes through a point of its pixel, the centre unless --sample says
-    /// otherwise, and through the lens centre. The pixel's image-plane point is
+    /// otherwise, and through the lens centre unless --lens says otherwise. The pixel's
+    /// image-plane point is
     ///
     ///     u =  ((col + 1/2)/W - 1/2) vw  =  ((j - 1/2)/W - 1/2) vw
     ///     v = -((row + 1/2)/H - 1/2) vh  = -((i - 1/2)/H - 1/2) vh
@@ -67,7 +75,9 @@ pub(crate) enum Command {
     /// with the 0-based (row, col) or the lecture's 1-based (i, j). A perspective
     /// camera's ray is then origin e, direction (u + sx) U + (v + sy) V - d W, with
     /// (sx, sy) the lens shift (zero unless the scene sets one); directions are not
-    /// normalized.
+    /// normalized. A thin lens's ray starts at the lens point e + r (LX U + LY V) and
+    /// goes through the point where the pixel's centre ray meets the plane of focus
+    /// (reached at t = 1; `viewray frame SCENE` prints the plane).
     ///
     /// Prints one JSON line per pixel,
     ///

@@ -4,15 +4,15 @@
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use glam::{DVec2, DVec3};
-use viewray_camera::{CameraSample, Frame};
-use viewray_json::{PixelIndices, project_line, ray_line};
+use viewray_camera::{Camera, CameraSample, Frame};
+use viewray_json::{PixelIndices, lens_ray_line, project_line, ray_line};
 
 use crate::input::{DEFAULT_SCENE, load_scene_file};
 use crate::style;
-use crate::values::{parse_offset, parse_pixel, parse_vec3};
+use crate::values::{parse_lens_point, parse_offset, parse_pixel, parse_vec3};
 
 /// The conventions, after the help of the commands that print numbers. Each line fits
 /// in 80 columns, so that clap does not rewrap it.
@@ -77,6 +77,11 @@ pub(crate) struct RaysArgs {
     /// corner; 0.5,0.5 is the centre, the lecture's ray.
     #[arg(long, value_name = "OX,OY", value_parser = parse_offset, default_value = "0.5,0.5")]
     pub(crate) sample: DVec2,
+    /// The point on the lens as LX,LY in unit-disk coordinates (the ray starts at
+    /// e + r (LX U + LY V)), instead of the lens centre; for a camera with a lens, the
+    /// point on its aperture (the unit disk, or the polygon of its blades).
+    #[arg(long, value_name = "LX,LY", value_parser = parse_lens_point, allow_hyphen_values = true)]
+    pub(crate) lens: Option<DVec2>,
 }
 
 #[derive(Args, Debug)]
@@ -104,12 +109,13 @@ pub(crate) struct SceneArgs {
 
 /// `viewray frame`: the camera frame of a scene, or from eye, view (or look-at) and up.
 pub(crate) fn frame(args: &FrameArgs) -> Result<()> {
-    let frame = match &args.scene {
-        Some(scene) => *load_scene_file(scene)?.camera().frame(),
-        None => frame_from_options(args)?,
+    let line = match &args.scene {
+        // A scene's camera adds its plane of focus (and hinge line) where it has a lens.
+        Some(scene) => viewray_json::camera_frame_line(load_scene_file(scene)?.camera()),
+        None => viewray_json::frame_line(&frame_from_options(args)?),
     };
     let mut out = std::io::stdout().lock();
-    viewray_json::write_line(&mut out, &viewray_json::frame_line(&frame))?;
+    viewray_json::write_line(&mut out, &line)?;
     Ok(())
 }
 
@@ -170,13 +176,20 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
                 .map_err(|outside| anyhow::anyhow!(outside.sentence(Some("--one-based"))))
         })
         .collect::<Result<Vec<(u32, u32)>>>()?;
+    if let Some(lens) = args.lens {
+        check_lens_point(&camera, lens)?;
+    }
     note_pixel_convention(args.one_based);
     let sample = CameraSample {
         p_film: args.sample,
         ..CameraSample::CENTER
     };
     let write = |out: &mut BufWriter<_>, row, col| {
-        viewray_json::write_line(out, &ray_line(&camera, (row, col), sample, indices))
+        let line = match args.lens {
+            Some(lens) => lens_ray_line(&camera, (row, col), args.sample, lens, indices),
+            None => ray_line(&camera, (row, col), sample, indices),
+        };
+        viewray_json::write_line(out, &line)
     };
     let mut out = BufWriter::new(std::io::stdout().lock());
     if pixels.is_empty() {
@@ -194,6 +207,40 @@ pub(crate) fn rays(args: &RaysArgs) -> Result<()> {
     }
     out.flush()?;
     Ok(())
+}
+
+/// `--lens LX,LY` needs a camera with a lens, and a point on its aperture: the unit disk,
+/// or the polygon of its blades.
+fn check_lens_point(camera: &Camera, lens: DVec2) -> Result<()> {
+    let Some(iris) = camera.projection().iris() else {
+        bail!(
+            "--lens picks a point on the lens, but this {} camera has none: give a ThinLens \
+             (or an Orthographic camera with an aperture)",
+            camera.projection().family_name()
+        );
+    };
+    if iris.contains(lens) {
+        return Ok(());
+    }
+    if iris.is_round() {
+        bail!(
+            "--lens {},{} lies outside the lens: LX, LY are unit-disk coordinates, \
+             LX^2 + LY^2 <= 1",
+            lens.x,
+            lens.y
+        );
+    }
+    bail!(
+        "--lens {},{} lies outside the aperture: its {} blades make a polygon inside the \
+         unit disk, corners on the circle at {} degrees and every 360/{} after",
+        lens.x,
+        lens.y,
+        iris.blades,
+        viewray_output::number::label(
+            (iris.rotation + std::f64::consts::PI / f64::from(iris.blades)).to_degrees()
+        ),
+        iris.blades
+    )
 }
 
 /// `viewray project`: where points appear in the image.

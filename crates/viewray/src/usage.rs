@@ -51,7 +51,7 @@ pub(crate) fn expand_repeated_values(args: impl IntoIterator<Item = OsString>) -
 
 /// The options whose value is several numbers joined by commas, the format each takes
 /// and how many numbers that is.
-const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
+const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 8] = [
     ("--eye", "X,Y,Z", 3),
     ("--view", "X,Y,Z", 3),
     ("--look-at", "X,Y,Z", 3),
@@ -59,6 +59,7 @@ const NUMBER_LIST_OPTIONS: [(&str, &str, usize); 7] = [
     ("--point", "X,Y,Z", 3),
     ("--pixel", "ROW,COL", 2),
     ("--sample", "OX,OY", 2),
+    ("--lens", "LX,LY", 2),
 ];
 
 /// The options of `viewray frame` that describe a camera by hand.

@@ -51,6 +51,12 @@ pub(crate) fn parse_offset(text: &str) -> Result<DVec2, String> {
     Ok(offset)
 }
 
+/// Parses a lens point: two numbers (whether it lies on the aperture depends on the
+/// scene's camera, checked once it is loaded).
+pub(crate) fn parse_lens_point(text: &str) -> Result<DVec2, String> {
+    parse_numbers::<2>(text, "0.5,-0.5").map(DVec2::from)
+}
+
 /// Parses a pixel `ROW,COL` (or `I,J`): any two whole numbers; the command checks them
 /// against the image.
 pub(crate) fn parse_pixel(text: &str) -> Result<(i64, i64), String> {

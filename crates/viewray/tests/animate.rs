@@ -64,6 +64,8 @@ fn list_names_every_demo_on_one_line_each() {
             "tilt-vs-shift",
             "aperture",
             "focus-pull",
+            "lens-tilt",
+            "bokeh",
             "oblique-angle"
         ]
     );

@@ -194,6 +194,61 @@ fn rays_print_the_image_plane_point_of_each_pixel() {
 }
 
 #[test]
+fn a_tilted_lens_prints_its_plane_of_focus_hinge_line_and_lens_rays() {
+    // A 90 mm lens tilted 3 degrees, focused at 5 m: its hinge line lies
+    // 90 / sin 3 = 1719.66 mm below the lens centre, along u.
+    let scene = fixture("homework/tilted_90mm.ron");
+    let lines = json_lines(&["frame", &scene]);
+    let frame = &lines[0];
+    assert_eq!(
+        keys(frame),
+        ["e", "u", "v", "w", "focus_plane", "hinge_line"]
+    );
+    let j = 0.09 / 3f64.to_radians().sin();
+    assert_vec(&frame["hinge_line"]["point"], [0.0, -j, 0.0]);
+    assert_vec(&frame["hinge_line"]["direction"], [1.0, 0.0, 0.0]);
+    // The plane of focus holds the hinge line and the Scheimpflug line, where the sensor
+    // (s = 90 * 5000 / 4910 mm behind the lens) meets the lens plane: y = -s / tan 3.
+    let value = |v: &Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (point, normal) = (
+        value(&frame["focus_plane"]["point"]),
+        value(&frame["focus_plane"]["normal"]),
+    );
+    let off = |p: [f64; 3]| (0..3).map(|k| normal[k] * (p[k] - point[k])).sum::<f64>();
+    let s = 0.09 * 5.0 / 4.91;
+    let (sin, cos) = 3f64.to_radians().sin_cos();
+    assert!(off([0.0, -j, 0.0]).abs() < 1e-12);
+    assert!(off([0.0, -s * cos / sin, s]).abs() < 1e-12);
+    // The lens ray from (LX, LY) = (0, 1) starts at e + r v (r = 90 / 8 mm) and meets
+    // the centre ray at t = 1, on the plane of focus.
+    let centre = &json_lines(&["rays", &scene, "--pixel", "0,1"])[0];
+    let lens = &json_lines(&["rays", &scene, "--pixel", "0,1", "--lens", "0,1"])[0];
+    assert_eq!(keys(lens), keys(centre));
+    assert_vec(&lens["origin"], [0.0, 0.01125, 0.0]);
+    let meet: Vec<f64> = value(&centre["direction"]);
+    let (o, d) = (value(&lens["origin"]), value(&lens["direction"]));
+    for k in 0..3 {
+        assert!(
+            (o[k] + d[k] - meet[k]).abs() < 1e-12,
+            "{o:?} + {d:?} != {meet:?}"
+        );
+    }
+    assert!(off([meet[0], meet[1], meet[2]]).abs() < 1e-12);
+    // An untilted lens: the plane at f along -w, no hinge line.
+    let frame = &json_lines(&["frame", &fixture("scenes/thin_lens_small_aperture.ron")])[0];
+    assert_eq!(keys(frame), ["e", "u", "v", "w", "focus_plane"]);
+    // A pinhole: the frame alone.
+    let frame = &json_lines(&["frame", &fixture("homework/canonical_2x2.ron")])[0];
+    assert_eq!(keys(frame), ["e", "u", "v", "w"]);
+}
+
+#[test]
 fn one_based_pixels_are_the_lectures_i_and_j() {
     let scene = fixture("homework/canonical_2x2.ron");
     // The lecture's pixel (i, j) = (2, 1) is row 1, col 0: u = -1/4, v = -1/4.
@@ -310,6 +365,21 @@ fn usage_and_input_errors_say_what_to_write() {
         &["frame", "--eye", "1,2,nan", "--view", "0,0,-1"],
         &["rays", scene, "--pixel", "a,b"],
         &["rays", scene, "--sample", "1,0"],
+        &["rays", scene, "--lens", "0.5"],
+        // A lens point without a lens, or off the aperture (round, and with blades).
+        &["rays", scene, "--lens", "0,0"],
+        &[
+            "rays",
+            "fixtures/scenes/thin_lens_small_aperture.ron",
+            "--lens",
+            "0.8,0.8",
+        ],
+        &[
+            "rays",
+            "fixtures/scenes/thin_lens_blades.ron",
+            "--lens",
+            "1,0",
+        ],
         // What is missing, and what conflicts.
         &["frame"],
         &["frame", "--eye", "1,2,3"],

@@ -10,6 +10,8 @@
 //!   its pixel-centre rays) with viewray's (its tracer on the same rays);
 //! - Blender's own projection (`world_to_camera_view`) of world points with viewray's,
 //!   and for the panoramas Cycles' own rays (a render of the ray direction);
+//! - Cycles' picture of a defocused point light through a lens with blades with
+//!   viewray's: the same polygon, orientation and size within a pixel (`bokeh.rs`);
 //! - three.js's `Vector3.project` of world points with viewray's;
 //! - imports, by round trips through each tool: Mitsuba-written XML (`mi.parser`),
 //!   Blender's glTF of the exported scene, three.js's `toJSON` of the loaded scene and of
@@ -17,14 +19,16 @@
 //!
 //! Errors are relative: a unit direction's difference, an origin's distance from
 //! viewray's ray over the eye's distance from the origin (at least 1), an image point's
-//! difference over the image's larger side. Every one must be below 1e-5.
+//! difference over the image's larger side. Every one must be below 1e-5; the bokeh
+//! pictures, Monte Carlo renders both, within a pixel.
 //!
 //! The parts: `install.rs` installs the tools and runs their checker scripts, `cases.rs`
 //! makes the cases, `export.rs` writes them for every tool, `report.rs` measures the
 //! errors and keeps the table; `mitsuba.rs`, `blender.rs`, `three.rs` and `pbrt.rs` hold
-//! each tool's checks.
+//! each tool's checks, `bokeh.rs` the pictures of a lens with blades.
 
 mod blender;
+mod bokeh;
 mod cases;
 mod export;
 mod install;
@@ -102,16 +106,24 @@ pub fn interop(root: &Path, args: &InteropArgs) -> Result<()> {
     let (exported, refused) = export::export_all(&paths, &cases)?;
 
     let mut report = Report::default();
+    let (mut mitsuba_time, mut blender_time, mut three_time) = Default::default();
+    // A filter may select no camera case (only the bokeh pictures): then there is
+    // nothing for these checks to count.
+    if !cases.is_empty() {
+        let timer = Instant::now();
+        mitsuba::check(&paths, &cases, &exported, &mut report)?;
+        mitsuba_time = timer.elapsed();
+        let timer = Instant::now();
+        blender::check(&paths, &cases, &exported, &mut report)?;
+        blender_time = timer.elapsed();
+        let timer = Instant::now();
+        three::check(&paths, &cases, &exported, &mut report)?;
+        three_time = timer.elapsed();
+        pbrt::check(&cases, &exported, &mut report)?;
+    }
     let timer = Instant::now();
-    mitsuba::check(&paths, &cases, &exported, &mut report)?;
-    let mitsuba_time = timer.elapsed();
-    let timer = Instant::now();
-    blender::check(&paths, &cases, &exported, &mut report)?;
-    let blender_time = timer.elapsed();
-    let timer = Instant::now();
-    three::check(&paths, &cases, &exported, &mut report)?;
-    let three_time = timer.elapsed();
-    pbrt::check(&cases, &exported, &mut report)?;
+    bokeh::check(&paths, args.filter.as_deref(), &mut report)?;
+    blender_time += timer.elapsed();
 
     println!("{}", report.table());
     println!("cameras the tools cannot express (export refused):");

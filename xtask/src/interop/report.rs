@@ -43,12 +43,17 @@ impl Report {
     /// Adds the line of the check `label`: it fails when nothing was checked, or the worst
     /// error is NaN or above [`TOLERANCE`].
     pub(super) fn check(&mut self, label: &str, worst: &Worst) {
+        self.check_within(label, worst, TOLERANCE);
+    }
+
+    /// [`Report::check`] with a tolerance of its own (pixels, for pictures).
+    pub(super) fn check_within(&mut self, label: &str, worst: &Worst, tolerance: f64) {
         let _ = writeln!(
             self.table,
             "{label:<58} {:>6} checks  max error {:.2e}  {}",
             worst.count, worst.error, worst.at
         );
-        if worst.count == 0 || worst.error.is_nan() || worst.error > TOLERANCE {
+        if worst.count == 0 || worst.error.is_nan() || worst.error > tolerance {
             self.failures.push(format!(
                 "{label}: max error {:e} at {}",
                 worst.error, worst.at

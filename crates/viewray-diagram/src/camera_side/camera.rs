@@ -7,7 +7,7 @@ use viewray_draw::{Color, Stroke};
 use viewray_geometry::DRay;
 use viewray_scene::Scene;
 
-use super::labels::{Labels, label_anchor};
+use super::labels::{Labels, beside, label_anchor, place_label};
 use super::window::Plane;
 use crate::sketch::{CameraRay, Sketch};
 use crate::style;
@@ -31,13 +31,24 @@ pub(super) fn tilt_on_figure(view: &SideView, d: DVec3) -> f32 {
 
 /// Draws the focus plane of a camera with a lens: a dashed segment across the frustum at
 /// distance `focus` along `-w` (across **v** seen from the side, **u** from above);
-/// returns its upper and lower ends on the figure, if it is in the view.
+/// returns its upper and lower ends on the figure, if it is in the view. A tilted lens's
+/// plane of focus is drawn instead from its hinge line on, labelled, and returns `None`.
 pub(super) fn draw_focus_plane(
     sketch: &mut Sketch,
     view: &SideView,
     camera: &Camera,
     (focus, plane): (f64, Plane),
 ) -> Option<(Vec2, Vec2)> {
+    if let (Some(tilted), Some(focus_plane)) = (camera.tilted_focus(), camera.focus_plane()) {
+        draw_tilted_focus_plane(
+            sketch,
+            view,
+            camera,
+            tilted.hinge_line.point,
+            focus_plane.normal,
+        );
+        return None;
+    }
     let frame = camera.frame();
     let centre = frame.e() - frame.w() * focus;
     let across = plane.across(frame);
@@ -72,6 +83,53 @@ pub(super) fn draw_focus_plane(
     } else {
         (bottom, top)
     })
+}
+
+/// Draws a tilted lens's plane of focus (unit normal `normal`) where it crosses the
+/// view's plane, from the hinge line's point `hinge` ahead of the camera to the edge of
+/// the view, with a dot at the hinge line; labelled.
+fn draw_tilted_focus_plane(
+    sketch: &mut Sketch,
+    view: &SideView,
+    camera: &Camera,
+    hinge: DVec3,
+    normal: DVec3,
+) {
+    let across = normal.cross(view.towards_viewer());
+    let ahead = if across.dot(camera.frame().w()) > 0.0 {
+        -across
+    } else {
+        across
+    };
+    let trace = DRay {
+        origin: hinge,
+        direction: ahead.normalize(),
+    };
+    let Some((t0, t1)) = view.clip_ray(&trace, (0.0, 1e6)) else {
+        return;
+    };
+    let (near, far) = (view.to_figure(trace.at(t0)), view.to_figure(trace.at(t1)));
+    sketch.line(
+        near,
+        far,
+        Stroke::new(style::HIGHLIGHT, style::LINE_REGULAR).dashed(&style::DASH),
+    );
+    if t0 == 0.0 {
+        sketch.dot(near, style::DOT_RADIUS * 0.7, style::HIGHLIGHT);
+    }
+    let middle = view.to_figure(trace.at(t0 + 0.6 * (t1 - t0)));
+    place_label(
+        sketch,
+        "plane of focus (tilted lens)",
+        &[
+            beside(middle, 14.0, 14.0),
+            beside(middle, -14.0, -14.0),
+            beside(far, -12.0, 14.0),
+            beside(near, 12.0, -12.0),
+        ],
+        style::HIGHLIGHT,
+        style::SMALL_LABEL_SIZE,
+    );
 }
 
 /// Draws the centre ray of `pixel` from its origin to the first thing it hits in the

@@ -182,10 +182,22 @@ impl CaptionParts {
                 perspective("perspective", p.distance, p.viewport, p.shift),
                 Vec::new(),
             ),
-            Projection::ThinLens(p) => (
-                perspective("thin lens", p.distance, p.viewport, p.shift),
-                lens(p.aperture, p.focus),
-            ),
+            Projection::ThinLens(p) => {
+                let mut parts = lens(p.aperture, p.focus);
+                if p.tilt != 0.0 {
+                    parts.push(format!("tilt {}°", number::label(p.tilt.to_degrees())));
+                }
+                if p.swing != 0.0 {
+                    parts.push(format!("swing {}°", number::label(p.swing.to_degrees())));
+                }
+                if !p.iris.is_round() {
+                    parts.push(format!("{} blades", p.iris.blades));
+                }
+                (
+                    perspective("thin lens", p.distance, p.viewport, p.shift),
+                    parts,
+                )
+            }
             Projection::Orthographic(o) => (
                 vec![format!("orthographic:  {}", viewport(o.viewport))],
                 o.lens.map_or(Vec::new(), |l| lens(l.aperture, l.focus)),

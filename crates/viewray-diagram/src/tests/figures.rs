@@ -205,6 +205,7 @@ fn ray_figures_draw_rays() {
         ("distortion_foreshortening", 8),
         ("distortion_verticals", 4),
         ("thin_lens", 5),
+        ("scheimpflug", 9),
     ];
     for (name, at_least) in expected {
         let diagram = figure_by_name(name).expect(name).draw(&Wireframes);
@@ -295,6 +296,52 @@ fn thin_lens_cone_meets_at_the_focus_plane() {
         .map(|o| o.distance(frame.e()))
         .fold(0.0, f64::max);
     assert!(spread > 0.3, "{spread}");
+}
+
+#[test]
+fn scheimpflug_rays_meet_on_the_tilted_plane_through_both_lines() {
+    use crate::scheimpflug::{COLUMN, FOCUS, LENS_POINTS, ROWS, TILT_DEGREES};
+    let diagram = figure_by_name("scheimpflug")
+        .expect("registered")
+        .draw(&Wireframes);
+    let camera = crate::scheimpflug::scheimpflug_camera();
+    let plane = camera.focus_plane().expect("a lens");
+    let tilted = camera.tilted_focus().expect("tilted");
+    // F = d = 1: the hinge line F / sin 20 = 2.924 below the lens.
+    let e = camera.frame().e();
+    assert_close(
+        tilted.hinge_line.point,
+        e - DVec3::Y / TILT_DEGREES.to_radians().sin(),
+        "the hinge line",
+    );
+    // The sensor s = F f / (f - F) behind the lens; the Scheimpflug line on it.
+    let s = FOCUS / (FOCUS - 1.0);
+    assert!((tilted.scheimpflug_line.point.z - s).abs() < 1e-12);
+    for line in [tilted.hinge_line, tilted.scheimpflug_line] {
+        assert!(plane.normal.dot(line.point - plane.point).abs() < 1e-12);
+    }
+    for row in ROWS {
+        let rays: Vec<_> = diagram
+            .rays
+            .iter()
+            .filter(|ray| (ray.row, ray.col) == (row, COLUMN))
+            .collect();
+        // One ray per lens point.
+        assert_eq!(rays.len(), LENS_POINTS.len(), "row {row}");
+        let centre = camera
+            .generate_ray(row, COLUMN, CameraSample::CENTER)
+            .expect("a ray");
+        let meet = centre.at(1.0);
+        assert!(plane.normal.dot(meet - plane.point).abs() < 1e-9);
+        for ray in &rays {
+            let generated = ray
+                .camera
+                .generate_ray(ray.row, ray.col, ray.sample)
+                .expect("a ray");
+            assert_close(generated.at(1.0), meet, "meets on the plane of focus");
+            assert!(ray.t.1 > 1.0, "drawn past the plane");
+        }
+    }
 }
 
 #[test]

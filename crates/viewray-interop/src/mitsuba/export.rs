@@ -164,6 +164,17 @@ fn sensor(out: &mut String, parts: &Parts<'_>, width: u32, height: u32) -> Resul
     let (kind, body, transform) = match camera.projection() {
         Projection::Perspective(p) => ("perspective", perspective(p, "perspective")?, lookat),
         Projection::ThinLens(t) => {
+            if t.is_tilted() {
+                return Err(lacks(
+                    "has no lens tilt or swing: its thinlens sensor's lens stays parallel to \
+                     the film",
+                ));
+            }
+            if !t.iris.is_round() {
+                return Err(lacks(
+                    "has no aperture blades: its thinlens sensor's aperture is round",
+                ));
+            }
             if t.shift != DVec2::ZERO {
                 return Err(lacks(
                     "has no shifted thin lens: its thinlens sensor has no principal point offset",

@@ -27,7 +27,8 @@
 //!   a directional one as `irradiance = pi E`; the background is a `constant` emitter.
 //!   viewray's ambient light has no counterpart (a comment says so).
 //! - **Cannot be expressed**: an oblique camera, an orthographic camera with a lens, a
-//!   shifted thin lens, non-square pixels in perspective, the panoramic cameras.
+//!   shifted, tilted or swung thin lens, aperture blades, non-square pixels in
+//!   perspective, the panoramic cameras.
 //! - Meshes are written as OBJ files beside the XML (`<stem>-mesh<N>.obj`), one per
 //!
 //! # Where to read

@@ -90,6 +90,18 @@ pub fn export(scene: &viewray_scene::Scene) -> Result<Vec<u8>, ExportError> {
             );
         }
         Projection::ThinLens(t) => {
+            if t.is_tilted() {
+                return Err(lacks(
+                    "has no lens tilt or swing: its perspective camera's thin lens stays \
+                     parallel to the film",
+                ));
+            }
+            if !t.iris.is_round() {
+                return Err(lacks(
+                    "has no aperture blades: its perspective camera's lens is round (only \
+                     the realistic camera takes an aperture image)",
+                ));
+            }
             out += "Scale -1 1 1\n";
             look_at(&mut out, frame.e() - frame.w(), frame.v());
             let _ = writeln!(

@@ -29,7 +29,8 @@
 //! - **Units of light**: as Mitsuba's (`I` and `L` are written times pi); the background
 //!   is an `infinite` light; viewray's ambient light has no counterpart.
 //! - **Cannot be expressed**: an oblique camera (pbrt warns that a camera transform with
-//!   shear or scale breaks its assumptions), the fisheye.
+//!   shear or scale breaks its assumptions), the fisheye, a tilted or swung lens,
+//!   aperture blades.
 //!
 //! # Where to read
 //!

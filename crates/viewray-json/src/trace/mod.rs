@@ -414,4 +414,48 @@ mod tests {
         assert_eq!(lines[2]["color"], json!([0.25, 0.5, 1.0]));
         assert_eq!(keys(lines.last().unwrap()), ["i", "j", "linear", "srgb8"]);
     }
+
+    #[test]
+    fn a_tilted_lens_s_trace_names_the_plane_of_focus_its_ray_meets() {
+        // A 90 mm lens focused at 5 m and tilted 3 degrees: the top middle pixel's
+        // centre ray c = (0, 0.006, -0.09) meets m.P = F, m = (0, -sin 3, 1 - 0.09/5 -
+        // cos 3), at t = F / m.c = 76.10, the point (0, 0.4566, -6.849).
+        let scene = SceneLoader::text(
+            "(image: (width: 3, height: 2), shading: Flat,
+              camera: (eye: (0.0, 0.0, 0.0), view: (0.0, 0.0, -1.0),
+                       projection: ThinLens(focal_length: 90.0, sensor: (36.0, 24.0),
+                                            f_number: 4.0, focus: 5.0, lens_tilt: 3.0)))",
+            Path::new("tilted.ron"),
+        )
+        .load()
+        .unwrap()
+        .scene;
+        let view = View::of(&scene);
+        let trace = trace_pixel(&scene, &view, &RenderSettings::default(), 0, 1).unwrap();
+        let text = trace_text(scene.camera(), scene.shading(), &trace, "");
+        let (sin, cos) = 3f64.to_radians().sin_cos();
+        let m_y = -sin;
+        let m_z = 1.0 - 0.09 / 5.0 - cos;
+        let t = 0.09 / (m_y * 0.006 + m_z * -0.09);
+        assert!((t - 76.10).abs() < 0.01, "{t}");
+        assert!(
+            text.contains(&format!(
+                "tilt 3 degrees, swing 0 degrees: plane of focus m.P = F, F = d = 0.09, m = n + \
+                 (1 - F/f) W = (0, {}, {})",
+                text::m(m_y),
+                text::m(m_z)
+            )),
+            "{text}"
+        );
+        assert!(
+            text.contains(&format!(
+                "direction = (F / m.c) c where m.c > 0, else c;  c = (u + sx) U + (v + sy) V - d \
+                 W = (0, {}, {})",
+                text::m(t * 0.006),
+                text::m(t * -0.09)
+            )),
+            "{text}"
+        );
+        assert!(!text.contains("(f/d)"), "{text}");
+    }
 }

@@ -119,12 +119,40 @@ impl Text {
         if let Some(parameters) = parameters {
             self.line(1, parameters);
         }
+        let direction_rule = match projection {
+            Projection::ThinLens(p) if p.is_tilted() => {
+                self.line(1, tilted_lens_numbers(p));
+                TILTED_DIRECTION
+            }
+            _ => direction_rule,
+        };
         self.line(1, format!("origin    = {origin_rule} = {}", d3(origin)));
         self.line(
             1,
             format!("direction = {direction_rule} = {}", d3(direction)),
         );
     }
+}
+
+/// The centre ray of a tilted thin lens: through the point where the pinhole ray `c`
+/// meets the plane of focus `m . P = F`, reached at `t = 1` (the camera crate's module
+/// `scheimpflug`); where that point is not ahead of the lens, the ray runs along `c`.
+const TILTED_DIRECTION: &str =
+    "(F / m.c) c where m.c > 0, else c;  c = (u + sx) U + (v + sy) V - d W";
+
+/// A tilted lens's numbers for [`TILTED_DIRECTION`]: its tilt and swing, `F = d`, and
+/// `m = n + (1 - F/f) W` in camera coordinates (`n` the lens's axis).
+fn tilted_lens_numbers(lens: &viewray_camera::ThinLens) -> String {
+    let focal_length = lens.distance;
+    let m_vector = lens.lens_normal() + DVec3::Z * (1.0 - focal_length / lens.focus);
+    format!(
+        "tilt {} degrees, swing {} degrees: plane of focus m.P = F, F = d = {}, \
+         m = n + (1 - F/f) W = {} (camera coordinates)",
+        m(lens.tilt.to_degrees()),
+        m(lens.swing.to_degrees()),
+        m(focal_length),
+        d3(m_vector)
+    )
 }
 
 /// The rule of a family's viewing ray: origin and direction in the lecture's notation

@@ -6,7 +6,7 @@
 //! (`#[serde(flatten)]` buffers the values, which loses their positions and RON's words),
 //! so the enum is read by hand: each variant's fields by a derived struct, straight from
 //! RON's map of fields, and a thin lens's by [`PerspectiveDef`]'s own derived reader with
-//! the lens's three fields taken out on the way. What a scene file's author reads is the
+//! the lens's own fields taken out on the way. What a scene file's author reads is the
 //! same as for a derived enum: the variant named in every error, and the full list of a
 //! variant's fields for an unknown one.
 
@@ -52,17 +52,33 @@ pub(crate) struct PerspectiveDef {
 }
 
 /// `ThinLens(..)`: a perspective window and the lens, its radius `aperture` (or an
-/// `f_number`) and its `focus` distance.
+/// `f_number`) and its `focus` distance, its tilt and swing, and its blades.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ThinLensDef {
     pub(crate) perspective: PerspectiveDef,
     pub(crate) aperture: Option<f64>,
     pub(crate) f_number: Option<f64>,
     pub(crate) focus: f64,
+    /// Degrees, about `u`; a physical camera's only. 0 when not given.
+    pub(crate) lens_tilt: f64,
+    /// Degrees, about `v`; a physical camera's only. 0 when not given.
+    pub(crate) lens_swing: f64,
+    /// 0 (round, when not given) or 3 to 64.
+    pub(crate) blades: u32,
+    /// Degrees, any angle (wrapped). 0 when not given.
+    pub(crate) blade_rotation: f64,
 }
 
 /// The lens's own fields, which follow the perspective ones in `ThinLens(..)`'s list.
-const LENS_FIELDS: [&str; 3] = ["aperture", "f_number", "focus"];
+const LENS_FIELDS: [&str; 7] = [
+    "aperture",
+    "f_number",
+    "focus",
+    "lens_tilt",
+    "lens_swing",
+    "blades",
+    "blade_rotation",
+];
 
 /// `Orthographic(viewport: .. | height: .., aperture: .., focus: ..)`.
 #[derive(Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -200,6 +216,10 @@ impl<'de> Visitor<'de> for ThinLensVisitor {
             aperture: None,
             f_number: None,
             focus: None,
+            lens_tilt: None,
+            lens_swing: None,
+            blades: None,
+            blade_rotation: None,
         };
         let perspective = PerspectiveDef::deserialize(MapAccessDeserializer::new(&mut fields))?;
         Ok(ThinLensDef {
@@ -209,6 +229,10 @@ impl<'de> Visitor<'de> for ThinLensVisitor {
             focus: fields
                 .focus
                 .ok_or_else(|| de::Error::missing_field("focus"))?,
+            lens_tilt: fields.lens_tilt.unwrap_or(0.0),
+            lens_swing: fields.lens_swing.unwrap_or(0.0),
+            blades: fields.blades.unwrap_or(0),
+            blade_rotation: fields.blade_rotation.unwrap_or(0.0),
         })
     }
 }
@@ -221,6 +245,10 @@ struct LensTakenOut<A> {
     aperture: Option<Option<f64>>,
     f_number: Option<Option<f64>>,
     focus: Option<f64>,
+    lens_tilt: Option<f64>,
+    lens_swing: Option<f64>,
+    blades: Option<u32>,
+    blade_rotation: Option<f64>,
 }
 
 impl<'de, A: MapAccess<'de>> MapAccess<'de> for LensTakenOut<A> {
@@ -238,6 +266,17 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for LensTakenOut<A> {
                 "aperture" => self.aperture = Some(take(&mut self.map, "aperture", self.aperture)?),
                 "f_number" => self.f_number = Some(take(&mut self.map, "f_number", self.f_number)?),
                 "focus" => self.focus = Some(take(&mut self.map, "focus", self.focus)?),
+                "lens_tilt" => {
+                    self.lens_tilt = Some(take(&mut self.map, "lens_tilt", self.lens_tilt)?);
+                }
+                "lens_swing" => {
+                    self.lens_swing = Some(take(&mut self.map, "lens_swing", self.lens_swing)?);
+                }
+                "blades" => self.blades = Some(take(&mut self.map, "blades", self.blades)?),
+                "blade_rotation" => {
+                    self.blade_rotation =
+                        Some(take(&mut self.map, "blade_rotation", self.blade_rotation)?);
+                }
                 _ => {
                     return seed
                         .deserialize(StrDeserializer::<FieldName>::new(&name))
