@@ -120,6 +120,9 @@ fn the_lecture_is_served_whole_with_its_steps_in_the_lectures_order() {
     }
     // Formulas are MathML, typeset by the browser: the script writes <math> elements.
     assert!(html.contains("<math display=\"block\">"));
+    // The first step follows its pixel through the served scene by its trace.
+    assert!(html.contains("/api/trace?"));
+    assert!(html.contains("hit = intersect(ray, scene)"));
     // The steps, in the lecture's order.
     let order = [
         "pseudocode",
