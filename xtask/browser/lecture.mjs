@@ -11,7 +11,8 @@
 // clicked pixel and one that misses everything; moving a control changes the camera, the numbers and the URL; a reload comes
 // back to the step and the camera; a clicked pixel is followed; up along the view is
 // refused, as by the command line, and said to be the roll ambiguity; PageUp, PageDown,
-// Home and End step. Saves screenshots at 1024 x 768, 1280 x 720 and 1920 x 1080.
+// Home and End step. Saves screenshots at 1024 x 768, 1280 x 720 and 1920 x 1080, and of
+// the first step at 1024 x 768.
 
 import { chromium } from "playwright-core";
 import { execFileSync } from "node:child_process";
@@ -193,10 +194,13 @@ try {
     await numbersAreTheCommandLines(`the first step at the clicked (${clicked.i}, ${clicked.j})`);
     const said = await page.locator("#formulas").textContent();
     check(/misses everything/.test(said) === sky, `(${clicked.i}, ${clicked.j}) ${sky ? "misses everything" : "hits an object"}`);
+    if (!sky) await page.screenshot({ path: join(out, "lecture-pseudocode-1024x768.png") });
   }
-  await page.goto(`${lecture}#step=pseudocode`);
+  // Back to the lecture's pixel, (i, j) = (200, 353), for the walk through the steps.
+  await page.goto(`${lecture}#step=pseudocode&i=200&j=353`);
   await page.reload();
   await settled(1);
+  check((await fragment()).i === "200", "a link sets the first step's pixel");
 
   // Every step, with the keyboard, in the lecture's order.
   for (const [k, id] of STEPS.entries()) {
