@@ -6,10 +6,13 @@
 // Checks: every step, reached with the keyboard, renders with no console errors, shows its
 // formulas as MathML, and every number the page marks as the command line's equals what
 // `viewray rays`, `viewray frame` and `viewray project` print for the step's camera (from
-// the URL); moving a control changes the camera, the numbers and the URL; a reload comes
+// the URL), and on the first step what `viewray trace --json` prints for the served scene
+// through that camera at the lecture's size (generate, intersect, colour), also for a
+// clicked pixel and one that misses everything; moving a control changes the camera, the numbers and the URL; a reload comes
 // back to the step and the camera; a clicked pixel is followed; up along the view is
 // refused, as by the command line, and said to be the roll ambiguity; PageUp, PageDown,
-// Home and End step. Saves screenshots at 1024 x 768, 1280 x 720 and 1920 x 1080.
+// Home and End step. Saves screenshots at 1024 x 768, 1280 x 720 and 1920 x 1080, and of
+// the first step at 1024 x 768.
 
 import { chromium } from "playwright-core";
 import { execFileSync } from "node:child_process";
@@ -82,6 +85,30 @@ function cli(camera, args) {
   }
 }
 
+// A trace line read with every number kept as printed (numbers follow `:`, `[` or `,`).
+function rawJson(line) {
+  return JSON.parse(line.replace(/(?<=[:[,])(-?[0-9][0-9.eE+-]*)(?=[,\]}])/g, "\"$1\""));
+}
+
+// `viewray trace --json --one-based` for pixel (i, j) of the served scene seen through
+// `camera` at the lecture's 640 x 360: its lines.
+async function traceOf(camera, i, j) {
+  const served = await page.evaluate(() => JSON.parse(document.getElementById("served").textContent));
+  const sceneText = await page.evaluate(() => fetch("/api/scene").then((r) => r.text()));
+  check(sceneText.includes(served.camera) && /image:\s*\([^)]*\)/.test(sceneText),
+    "the trace's scene is the served scene, its camera and image size replaced");
+  const dir = mkdtempSync(join(tmpdir(), "viewray-lecture-trace-"));
+  const scene = join(dir, "scene.ron");
+  writeFileSync(scene, sceneText.replace(served.camera, () => camera)
+    .replace(/image:\s*\([^)]*\)/, "image: (width: 640, height: 360)"));
+  try {
+    return execFileSync(viewray, ["trace", scene, "--one-based", "--json", "--pixel", `${i},${j}`],
+      { encoding: "utf8", stdio: "pipe" }).trim();
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 // Every number the page marks as the command line's equals the command line's, and the
 // lines it shows are the command line's lines.
 async function numbersAreTheCommandLines(what) {
@@ -89,6 +116,7 @@ async function numbersAreTheCommandLines(what) {
   const shown = await page.evaluate(() => ({
     frame: document.getElementById("frame-line").textContent,
     ray: document.getElementById("ray-line").textContent,
+    trace: document.getElementById("trace-line").textContent,
     cli: [...document.querySelectorAll("[data-cli]")].map((e) => [e.dataset.cli, e.textContent]),
     maths: document.querySelectorAll("#formulas math").length,
   }));
@@ -99,9 +127,28 @@ async function numbersAreTheCommandLines(what) {
   check(shown.ray === rays, `${what}: the ray line is viewray rays's: ${rays}`);
   check(shown.frame === frame, `${what}: the frame line is viewray frame's`);
   let compared = 0;
+  let traced = null;
+  if (f.step === "pseudocode") {
+    traced = (await traceOf(f.camera, f.i, f.j)).split("\n");
+    check(shown.trace === traced.join("\n"), `${what}: the trace's lines are viewray trace --json's (${traced.length})`);
+    const stages = await page.locator("#formulas .stage h3 code").allTextContents();
+    check(stages.join(" | ") === "ray = generate(i, j) | hit = intersect(ray, scene) | colour = shade(hit)",
+      `${what}: the pseudocode's three stages: ${stages.join(" | ")}`);
+    const names = shown.cli.map(([name]) => name);
+    const last = traced.length - 1;
+    check(names.includes("trace.0.direction.2") && names.includes(`trace.${last}.srgb8.2`)
+      && names.includes(`trace.${last}.linear.0`), `${what}: the ray's direction and the pixel's value are shown`);
+  }
   for (const [name, text] of shown.cli) {
     const [source, key, index] = name.split(".");
     let expected;
+    if (source === "trace") {
+      const path = name.split(".").slice(2);
+      expected = path.reduce((x, k) => (x == null ? undefined : x[k]), rawJson(traced[Number(key)] || "{}"));
+      check(text === expected, `${what}: ${name} = ${text}, as viewray trace prints`);
+      compared += 1;
+      continue;
+    }
     if (source === "ray") expected = raw(rays, key);
     else if (source === "frame") expected = raw(frame, key);
     else if (source === "project") {
@@ -129,8 +176,31 @@ try {
   await page.goto(lecture);
   await settled(1);
   check((await fragment()).step === "pseudocode", "the lecture starts at the pseudocode");
-  await page.waitForFunction(() => /rgb\(\d+, \d+, \d+\)/.test(document.getElementById("formulas").textContent));
-  check(true, "the first step follows the pixel to its colour in the picture");
+  const hit = await page.locator("#formulas").textContent();
+  check(/objects tested/.test(hit) && /8-bit sRGB/.test(hit) && !/misses everything/.test(hit),
+    "the first step follows its pixel to an object and the colour written for it");
+
+  // The first step follows a clicked pixel: one on the ground, one in the sky.
+  for (const [x, y, sky] of [[0.62, 0.9, false], [0.5, 0.04, true]]) {
+    const picture = await page.locator("#render").boundingBox();
+    const n = await renders();
+    const before = await fragment();
+    await page.mouse.click(picture.x + picture.width * x, picture.y + picture.height * y);
+    await settled(n + 1);
+    const clicked = await fragment();
+    check(clicked.step === "pseudocode" && (clicked.i !== before.i || clicked.j !== before.j)
+      && Math.abs(Number(clicked.j) - 640 * x) <= 2 && Math.abs(Number(clicked.i) - 360 * y) <= 2,
+      `the first step: a click picks (i, j) = (${clicked.i}, ${clicked.j})`);
+    await numbersAreTheCommandLines(`the first step at the clicked (${clicked.i}, ${clicked.j})`);
+    const said = await page.locator("#formulas").textContent();
+    check(/misses everything/.test(said) === sky, `(${clicked.i}, ${clicked.j}) ${sky ? "misses everything" : "hits an object"}`);
+    if (!sky) await page.screenshot({ path: join(out, "lecture-pseudocode-1024x768.png") });
+  }
+  // Back to the lecture's pixel, (i, j) = (200, 353), for the walk through the steps.
+  await page.goto(`${lecture}#step=pseudocode&i=200&j=353`);
+  await page.reload();
+  await settled(1);
+  check((await fragment()).i === "200", "a link sets the first step's pixel");
 
   // Every step, with the keyboard, in the lecture's order.
   for (const [k, id] of STEPS.entries()) {

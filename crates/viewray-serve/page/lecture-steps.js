@@ -5,8 +5,9 @@
 //
 // A step: { id, title, lead, group (steps sharing controls), controls: [{key, label, min,
 // max, step, value} | {key, label, choices, value}], buttons, camera(p), top(p),
-// project(p) (world points for /api/project), formulas(ctx) }. ctx: { p, i, j, ray,
-// frame, project, error }, `ray`, `frame` and `project` the command line's lines.
+// project(p) (world points for /api/project), trace (the pixel's trace wanted),
+// formulas(ctx) }. ctx: { p, i, j, ray, frame, project, trace, error }, `ray`, `frame`,
+// `project` and `trace` the command line's lines.
 
 // Straight down -z from in front of the default scene's objects: the canonical camera's
 // basis, its eye moved back so that it sees them (it would sit inside the cube).
@@ -54,16 +55,11 @@ const STEPS = [
   {
     id: "pseudocode",
     title: "A ray tracer, one pixel at a time",
-    lead: "For each pixel: generate its viewing ray, intersect it with the scene, colour what it hits. Follow one pixel (click the picture to pick another).",
+    lead: "Generate a pixel's ray, intersect it with the scene, colour what it hits: as viewray trace prints it. Click the picture for another pixel.",
     controls: pixelControls,
     camera: () => served.camera,
-    formulas: (ctx) => `<pre class="code">for each pixel (i, j):
-    ray    = generate(i, j)       <b>// below, as viewray rays prints it</b>
-    hit    = intersect(ray, scene)<b>// the nearest object along the ray</b>
-    colour = shade(hit)           <b>// ${esc(ctx.colour || "the picture's pixel")}</b></pre>`
-      + eq(M.r(M.text("pixel "), M.p(M.i("i"), M.o(","), M.i("j"))), M.p(M.n(String(ctx.i)), M.o(","), M.n(String(ctx.j))))
-      + uvLines(ctx)
-      + rayLines(ctx, M.b("e"), generalDirection()),
+    trace: true,
+    formulas: (ctx) => traceFormulas(ctx, served.camera),
   },
   {
     id: "canonical",

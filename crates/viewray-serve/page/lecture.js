@@ -1,6 +1,7 @@
 // The lecture as a live page: one step at a time, its camera sent to the server as RON,
 // its render (1 sample, then 16, at the size shown), side view, top view, and the command
-// line's lines for its frame and the picked pixel's ray, typeset into the step's formulas.
+// line's lines for its frame, the picked pixel's ray and (the first step) its trace,
+// typeset into the step's formulas.
 // The URL fragment names the step, its controls' values, the pixel and the camera, so a reload
 // or a link on a slide comes back to the same state.
 
@@ -83,6 +84,8 @@ function buildControls() {
   box.replaceChildren();
   // Many sliders (the basis's eye and up) stand in two columns, to leave room for the formulas.
   box.classList.toggle("two", (step.controls || []).length > 4);
+  // The pixel's row and column side by side.
+  box.classList.toggle("side", (step.controls || []).every((c) => c.pixel));
   for (const c of step.controls || []) {
     const label = document.createElement("label");
     label.append(c.label);
@@ -152,7 +155,7 @@ let generation = 0;
 let pending = 0;
 let controller = null;
 let timer = null;
-const lines = { frame: null, ray: null, project: null, error: null, colour: null };
+const lines = { frame: null, ray: null, project: null, trace: null, error: null };
 
 function busy(delta) {
   pending += delta;
@@ -222,15 +225,16 @@ async function update() {
       get(`/api/frame?${base}`, signal),
       get(`/api/rays?${base}&i=${state.i}&j=${state.j}`, signal),
       points.length ? get(`/api/project?${base}&${points.map((x) => `point=${x.join(",")}`).join("&")}`, signal) : null,
+      step.trace ? get(`/api/trace?${base}&i=${state.i}&j=${state.j}`, signal) : null,
     ];
-    const [frame, ray, project] = await Promise.all(asks);
+    const [frame, ray, project, trace] = await Promise.all(asks);
     if (gen !== generation) return;
-    const refused = [frame, ray, project].find((answer) => answer && !answer[0]);
+    const refused = [frame, ray, project, trace].find((answer) => answer && !answer[0]);
     lines.error = refused ? errorOf(refused[1]) : null;
     lines.frame = frame[0] ? frame[1].trim() : null;
     lines.ray = ray[0] ? ray[1].trim() : null;
     lines.project = project && project[0] ? project[1].trim() : null;
-    lines.colour = null;
+    lines.trace = trace && trace[0] ? trace[1].trim() : null;
     showNumbers();
     $("refused").hidden = !lines.error;
     $("refused").textContent = lines.error ? `Refused: ${lines.error}` : "";
@@ -254,7 +258,6 @@ async function update() {
     if (gen !== generation) return;
     document.body.dataset.renders = String(Number(document.body.dataset.renders) + 1);
     document.body.dataset.shown = "full";
-    if (step.id === "pseudocode") readColour();
   } catch (error) {
     if (error.name !== "AbortError") throw error;
   }
@@ -290,25 +293,12 @@ async function image(id, url, signal, gen) {
 function showNumbers() {
   const step = stepOf();
   const ctx = { p: paramsOf(step), i: state.i, j: state.j, ray: lines.ray, frame: lines.frame,
-    project: lines.project, error: lines.error, colour: lines.colour };
+    project: lines.project, trace: lines.trace, error: lines.error };
   $("formulas").innerHTML = step.formulas(ctx);
   $("frame-line").textContent = lines.frame || "";
   $("ray-line").textContent = lines.ray || "";
-}
-
-// The colour of the picture at the picked pixel's centre.
-function readColour() {
-  const img = $("render");
-  const canvas = document.createElement("canvas");
-  canvas.width = img.naturalWidth;
-  canvas.height = img.naturalHeight;
-  const g = canvas.getContext("2d", { willReadFrequently: true });
-  g.drawImage(img, 0, 0);
-  const x = Math.floor(((state.j - 0.5) / W) * img.naturalWidth);
-  const y = Math.floor(((state.i - 0.5) / H) * img.naturalHeight);
-  const [r, gr, b] = g.getImageData(x, y, 1, 1).data;
-  lines.colour = `the picture there: rgb(${r}, ${gr}, ${b})`;
-  showNumbers();
+  $("trace-line").textContent = (step.trace && lines.trace) || "";
+  $("trace-line").hidden = !step.trace;
 }
 
 // The picture and the pixel --------------------------------------------------------------

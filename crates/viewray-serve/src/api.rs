@@ -77,9 +77,13 @@ pub(crate) enum Route {
 }
 
 /// The parameters of each endpoint.
-const RENDER: [&str; 5] = ["camera", "width", "height", "samples", "shading"];
-const FRAME: [&str; 3] = ["camera", "width", "height"];
-const RAYS: [&str; 7] = ["camera", "width", "height", "row", "col", "i", "j"];
+const RENDER: [&str; 6] = [
+    "camera", "width", "height", "samples", "shading", "mistakes",
+];
+const FRAME: [&str; 4] = ["camera", "width", "height", "mistakes"];
+const RAYS: [&str; 8] = [
+    "camera", "width", "height", "row", "col", "i", "j", "mistakes",
+];
 const PROJECT: [&str; 4] = ["camera", "width", "height", "point"];
 const DIAGRAM: [&str; 7] = ["camera", "width", "height", "row", "col", "view", "canvas"];
 const DEPTH: [&str; 3] = ["camera", "width", "height"];
@@ -145,8 +149,15 @@ fn camera(
             limits.max_camera_bytes
         )));
     }
-    parse_camera(text, Path::new("camera"), width, height)
-        .map_err(|error| BadRequest(error.to_string()))
+    let camera = parse_camera(text, Path::new("camera"), width, height)
+        .map_err(|error| BadRequest(error.to_string()))?;
+    let mistakes = params::mistakes(query)?;
+    if mistakes.is_empty() {
+        return Ok(camera);
+    }
+    camera
+        .with_mistakes(mistakes)
+        .map_err(|error| BadRequest(format!("mistakes: {error}")))
 }
 
 /// The served scene's image size.

@@ -29,7 +29,10 @@
 //!
 //! # Endpoints (GET)
 //! `camera` is URL-encoded RON (default: the served scene's); `width`, `height`,
-//! `samples` and `shading` override the served scene's.
+//! `samples` and `shading` override the served scene's. `/api/render`, `/api/frame` and
+//! `/api/rays` also take `mistakes=u-sign,v-sign` (ids of the lecture's catalogue,
+//! [`viewray_camera::Mistake`]): the camera a student with those mistakes wrote
+//! ([`viewray_camera::Camera::with_mistakes`]).
 //!
 //! | path | reply |
 //! |---|---|

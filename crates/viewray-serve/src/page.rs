@@ -1,9 +1,10 @@
 //! The pages: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
 //! together once per served scene with the scene's starting state. The playground's script
 //! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`) and `trace.js` (the
-//! chosen pixel's trace, a panel of its own), the lecture's in three
-//! (`lecture-math.js`: MathML and the command line's digits, `lecture-steps.js`: the steps
-//! in the lecture's order, `lecture.js`: requests, controls, keys).
+//! chosen pixel's trace, a panel of its own), the lecture's in four
+//! (`lecture-math.js`: MathML and the command line's digits, `lecture-trace.js`: the first
+//! step's pixel through the pseudocode, from its trace, `lecture-steps.js`: the steps in
+//! the lecture's order, `lecture.js`: requests, controls, keys).
 
 use serde_json::json;
 use viewray_scene::{Scene, Shading};
@@ -25,9 +26,10 @@ const SCRIPTS: [&str; 5] = [
 
 const LECTURE_HTML: &str = include_str!("../page/lecture.html");
 const LECTURE_CSS: &str = include_str!("../page/lecture.css");
-/// The lecture's script in its three parts, in the order they are put together.
-const LECTURE_SCRIPTS: [&str; 3] = [
+/// The lecture's script in its four parts, in the order they are put together.
+const LECTURE_SCRIPTS: [&str; 4] = [
     include_str!("../page/lecture-math.js"),
+    include_str!("../page/lecture-trace.js"),
     include_str!("../page/lecture-steps.js"),
     include_str!("../page/lecture.js"),
 ];

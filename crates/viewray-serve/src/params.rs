@@ -7,7 +7,7 @@
 //! to the control that caused it.
 
 use glam::DVec3;
-use viewray_camera::{ImageLimitError, ImageLimits};
+use viewray_camera::{ImageLimitError, ImageLimits, Mistake, Mistakes};
 use viewray_diagram::SideViewCanvas;
 use viewray_scene::Shading;
 
@@ -187,6 +187,26 @@ pub(crate) fn shading(query: &Query, default: Shading) -> Result<Shading, BadReq
             .parse::<Shading>()
             .map_err(|message| BadRequest(format!("shading: {message}"))),
     }
+}
+
+/// The catalogue's mistakes a request's camera makes: `mistakes=u-sign,v-sign` (the
+/// catalogue's ids, comma-separated; none when absent or empty).
+pub(crate) fn mistakes(query: &Query) -> Result<Mistakes, BadRequest> {
+    let Some(text) = query.get("mistakes") else {
+        return Ok(Mistakes::NONE);
+    };
+    let mut mistakes = Mistakes::NONE;
+    for id in text.split(',').map(str::trim).filter(|id| !id.is_empty()) {
+        let mistake = Mistake::from_id(id).ok_or_else(|| {
+            let known: Vec<&str> = Mistake::ALL.iter().map(|m| m.id()).collect();
+            BadRequest(format!(
+                "mistakes: no mistake `{id}` in the catalogue (it has {})",
+                known.join(", ")
+            ))
+        })?;
+        mistakes = mistakes.with(mistake);
+    }
+    Ok(mistakes)
 }
 
 /// The pixel of a rays request: `row` and `col` (0-based), or `i` and `j` (1-based, the

@@ -120,6 +120,9 @@ fn the_lecture_is_served_whole_with_its_steps_in_the_lectures_order() {
     }
     // Formulas are MathML, typeset by the browser: the script writes <math> elements.
     assert!(html.contains("<math display=\"block\">"));
+    // The first step follows its pixel through the served scene by its trace.
+    assert!(html.contains("/api/trace?"));
+    assert!(html.contains("hit = intersect(ray, scene)"));
     // The steps, in the lecture's order.
     let order = [
         "pseudocode",
@@ -601,6 +604,58 @@ fn a_scene_file_is_served_with_its_meshes() {
 }
 
 #[test]
+fn a_camera_with_the_catalogues_mistakes_makes_the_mistaken_rays() {
+    let served = Served::start(BINARY, &[]);
+    let (width, height) = (8, 6);
+    let query = format!("width={width}&height={height}");
+    let direction = |target: &str| -> [f64; 3] {
+        let response = served.get(target);
+        assert_eq!(response.status, 200, "{target}: {}", response.text());
+        let line: serde_json::Value = serde_json::from_slice(&response.body).unwrap();
+        let d = &line["direction"];
+        [0, 1, 2].map(|k| d[k].as_f64().unwrap())
+    };
+    let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    for (row, col) in [(0, 0), (2, 5), (5, 7)] {
+        // u-sign: u = -((x/W - 1/2) vw), the u of the column mirrored about the middle.
+        let mirrored = direction(&format!(
+            "/api/rays?{query}&row={row}&col={}",
+            width - 1 - col
+        ));
+        let u_sign = direction(&format!(
+            "/api/rays?{query}&row={row}&col={col}&mistakes=u-sign"
+        ));
+        assert!(
+            close(u_sign, mirrored),
+            "({row}, {col}): {u_sign:?} {mirrored:?}"
+        );
+        // v-sign as well: the row mirrored too; an empty entry in the list is none.
+        let both = direction(&format!(
+            "/api/rays?{query}&row={row}&col={col}&mistakes=u-sign,,v-sign"
+        ));
+        let opposite = direction(&format!(
+            "/api/rays?{query}&row={}&col={}",
+            height - 1 - row,
+            width - 1 - col
+        ));
+        assert!(
+            close(both, opposite),
+            "({row}, {col}): {both:?} {opposite:?}"
+        );
+    }
+    // No mistakes is the right camera, to the byte.
+    assert_eq!(
+        served.get(&format!("/api/frame?{query}&mistakes=")).text(),
+        served.get(&format!("/api/frame?{query}")).text()
+    );
+    // A mistaken render differs from the right one.
+    let right = served.get(&format!("/api/render?{query}&samples=1"));
+    let mirrored = served.get(&format!("/api/render?{query}&samples=1&mistakes=u-sign"));
+    assert_eq!(mirrored.status, 200);
+    assert_ne!(right.body, mirrored.body);
+}
+
+#[test]
 fn bad_requests_are_refused_with_the_command_lines_words() {
     let served = Served::start(BINARY, &[]);
     let check = |target: &str, status: u16, expected: &str| {
@@ -639,8 +694,17 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
     check(
         "/api/render?zoom=2",
         400,
-        "unknown parameter `zoom`: this endpoint takes `camera`, `width`, `height`, `samples` or \
-         `shading`",
+        "unknown parameter `zoom`: this endpoint takes `camera`, `width`, `height`, `samples`, \
+         `shading` or `mistakes`",
+    );
+    check(
+        "/api/rays?row=0&col=0&mistakes=u-sign,left",
+        400,
+        "mistakes: no mistake `left` in the catalogue (it has pixel-corner, pixel-one-based, \
+         size-minus-one, v-sign, u-sign, i-j-swapped, viewport-missing, viewport-swapped, \
+         distance-missing, distance-sign, eye-missing, basis-missing, w-view, u-cross-order, \
+         v-cross-order, u-not-normalized, shift-sign, shift-missing, ortho-origin-fixed, \
+         ortho-as-perspective, oblique-sign, oblique-as-ortho)",
     );
     check(
         "/api/rays?row=480&col=0",
