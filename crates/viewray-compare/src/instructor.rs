@@ -304,8 +304,13 @@ impl Reference {
             .camera
             .as_ref()
             .map(|judge| judge.judge(actual, &|| *measured.get_or_init(|| transform(true))));
+        // A camera that cannot be judged leaves the verdict to the image judgement.
+        let unjudged = camera.as_ref().is_some_and(|c| !c.judged());
+        if unjudged {
+            let _ = measured.get_or_init(|| transform(flip_failed));
+        }
         let mistake = measured.get().copied().flatten();
-        let image_judged = self.decides.image_decides() || self.camera.is_none();
+        let image_judged = self.decides.image_decides() || self.camera.is_none() || unjudged;
         let diagnosis = match mistake {
             Some(mistake) => {
                 if image_judged {
@@ -322,8 +327,8 @@ impl Reference {
         // Appearance, where the camera is right (or, without a scene, where no transform
         // explains the difference).
         let camera_right = match &camera {
-            Some(finding) => finding.passed(),
-            None => mistake.is_none(),
+            Some(finding) if finding.judged() => finding.passed(),
+            _ => mistake.is_none(),
         };
         let appearance = camera_right.then(|| {
             let interior = match &self.camera {
@@ -365,9 +370,10 @@ impl Reference {
 }
 
 /// The failures that decide a verdict: the image judgement's (`image`), the camera's, or
-/// both, as `decides` says. Without a camera judgement, the image's.
+/// both, as `decides` says. Without a camera judgement (or one that could not judge),
+/// the image's.
 fn decide(decides: Judge, image: Vec<Failure>, camera: Option<&CameraFinding>) -> Vec<Failure> {
-    let Some(camera) = camera else {
+    let Some(camera) = camera.filter(|c| c.judged()) else {
         return image;
     };
     let wrong = (!camera.passed()).then(|| Failure::WrongCamera {

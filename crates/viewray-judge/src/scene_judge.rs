@@ -25,21 +25,38 @@ pub struct SceneJudge {
     pictures: PictureJudge,
     interior: Vec<bool>,
     eye: EyeSearch,
+    /// Whether the right camera explains the reference's own edges: if it does not, no
+    /// picture of this scene can convict a camera, and every finding but a right camera is
+    /// [`CameraFinding::Unjudged`].
+    judges: bool,
 }
 
 impl SceneJudge {
-    /// Prepares `scene` (loaded at the reference image's size): labels it through its
-    /// camera and every catalogue entry that fits it ([`PictureJudge::new`]).
-    pub fn new(scene: Scene) -> SceneJudge {
+    /// Prepares `scene` (loaded at the size of `reference`, the course's render of it):
+    /// labels it through its camera and every catalogue entry that fits it
+    /// ([`PictureJudge::new`]), and judges `reference` itself. When the right camera does
+    /// not explain the reference's edges (smooth shading such as depth, defocus blur, a
+    /// picture of a few pixels), the scene's pictures cannot convict a camera: the judge
+    /// then still finds a right camera where it explains a picture (one sharper than the
+    /// reference), and otherwise leaves the verdict to the image judgement.
+    pub fn new(scene: Scene, reference: &RgbaImage) -> SceneJudge {
         let pictures = PictureJudge::new(&scene);
         let interior = pictures.candidates().interior(INTERIOR_MARGIN);
         let eye = EyeSearch::new(&scene);
+        let judges = pictures.judge(reference).passed();
         SceneJudge {
             scene,
             pictures,
             interior,
             eye,
+            judges,
         }
+    }
+
+    /// Whether the right camera explains the reference's edges, so that the camera of the
+    /// scene's pictures is judged (see [`SceneJudge::new`]).
+    pub fn judges(&self) -> bool {
+        self.judges
     }
 
     /// The catalogue's groups of entries this scene tells apart (see
@@ -82,7 +99,14 @@ impl CameraJudge for SceneJudge {
         let judged = candidates
             .judge_edges(&edges)
             .expect("the picture is the maps' size");
-        match self.pictures.verdict(&judged) {
+        let verdict = self.pictures.verdict(&judged);
+        // Where the reference's own edges are too weak to tell a camera, a picture the
+        // right camera explains (sharper than the reference) is still right, but nothing
+        // else convicts.
+        if !self.judges && !verdict.passed() {
+            return CameraFinding::Unjudged;
+        }
+        match verdict {
             CameraVerdict::Right { agreement } => CameraFinding::Right { agreement },
             CameraVerdict::Mistaken { explanation, right } => CameraFinding::Mistaken {
                 entries: explanation

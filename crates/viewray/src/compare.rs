@@ -155,7 +155,7 @@ pub(crate) fn prepare(images: &[ReferenceImage], scene: Option<&Path>) -> Result
                 Some(path) => {
                     let scene = load_scene(path, pixels.width(), pixels.height())?;
                     let expectations = expectations(&scene);
-                    let judge: Arc<dyn CameraJudge> = Arc::new(SceneJudge::new(scene));
+                    let judge: Arc<dyn CameraJudge> = Arc::new(SceneJudge::new(scene, &pixels));
                     (expectations, Some(judge))
                 }
                 None => (None, None),
