@@ -560,3 +560,104 @@ fn differs_everywhere(expected: &FloatImage, actual: &FloatImage) -> bool {
         .count();
     differing as f64 > 0.5 * expected.pixels.len() as f64
 }
+
+#[cfg(test)]
+mod tests {
+    use image::Rgba;
+
+    use super::*;
+
+    /// A camera judge that always finds `finding`.
+    #[derive(Debug)]
+    struct Always {
+        finding: CameraFinding,
+        interior: Vec<bool>,
+    }
+
+    impl CameraJudge for Always {
+        fn size(&self) -> (u32, u32) {
+            (32, 24)
+        }
+
+        fn judge(
+            &self,
+            _picture: &RgbaImage,
+            _measure: &dyn Fn() -> Option<CameraMistake>,
+        ) -> CameraFinding {
+            self.finding.clone()
+        }
+
+        fn interior(&self) -> &[bool] {
+            &self.interior
+        }
+    }
+
+    /// A grey picture with a coloured square at `x0`.
+    fn picture(x0: u32, colour: [u8; 3]) -> RgbaImage {
+        RgbaImage::from_fn(32, 24, |x, y| {
+            if (x0..x0 + 8).contains(&x) && (8..16).contains(&y) {
+                Rgba([colour[0], colour[1], colour[2], 255])
+            } else {
+                Rgba([90, 90, 90, 255])
+            }
+        })
+    }
+
+    fn reference(finding: CameraFinding) -> Reference {
+        let judge = Always {
+            finding,
+            interior: vec![true; 32 * 24],
+        };
+        Reference::new(
+            picture(10, [220, 40, 40]),
+            InstructorThresholds::default(),
+            None,
+        )
+        .with_camera(Arc::new(judge), Judge::Camera)
+    }
+
+    #[test]
+    fn a_camera_not_judged_leaves_the_verdict_to_the_image() {
+        let reference = reference(CameraFinding::Unjudged);
+        // The same picture passes; its camera is unjudged, not wrong.
+        let same = reference.judge(&picture(10, [220, 40, 40]));
+        assert!(same.passed(), "{:?}", same.failures);
+        assert_eq!(
+            same.camera.as_ref().map(CameraFinding::word),
+            Some("unjudged")
+        );
+        assert!(same.note().contains("cannot be judged"), "{}", same.note());
+        // Another colour fails by the image judgement, and no camera mistake is named.
+        let other = reference.judge(&picture(10, [40, 40, 220]));
+        assert!(!other.passed());
+        assert!(
+            other
+                .failures
+                .iter()
+                .all(|f| !matches!(f, Failure::WrongCamera { .. })),
+            "{:?}",
+            other.failures
+        );
+        assert!(
+            other.note().contains("cannot be judged"),
+            "{}",
+            other.note()
+        );
+    }
+
+    #[test]
+    fn a_camera_judged_decides_alone() {
+        // A right camera passes whatever the colours; a wrong one fails the same picture.
+        let right = reference(CameraFinding::Right { agreement: 1.0 });
+        assert!(right.judge(&picture(10, [40, 40, 220])).passed());
+        let wrong = reference(CameraFinding::Unexplained {
+            measured: None,
+            right: 0.5,
+        });
+        let judged = wrong.judge(&picture(10, [220, 40, 40]));
+        assert!(matches!(
+            judged.failures.as_slice(),
+            [Failure::WrongCamera { .. }]
+        ));
+    }
+}
