@@ -459,7 +459,8 @@ fn table_header(name_width: usize, cameras: bool) -> String {
     }
 }
 
-/// A row of the table: name, verdict, (with `cameras`: the camera, `right` or `wrong`)
+/// A row of the table: name, verdict, (with `cameras`: the camera, `right`, `wrong` or
+/// `unjudged`)
 /// peak FLIP, (the appearance) and the note.
 pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize, cameras: bool) -> String {
     let peak = outcome
