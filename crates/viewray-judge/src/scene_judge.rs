@@ -3,7 +3,7 @@
 //! a picture's edges against the right camera and the catalogue's mistaken ones, looks
 //! for a moved eye when none explains them, and answers in the catalogue's words.
 
-use viewray_camera::Mistake;
+use viewray_camera::{Mistake, Projection};
 use viewray_compare::{
     CameraFinding, CameraJudge, CameraMistake, CatalogueEntry, PictureEdges, RgbaImage,
 };
@@ -29,6 +29,10 @@ pub struct SceneJudge {
     /// picture of this scene can convict a camera, and every finding but a right camera is
     /// [`CameraFinding::Unjudged`].
     judges: bool,
+    /// Whether the camera has a lens of some aperture: its pictures are blurred out of
+    /// focus as much as their sample count lets them (one sample is a pinhole's picture),
+    /// so a picture blurred unlike the reference is explained by no sharp map.
+    defocus: bool,
 }
 
 impl SceneJudge {
@@ -44,12 +48,17 @@ impl SceneJudge {
         let interior = pictures.candidates().interior(INTERIOR_MARGIN);
         let eye = EyeSearch::new(&scene);
         let judges = pictures.judge(reference).passed();
+        let defocus = matches!(
+            scene.camera().projection(),
+            Projection::ThinLens(lens) if lens.aperture > 0.0
+        );
         SceneJudge {
             scene,
             pictures,
             interior,
             eye,
             judges,
+            defocus,
         }
     }
 
@@ -134,6 +143,9 @@ impl CameraJudge for SceneJudge {
                         agreement: moved.fit.agreement,
                         right,
                     },
+                    // A lens's picture blurred unlike the reference (more samples, or
+                    // fewer) is explained by no sharp map: that convicts no camera.
+                    None if self.defocus => CameraFinding::Unjudged,
                     None => CameraFinding::Unexplained { measured, right },
                 }
             }
