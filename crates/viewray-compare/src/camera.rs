@@ -110,6 +110,11 @@ pub enum CameraFinding {
         /// The reference's.
         expected: (u32, u32),
     },
+    /// The camera cannot be judged from this picture: the right camera does not explain
+    /// the reference's own edges (smooth shading, defocus blur, a picture of a few
+    /// pixels), so this picture's edges, which it does not explain either, cannot convict
+    /// a camera. The image judgement decides instead, and no mistake is named.
+    Unjudged,
 }
 
 impl CameraFinding {
@@ -118,9 +123,18 @@ impl CameraFinding {
         matches!(self, CameraFinding::Right { .. })
     }
 
-    /// `right` or `wrong`: the gradebook's word.
+    /// Whether the camera was judged at all (see [`CameraFinding::Unjudged`]).
+    pub fn judged(&self) -> bool {
+        !matches!(self, CameraFinding::Unjudged)
+    }
+
+    /// `right`, `wrong` or `unjudged`: the gradebook's word.
     pub fn word(&self) -> &'static str {
-        if self.passed() { "right" } else { "wrong" }
+        match self {
+            CameraFinding::Right { .. } => "right",
+            CameraFinding::Unjudged => "unjudged",
+            _ => "wrong",
+        }
     }
 
     /// The catalogue's ids of a [`CameraFinding::Mistaken`], else none.
@@ -135,10 +149,11 @@ impl CameraFinding {
 
     /// What the picture looks like and the catalogue's words for it, the key the class
     /// summary counts by: `mirrored: u-sign`, `upside down: v-sign or v-cross-order`,
-    /// `eye moved`, `unexplained camera`, `wrong size`; `None` for a right camera.
+    /// `eye moved`, `unexplained camera`, `wrong size`; `None` for a right camera and one
+    /// not judged.
     pub fn key(&self) -> Option<String> {
         match self {
-            CameraFinding::Right { .. } => None,
+            CameraFinding::Right { .. } | CameraFinding::Unjudged => None,
             CameraFinding::Mistaken { entries, .. } => Some(format!(
                 "{}: {}",
                 looks(entries),
@@ -156,10 +171,16 @@ impl CameraFinding {
 
     /// The diagnosis, as a student reads it: the catalogue's entry with the formula to
     /// fix, the moved eye, or what was measured when nothing explains the picture; empty
-    /// for a right camera.
+    /// for a right camera; for one not judged, why.
     pub fn diagnosis(&self) -> String {
         match self {
             CameraFinding::Right { .. } => String::new(),
+            CameraFinding::Unjudged => {
+                "the camera cannot be judged from this picture (the scene's \
+                                        edges are too weak in its pictures: smooth shading, \
+                                        blur or too few pixels): the image judgement decides"
+                    .to_owned()
+            }
             CameraFinding::Mistaken { entries, .. } => {
                 let each: Vec<String> = entries
                     .iter()

@@ -206,6 +206,15 @@ impl Comparison {
         };
         match self.judge {
             Judge::Image => image(),
+            // A camera not judged leaves the verdict to the image judgement: both speak.
+            Judge::Camera if self.camera.as_ref().is_some_and(|c| !c.judged()) => {
+                [camera(), Some(image())]
+                    .into_iter()
+                    .flatten()
+                    .filter(|note| !note.is_empty())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            }
             Judge::Camera => camera().unwrap_or_default(),
             Judge::Both => {
                 let image = self

@@ -203,7 +203,8 @@ impl Fit {
 pub enum GeometryVerdict {
     /// The right camera explains the picture as well as any candidate, and well.
     Right,
-    /// Candidates explain the picture clearly better than the right camera: these
+    /// Candidates explain the picture clearly better than the right camera (a higher
+    /// score by [`CANDIDATE_MARGIN`], a higher agreement by [`AGREEMENT_MARGIN`]): these
     /// (indices into the candidates; several when their maps agree equally well).
     Candidate(Vec<usize>),
     /// Nothing explains the picture well: neither the right camera nor a candidate.
@@ -221,6 +222,17 @@ pub const STRONG_EDGE: u16 = 96;
 /// How much better (in [`Fit::score`]) than the right camera a candidate must explain a
 /// picture to be named; scores tied within this are the right camera's.
 pub const CANDIDATE_MARGIN: f64 = 0.01;
+/// How much higher than the right camera's a candidate's agreement must be for it to be
+/// named, besides its score: a candidate whose boundaries sit no better on the picture's
+/// edges than the right camera's is not convicted by coverage alone. The coverage of maps
+/// a pixel apart (the half-pixel mistakes) differs by the chance of shading edges near
+/// their boundaries, and ranks bias an antialiased edge's contrast towards the side of the
+/// larger region, so a right, antialiased picture can seem half a pixel off by a hair:
+/// on viewray's own 4-sample render of its cavalier fixture the right camera agrees
+/// 0.912 and the pixel-corner one 0.920 (their scores 0.937 and 0.955). The smallest gap
+/// of a real mistake in the planted matrix (`judge_matrix`) is pixel-one-based on its
+/// canonical camera, 0.921 against the right camera's 0.897.
+pub const AGREEMENT_MARGIN: f64 = 0.015;
 /// Candidates whose scores lie within this of the best are named together.
 const TIE: f64 = 1e-3;
 
@@ -280,11 +292,17 @@ impl CameraCandidates {
             .map(|&(agreement, coverage)| Fit::new(agreement, coverage, most));
         let right = fits.next().expect("the right map is measured first");
         let candidates: Vec<Fit> = fits.collect();
-        let best = candidates.iter().map(|fit| fit.score).fold(0.0, f64::max);
+        // Only candidates that agree clearly better than the right camera may be named.
+        let clear = |fit: &Fit| fit.agreement > right.agreement + AGREEMENT_MARGIN;
+        let best = candidates
+            .iter()
+            .filter(|fit| clear(fit))
+            .map(|fit| fit.score)
+            .fold(0.0, f64::max);
         let verdict = if best > 0.0 && best > right.score + CANDIDATE_MARGIN {
             GeometryVerdict::Candidate(
                 (0..candidates.len())
-                    .filter(|&k| candidates[k].score >= best - TIE)
+                    .filter(|&k| clear(&candidates[k]) && candidates[k].score >= best - TIE)
                     .collect(),
             )
         } else if right.explains() {

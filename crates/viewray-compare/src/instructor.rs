@@ -304,8 +304,13 @@ impl Reference {
             .camera
             .as_ref()
             .map(|judge| judge.judge(actual, &|| *measured.get_or_init(|| transform(true))));
+        // A camera that cannot be judged leaves the verdict to the image judgement.
+        let unjudged = camera.as_ref().is_some_and(|c| !c.judged());
+        if unjudged {
+            let _ = measured.get_or_init(|| transform(flip_failed));
+        }
         let mistake = measured.get().copied().flatten();
-        let image_judged = self.decides.image_decides() || self.camera.is_none();
+        let image_judged = self.decides.image_decides() || self.camera.is_none() || unjudged;
         let diagnosis = match mistake {
             Some(mistake) => {
                 if image_judged {
@@ -322,8 +327,8 @@ impl Reference {
         // Appearance, where the camera is right (or, without a scene, where no transform
         // explains the difference).
         let camera_right = match &camera {
-            Some(finding) => finding.passed(),
-            None => mistake.is_none(),
+            Some(finding) if finding.judged() => finding.passed(),
+            _ => mistake.is_none(),
         };
         let appearance = camera_right.then(|| {
             let interior = match &self.camera {
@@ -365,9 +370,10 @@ impl Reference {
 }
 
 /// The failures that decide a verdict: the image judgement's (`image`), the camera's, or
-/// both, as `decides` says. Without a camera judgement, the image's.
+/// both, as `decides` says. Without a camera judgement (or one that could not judge),
+/// the image's.
 fn decide(decides: Judge, image: Vec<Failure>, camera: Option<&CameraFinding>) -> Vec<Failure> {
-    let Some(camera) = camera else {
+    let Some(camera) = camera.filter(|c| c.judged()) else {
         return image;
     };
     let wrong = (!camera.passed()).then(|| Failure::WrongCamera {
@@ -553,4 +559,105 @@ fn differs_everywhere(expected: &FloatImage, actual: &FloatImage) -> bool {
         .filter(|(e, a)| (0..3).any(|c| (e[c] - a[c]).abs() > 0.05))
         .count();
     differing as f64 > 0.5 * expected.pixels.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use image::Rgba;
+
+    use super::*;
+
+    /// A camera judge that always finds `finding`.
+    #[derive(Debug)]
+    struct Always {
+        finding: CameraFinding,
+        interior: Vec<bool>,
+    }
+
+    impl CameraJudge for Always {
+        fn size(&self) -> (u32, u32) {
+            (32, 24)
+        }
+
+        fn judge(
+            &self,
+            _picture: &RgbaImage,
+            _measure: &dyn Fn() -> Option<CameraMistake>,
+        ) -> CameraFinding {
+            self.finding.clone()
+        }
+
+        fn interior(&self) -> &[bool] {
+            &self.interior
+        }
+    }
+
+    /// A grey picture with a coloured square at `x0`.
+    fn picture(x0: u32, colour: [u8; 3]) -> RgbaImage {
+        RgbaImage::from_fn(32, 24, |x, y| {
+            if (x0..x0 + 8).contains(&x) && (8..16).contains(&y) {
+                Rgba([colour[0], colour[1], colour[2], 255])
+            } else {
+                Rgba([90, 90, 90, 255])
+            }
+        })
+    }
+
+    fn reference(finding: CameraFinding) -> Reference {
+        let judge = Always {
+            finding,
+            interior: vec![true; 32 * 24],
+        };
+        Reference::new(
+            picture(10, [220, 40, 40]),
+            InstructorThresholds::default(),
+            None,
+        )
+        .with_camera(Arc::new(judge), Judge::Camera)
+    }
+
+    #[test]
+    fn a_camera_not_judged_leaves_the_verdict_to_the_image() {
+        let reference = reference(CameraFinding::Unjudged);
+        // The same picture passes; its camera is unjudged, not wrong.
+        let same = reference.judge(&picture(10, [220, 40, 40]));
+        assert!(same.passed(), "{:?}", same.failures);
+        assert_eq!(
+            same.camera.as_ref().map(CameraFinding::word),
+            Some("unjudged")
+        );
+        assert!(same.note().contains("cannot be judged"), "{}", same.note());
+        // Another colour fails by the image judgement, and no camera mistake is named.
+        let other = reference.judge(&picture(10, [40, 40, 220]));
+        assert!(!other.passed());
+        assert!(
+            other
+                .failures
+                .iter()
+                .all(|f| !matches!(f, Failure::WrongCamera { .. })),
+            "{:?}",
+            other.failures
+        );
+        assert!(
+            other.note().contains("cannot be judged"),
+            "{}",
+            other.note()
+        );
+    }
+
+    #[test]
+    fn a_camera_judged_decides_alone() {
+        // A right camera passes whatever the colours; a wrong one fails the same picture.
+        let right = reference(CameraFinding::Right { agreement: 1.0 });
+        assert!(right.judge(&picture(10, [40, 40, 220])).passed());
+        let wrong = reference(CameraFinding::Unexplained {
+            measured: None,
+            right: 0.5,
+        });
+        let judged = wrong.judge(&picture(10, [220, 40, 40]));
+        assert!(matches!(
+            judged.failures.as_slice(),
+            [Failure::WrongCamera { .. }]
+        ));
+    }
 }

@@ -85,8 +85,8 @@ pub use camera::{CameraFinding, CameraJudge, CatalogueEntry, Judge};
 pub use comparison::{Comparison, Failure, Metrics, Mode};
 pub use diagnosis::{CameraKind, CameraMistake, Diagnosis, Expectations, Significant};
 pub use geometry::{
-    AGREEMENT_NEEDED, CANDIDATE_MARGIN, COVERAGE_NEEDED, CameraCandidates, Fit, GeometryJudgement,
-    GeometryVerdict, LabelMap, PictureEdges, STRONG_EDGE,
+    AGREEMENT_MARGIN, AGREEMENT_NEEDED, CANDIDATE_MARGIN, COVERAGE_NEEDED, CameraCandidates, Fit,
+    GeometryJudgement, GeometryVerdict, LabelMap, PictureEdges, STRONG_EDGE,
 };
 pub use golden::{Thresholds, compare};
 pub use instructor::{InstructorThresholds, Reference, judge, judge_with};

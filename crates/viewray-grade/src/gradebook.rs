@@ -18,7 +18,7 @@ pub const HEADER: [&str; 7] = [
 
 /// The gradebook as CSV bytes: the header, then one line per student and image in the
 /// students' and the images' order: the student's name, the image's name, `pass` or
-/// `fail`, the camera judgement (`right` or `wrong`; empty when the camera was not judged),
+/// `fail`, the camera judgement (`right`, `wrong` or `unjudged`; empty without a scene),
 /// the diagnosis of the judgement that decided (`--judge`: the camera's, the catalogue's
 /// entry with the formula to fix; or the image judgement's; else why it failed:
 /// `missing`, `not an image ...`; empty for a pass), the

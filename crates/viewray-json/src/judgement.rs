@@ -14,7 +14,8 @@
 //! FLIP figures, the transform's numbers and the threshold are rounded to 4 decimals; what
 //! a pair lacks (figures when it was not compared, a diagnosis when none was found, the
 //! camera when no scene judged it) is `null`. `judge` says which judgement decided
-//! (`camera`, `image` or `both`), `camera` is `right` or `wrong`, `catalogue` the ids of
+//! (`camera`, `image` or `both`), `camera` is `right`, `wrong` or `unjudged` (too weak
+//! edges to judge it: the image judgement decided), `catalogue` the ids of
 //! the lecture's mistakes that explain a wrong camera, `appearance` how the picture looks
 //! beside the reference (`same`, `gamma-missing`, `gamma-twice`, `brighter`, `darker`,
 //! `shading`, `noise`).

@@ -3,7 +3,7 @@
 //! a picture's edges against the right camera and the catalogue's mistaken ones, looks
 //! for a moved eye when none explains them, and answers in the catalogue's words.
 
-use viewray_camera::Mistake;
+use viewray_camera::{Mistake, Projection};
 use viewray_compare::{
     CameraFinding, CameraJudge, CameraMistake, CatalogueEntry, PictureEdges, RgbaImage,
 };
@@ -25,21 +25,47 @@ pub struct SceneJudge {
     pictures: PictureJudge,
     interior: Vec<bool>,
     eye: EyeSearch,
+    /// Whether the right camera explains the reference's own edges: if it does not, no
+    /// picture of this scene can convict a camera, and every finding but a right camera is
+    /// [`CameraFinding::Unjudged`].
+    judges: bool,
+    /// Whether the camera has a lens of some aperture: its pictures are blurred out of
+    /// focus as much as their sample count lets them (one sample is a pinhole's picture),
+    /// so a picture blurred unlike the reference is explained by no sharp map.
+    defocus: bool,
 }
 
 impl SceneJudge {
-    /// Prepares `scene` (loaded at the reference image's size): labels it through its
-    /// camera and every catalogue entry that fits it ([`PictureJudge::new`]).
-    pub fn new(scene: Scene) -> SceneJudge {
+    /// Prepares `scene` (loaded at the size of `reference`, the course's render of it):
+    /// labels it through its camera and every catalogue entry that fits it
+    /// ([`PictureJudge::new`]), and judges `reference` itself. When the right camera does
+    /// not explain the reference's edges (smooth shading such as depth, defocus blur, a
+    /// picture of a few pixels), the scene's pictures cannot convict a camera: the judge
+    /// then still finds a right camera where it explains a picture (one sharper than the
+    /// reference), and otherwise leaves the verdict to the image judgement.
+    pub fn new(scene: Scene, reference: &RgbaImage) -> SceneJudge {
         let pictures = PictureJudge::new(&scene);
         let interior = pictures.candidates().interior(INTERIOR_MARGIN);
         let eye = EyeSearch::new(&scene);
+        let judges = pictures.judge(reference).passed();
+        let defocus = matches!(
+            scene.camera().projection(),
+            Projection::ThinLens(lens) if lens.aperture > 0.0
+        );
         SceneJudge {
             scene,
             pictures,
             interior,
             eye,
+            judges,
+            defocus,
         }
+    }
+
+    /// Whether the right camera explains the reference's edges, so that the camera of the
+    /// scene's pictures is judged (see [`SceneJudge::new`]).
+    pub fn judges(&self) -> bool {
+        self.judges
     }
 
     /// The catalogue's groups of entries this scene tells apart (see
@@ -82,7 +108,14 @@ impl CameraJudge for SceneJudge {
         let judged = candidates
             .judge_edges(&edges)
             .expect("the picture is the maps' size");
-        match self.pictures.verdict(&judged) {
+        let verdict = self.pictures.verdict(&judged);
+        // Where the reference's own edges are too weak to tell a camera, a picture the
+        // right camera explains (sharper than the reference) is still right, but nothing
+        // else convicts.
+        if !self.judges && !verdict.passed() {
+            return CameraFinding::Unjudged;
+        }
+        match verdict {
             CameraVerdict::Right { agreement } => CameraFinding::Right { agreement },
             CameraVerdict::Mistaken { explanation, right } => CameraFinding::Mistaken {
                 entries: explanation
@@ -110,6 +143,9 @@ impl CameraJudge for SceneJudge {
                         agreement: moved.fit.agreement,
                         right,
                     },
+                    // A lens's picture blurred unlike the reference (more samples, or
+                    // fewer) is explained by no sharp map: that convicts no camera.
+                    None if self.defocus => CameraFinding::Unjudged,
                     None => CameraFinding::Unexplained { measured, right },
                 }
             }

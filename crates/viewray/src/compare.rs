@@ -155,7 +155,7 @@ pub(crate) fn prepare(images: &[ReferenceImage], scene: Option<&Path>) -> Result
                 Some(path) => {
                     let scene = load_scene(path, pixels.width(), pixels.height())?;
                     let expectations = expectations(&scene);
-                    let judge: Arc<dyn CameraJudge> = Arc::new(SceneJudge::new(scene));
+                    let judge: Arc<dyn CameraJudge> = Arc::new(SceneJudge::new(scene, &pixels));
                     (expectations, Some(judge))
                 }
                 None => (None, None),
@@ -459,7 +459,8 @@ fn table_header(name_width: usize, cameras: bool) -> String {
     }
 }
 
-/// A row of the table: name, verdict, (with `cameras`: the camera, `right` or `wrong`)
+/// A row of the table: name, verdict, (with `cameras`: the camera, `right`, `wrong` or
+/// `unjudged`)
 /// peak FLIP, (the appearance) and the note.
 pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize, cameras: bool) -> String {
     let peak = outcome
