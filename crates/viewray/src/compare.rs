@@ -451,7 +451,7 @@ fn judge_pair(
 fn table_header(name_width: usize, cameras: bool) -> String {
     if cameras {
         format!(
-            "{:name_width$}  VERDICT  CAMERA  PEAK FLIP  APPEARANCE     DIAGNOSIS",
+            "{:name_width$}  VERDICT  CAMERA    PEAK FLIP  APPEARANCE     DIAGNOSIS",
             "NAME"
         )
     } else {
@@ -460,8 +460,7 @@ fn table_header(name_width: usize, cameras: bool) -> String {
 }
 
 /// A row of the table: name, verdict, (with `cameras`: the camera, `right`, `wrong` or
-/// `unjudged`)
-/// peak FLIP, (the appearance) and the note.
+/// `unjudged`,) peak FLIP, (the appearance,) and the note.
 pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize, cameras: bool) -> String {
     let peak = outcome
         .peak_flip()
@@ -476,7 +475,7 @@ pub(crate) fn table_row(name: &str, outcome: &Outcome, name_width: usize, camera
         let camera = outcome.camera().map_or("-", |c| c.word());
         let appearance = outcome.appearance().map_or("-", |a| a.id());
         format!(
-            "{name:name_width$}  {verdict}  {camera:6}  {peak:9}  {appearance:13}  {}",
+            "{name:name_width$}  {verdict}  {camera:8}  {peak:9}  {appearance:13}  {}",
             outcome.note()
         )
     } else {

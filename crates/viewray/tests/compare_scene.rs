@@ -161,7 +161,7 @@ fn one_scene_file_serves_a_pair_of_files() {
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.contains(
-            "wrong   0.976      -              not shifted: shift-missing (the shift left out): \
+            "wrong     0.976      -              not shifted: shift-missing (the shift left out): \
              fix direction = (u + sx) U + (v + sy) V - d W"
         ),
         "{stdout}"
