@@ -1,5 +1,6 @@
-//! The pages: HTML, CSS and JavaScript written by hand, compiled into the binary, and put
-//! together once per served scene with the scene's starting state. The playground's script
+//! The pages: HTML, CSS (`base.css` shared, then each page's own) and JavaScript written by
+//! hand, compiled into the binary, and put together once per served scene with the
+//! scene's starting state. The playground's script
 //! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`) and `trace.js` (the
 //! chosen pixel's trace, a panel of its own), the lecture's in four
 //! (`lecture-math.js`: MathML and the command line's digits, `lecture-trace.js`: the first
@@ -12,6 +13,9 @@ use viewray_scene::{Scene, Shading};
 use crate::Limits;
 
 const HTML: &str = include_str!("../page/index.html");
+/// What both pages' styles share (the lecture figures' colours, the type, the body),
+/// put before each page's own sheet.
+const BASE_CSS: &str = include_str!("../page/base.css");
 const CSS: &str = include_str!("../page/page.css");
 /// The page's script in its four parts, and the trace's panel, in the order they are put
 /// together: the RON reader, the state and requests, the trace (which the requests ask
@@ -41,7 +45,7 @@ pub(crate) fn lecture(name: &str, camera_text: &str) -> String {
     let state = json!({ "scene": name, "camera": camera_text });
     let state = state.to_string().replace("</", "<\\/");
     LECTURE_HTML
-        .replace("/*STYLE*/", LECTURE_CSS)
+        .replace("/*STYLE*/", &[BASE_CSS, LECTURE_CSS].join("\n"))
         .replace("/*SCRIPT*/", &LECTURE_SCRIPTS.join("\n"))
         .replace("{/*STATE*/}", &state)
         .replace("<!--SCENE-->", &escape_html(name))
@@ -70,7 +74,7 @@ pub(crate) fn page(name: &str, camera_text: &str, scene: &Scene) -> String {
     });
     // Inside <script>, "</" could end the element: JSON allows writing it "<\/".
     let state = state.to_string().replace("</", "<\\/");
-    HTML.replace("/*STYLE*/", CSS)
+    HTML.replace("/*STYLE*/", &[BASE_CSS, CSS].join("\n"))
         .replace("/*SCRIPT*/", &SCRIPTS.join("\n"))
         .replace("{/*STATE*/}", &state)
         .replace("<!--SCENE-->", &escape_html(name))
