@@ -5,7 +5,7 @@
 //! (`Reference::judge`, as `viewray grade` judges a class).
 //!
 //! `cargo bench -p viewray-compare --features bench`. The renders come from the planted
-//! mistakes of `tests/planted` (rendered once, before timing). Before criterion's wall
+//! mistakes of `tests/it/planted` (rendered once, before timing). Before criterion's wall
 //! clock timings, each case prints the processor time one judgement takes on its thread
 //! (from `/proc/thread-self/stat`, where there is one), which other work on a busy
 //! machine does not inflate.
@@ -16,7 +16,7 @@ use std::time::Duration;
 use criterion::Criterion;
 use viewray_compare::{InstructorThresholds, Reference, judge};
 
-#[path = "../tests/planted/mod.rs"]
+#[path = "../tests/it/planted/mod.rs"]
 mod planted;
 
 use planted::{Base, Case, Mistake};

@@ -60,7 +60,7 @@ pub struct InstructorThresholds {
     /// mean squared difference between the blurred images, on the part both show.
     ///
     /// Default 0.5: a camera mistake explains nearly all of the difference (0.98 and more
-    /// on the test matrix, `tests/planted`; the half-pixel offset at one sample, 0.82),
+    /// on the test matrix, `tests/it/planted`; the half-pixel offset at one sample, 0.82),
     /// while a transform fitted to antialiasing noise or to an unrelated change (a missing
     /// object) explains little.
     pub min_explained: f64,

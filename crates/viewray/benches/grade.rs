@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use criterion::Criterion;
 use image::RgbaImage;
 
-#[path = "../../viewray-compare/tests/planted/mod.rs"]
+#[path = "../../viewray-compare/tests/it/planted/mod.rs"]
 mod planted;
 
 use planted::{Base, Case, Mistake};

@@ -1,0 +1,7 @@
+//! viewray-draw's integration tests, built as one test binary (linked once).
+
+// Shared by the test modules below.
+
+mod render;
+mod specimen;
+mod svg;
