@@ -93,50 +93,98 @@ fn main() -> ExitCode {
 /// Runs every check CI runs, stopping at the first that fails. `cargo test` runs the
 /// golden check too (the `golden` test target), so it is not run a second time.
 fn ci() -> Result<()> {
-    cargo(&["fmt", "--all", "--check"])?;
+    let mut steps = Steps::default();
+    steps.run("fmt", || cargo(&["fmt", "--all", "--check"]))?;
     // The benchmarks' harness and peers are behind features so `cargo test` does not build
     // them; turn them on here so the benchmarks are linted too.
-    cargo(&[
-        "clippy",
-        "--workspace",
-        "--all-targets",
-        "--features",
-        "viewray-geometry/bench,viewray-compare/bench",
-        "--",
-        "-D",
-        "warnings",
-    ])?;
-    cargo(&["test", "--workspace"])?;
+    steps.run("clippy", || {
+        cargo(&[
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--features",
+            "viewray-geometry/bench,viewray-compare/bench",
+            "--",
+            "-D",
+            "warnings",
+        ])
+    })?;
+    steps.run("test", || cargo(&["test", "--workspace"]))?;
     // The whole camera crate (484 mutants) took 30 minutes at one job on two shared
     // cores, far too long for CI; the mutants in the lines a change touches take a minute
     // or two (12 mutants in 73 s, baseline build included), and none is nothing to do.
-    eprintln!("$ cargo xtask mutants viewray-camera --in-diff");
-    mutants::mutants(
-        &workspace_root(),
-        &mutants::MutantsArgs {
-            krate: "viewray-camera".to_owned(),
-            in_diff: true,
-            ..mutants::MutantsArgs::default()
-        },
-    )?;
+    steps.run("mutants", || {
+        eprintln!("$ cargo xtask mutants viewray-camera --in-diff");
+        mutants::mutants(
+            &workspace_root(),
+            &mutants::MutantsArgs {
+                krate: "viewray-camera".to_owned(),
+                in_diff: true,
+                ..mutants::MutantsArgs::default()
+            },
+        )
+    })?;
     // The wheel takes minutes to build from nothing (two release builds linked by zig:
     // 12 minutes on two shared cores, 7 of processor time), as CI's fresh target
     // directory always does, so CI builds and tests it only when what it is built from
     // changed (the module's crates, Cargo.toml, Cargo.lock, the fixtures).
-    eprintln!("$ cargo xtask wheel --test --in-diff");
-    wheel::wheel(
-        &workspace_root(),
-        &wheel::WheelArgs {
-            test: true,
-            in_diff: true,
-        },
-    )?;
-    eprintln!("$ cargo xtask browser");
-    browser::browser(&workspace_root(), &browser::BrowserArgs { out: None })?;
+    steps.run("wheel", || {
+        eprintln!("$ cargo xtask wheel --test --in-diff");
+        wheel::wheel(
+            &workspace_root(),
+            &wheel::WheelArgs {
+                test: true,
+                in_diff: true,
+            },
+        )
+    })?;
+    steps.run("browser", || {
+        eprintln!("$ cargo xtask browser");
+        browser::browser(&workspace_root(), &browser::BrowserArgs { out: None })
+    })?;
     // The real tools: about a minute to install them the first time (PyPI and npm), half
     // a minute to check every export and import against them.
-    eprintln!("$ cargo xtask interop");
-    interop::interop(&workspace_root(), &interop::InteropArgs::default())
+    steps.run("interop", || {
+        eprintln!("$ cargo xtask interop");
+        interop::interop(&workspace_root(), &interop::InteropArgs::default())
+    })?;
+    steps.report();
+    Ok(())
+}
+
+/// The wall-clock time of each of `ci`'s steps, printed at the end (and after a failed
+/// step, with the steps before it) so that what CI spends its time on is in every log.
+#[derive(Default)]
+struct Steps {
+    done: Vec<(&'static str, std::time::Duration)>,
+}
+
+impl Steps {
+    /// Runs the step `name` and records how long it took, failed or not.
+    fn run(&mut self, name: &'static str, step: impl FnOnce() -> Result<()>) -> Result<()> {
+        let start = std::time::Instant::now();
+        let result = step();
+        self.done.push((name, start.elapsed()));
+        if result.is_err() {
+            self.report();
+        }
+        result
+    }
+
+    /// Prints one line: each step's seconds and the total.
+    fn report(&self) {
+        let total: std::time::Duration = self.done.iter().map(|(_, time)| *time).sum();
+        let steps: Vec<String> = self
+            .done
+            .iter()
+            .map(|(name, time)| format!("{name} {:.0} s", time.as_secs_f64()))
+            .collect();
+        eprintln!(
+            "ci: {} (total {:.0} s)",
+            steps.join(", "),
+            total.as_secs_f64()
+        );
+    }
 }
 
 /// Runs `cargo` with `args` in the workspace root and fails unless it succeeds.
