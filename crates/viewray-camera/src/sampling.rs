@@ -16,22 +16,59 @@ use glam::DVec2;
 /// ```
 ///
 /// The square's centre `(0.5, 0.5)` maps to the disk's centre.
+///
+/// The second rule's point is `r (sin phi, cos phi)` with `phi = (pi/4) (a / b)`, the
+/// same point, and both angles lie in `[-pi/4, pi/4]`, where [`sin_cos_quarter`] needs no
+/// range reduction: every thin-lens sample maps one lens point, and the system's
+/// `sincos` had been a ninth of a thin-lens render's time.
 pub fn sample_unit_disk_concentric(p: DVec2) -> DVec2 {
     let offset = 2.0 * p - DVec2::ONE;
     if offset == DVec2::ZERO {
         return DVec2::ZERO;
     }
     // On the diagonals (|a| = |b|) both rules give the same point.
-    let (r, theta) = if offset.x.abs() >= offset.y.abs() {
-        (offset.x, FRAC_PI_4 * (offset.y / offset.x))
+    if offset.x.abs() >= offset.y.abs() {
+        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (offset.y / offset.x));
+        offset.x * DVec2::new(cos, sin)
     } else {
-        (
-            offset.y,
-            2.0 * FRAC_PI_4 - FRAC_PI_4 * (offset.x / offset.y),
-        )
-    };
-    let (sin, cos) = theta.sin_cos();
-    r * DVec2::new(cos, sin)
+        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (offset.x / offset.y));
+        offset.y * DVec2::new(sin, cos)
+    }
+}
+
+/// `(sin x, cos x)` for `|x| <= pi/4`, within an ulp: the polynomial kernels of fdlibm
+/// (`__kernel_sin` and `__kernel_cos`, as in musl and Rust's `libm`), written with plain
+/// multiplications and additions, never fused, so that they give the same bits on every
+/// machine (a system's `sincos` may differ from one C library to the next).
+#[inline]
+pub(crate) fn sin_cos_quarter(x: f64) -> (f64, f64) {
+    const S1: f64 = -1.666_666_666_666_663_2e-1;
+    const S2: f64 = 8.333_333_333_322_49e-3;
+    const S3: f64 = -1.984_126_982_985_795e-4;
+    const S4: f64 = 2.755_731_370_707_006_8e-6;
+    const S5: f64 = -2.505_076_025_340_686_3e-8;
+    const S6: f64 = 1.589_690_995_211_55e-10;
+    const C1: f64 = 4.166_666_666_666_66e-2;
+    const C2: f64 = -1.388_888_888_887_411e-3;
+    const C3: f64 = 2.480_158_728_947_673e-5;
+    const C4: f64 = -2.755_731_435_139_066_3e-7;
+    const C5: f64 = 2.087_572_321_298_175e-9;
+    const C6: f64 = -1.135_964_755_778_819_5e-11;
+    // fdlibm's `sin` and `cos` below 2^-27, where `x` and 1 are the rounded values (and
+    // `sin(-0)` is `-0`, which the polynomial would make `+0`).
+    if x.abs() < 1.0 / (1u64 << 27) as f64 {
+        return (x, 1.0);
+    }
+    let z = x * x;
+    // __kernel_sin(x, 0, 0).
+    let r = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
+    let sin = x + z * x * (S1 + z * r);
+    // __kernel_cos(x, 0).
+    let r = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    let cos = w + (((1.0 - w) - hz) + z * r);
+    (sin, cos)
 }
 
 /// Maps a point of the unit square `[0, 1)^2` to the regular polygon of `blades` corners
@@ -83,6 +120,29 @@ mod tests {
             got.abs_diff_eq(DVec2::new(expected.0, expected.1), 1e-12),
             "{p:?} -> {got}, expected {expected:?}"
         );
+    }
+
+    #[test]
+    fn the_quarter_kernels_are_within_an_ulp_of_the_system() {
+        // Every angle the concentric mapping asks for lies in [-pi/4, pi/4]. Each is
+        // within an ulp of the true value, so within two of each other.
+        let steps = 200_000;
+        for i in 0..=steps {
+            let x = FRAC_PI_4 * (2.0 * f64::from(i) / f64::from(steps) - 1.0);
+            let (sin, cos) = sin_cos_quarter(x);
+            let (want_sin, want_cos) = x.sin_cos();
+            let ulps = |got: f64, want: f64| (got.to_bits() as i64 - want.to_bits() as i64).abs();
+            assert!(
+                ulps(sin, want_sin) <= 2,
+                "sin {x}: {sin} against {want_sin}"
+            );
+            assert!(
+                ulps(cos, want_cos) <= 2,
+                "cos {x}: {cos} against {want_cos}"
+            );
+        }
+        assert_eq!(sin_cos_quarter(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos_quarter(-0.0).0.to_bits(), (-0.0f64).to_bits());
     }
 
     #[test]

@@ -270,7 +270,7 @@ impl TileBuffers {
         let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
         let block_rays: &mut [Ray] = &mut self.rays;
         let ray_pixels: &mut [u32] = &mut self.ray_pixels;
-        let mut take = |row: u32, col: u32, ray: Option<DRay>| {
+        let take = |row: u32, col: u32, ray: Option<DRay>| {
             let pixel = (row - tile.row) * tile.width + (col - tile.col);
             match ray {
                 Some(ray) => {
@@ -284,12 +284,9 @@ impl TileBuffers {
         if let Some(sample) = strata.shared_sample() {
             camera.generate_block_rays(rows, cols, sample, take);
         } else {
-            for row in rows {
-                for col in cols.clone() {
-                    let sample = strata.camera_sample(row, col, index);
-                    take(row, col, camera.generate_ray(row, col, sample));
-                }
-            }
+            // Each pixel's own sample: a thin lens works out what its rays share once.
+            let sample = |row, col| strata.camera_sample(row, col, index);
+            camera.generate_sampled_block_rays(rows, cols, sample, take);
         }
 
         if R::ACTIVE
