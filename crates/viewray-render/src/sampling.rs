@@ -88,7 +88,9 @@ pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
         index &= mask;
         index ^= index >> 5;
         if index < len {
-            return (index + seed) % len;
+            // `(index + seed) % len`, reduced first: a seed within `len` of `u32::MAX`
+            // neither overflows nor (wrapping) breaks the permutation.
+            return (index + seed % len) % len;
         }
     }
 }
@@ -253,7 +255,8 @@ mod tests {
     #[test]
     fn permute_is_a_permutation() {
         for len in [1, 2, 3, 7, 16, 100] {
-            for seed in [0, 1, 0xdead_beef] {
+            // The largest seeds: their offset once overflowed (and, wrapped, repeated an index).
+            for seed in [0, 1, 0xdead_beef, u32::MAX - 2, u32::MAX] {
                 let mut seen: Vec<u32> = (0..len).map(|i| permute(i, len, seed)).collect();
                 seen.sort_unstable();
                 assert_eq!(seen, (0..len).collect::<Vec<_>>(), "len {len} seed {seed}");
