@@ -209,6 +209,25 @@ pub(crate) fn mistakes(query: &Query) -> Result<Mistakes, BadRequest> {
     Ok(mistakes)
 }
 
+/// The longest ticket a render may carry.
+const MAX_TICKET: usize = 64;
+
+/// The ticket of a render, `ticket=T`: the page's name for the stream of renders one of
+/// its views asks for, where each supersedes the one before (1 to 64 letters, digits,
+/// `-` or `_`).
+pub(crate) fn ticket(query: &Query) -> Result<Option<String>, BadRequest> {
+    let Some(text) = query.get("ticket") else {
+        return Ok(None);
+    };
+    let fine = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+    if text.is_empty() || text.len() > MAX_TICKET || !text.chars().all(fine) {
+        return Err(BadRequest(format!(
+            "ticket: expected 1 to {MAX_TICKET} letters, digits, `-` or `_`, found `{text}`"
+        )));
+    }
+    Ok(Some(text.to_owned()))
+}
+
 /// The pixel of a rays request: `row` and `col` (0-based), or `i` and `j` (1-based, the
 /// lecture's); `(first, second, one_based)`.
 pub(crate) fn pixel(query: &Query) -> Result<(i64, i64, bool), BadRequest> {

@@ -655,6 +655,85 @@ fn a_camera_with_the_catalogues_mistakes_makes_the_mistaken_rays() {
     assert_ne!(right.body, mirrored.body);
 }
 
+/// The `renders` counts of `/api/status`: running, waiting, rendered, superseded, busy.
+fn render_counts(address: &str) -> [u64; 5] {
+    let status = get(address, "/api/status").expect("answered");
+    assert_eq!(status.status, 200, "{}", status.text());
+    let status: serde_json::Value = serde_json::from_slice(&status.body).unwrap();
+    ["running", "waiting", "rendered", "superseded", "busy"]
+        .map(|key| status["renders"][key].as_u64().expect(key))
+}
+
+#[test]
+fn a_render_superseded_by_its_ticket_stops_and_frees_its_slot() {
+    // One render slot, a long wait for it, and limits that let a render run for hours:
+    // only the newer render's ticket can end the first.
+    let text = default_text();
+    let path = fixtures().join("default.ron");
+    let served = viewray_serve::ServedScene::parse("default.ron", text, &path).unwrap();
+    let options = viewray_serve::ServeOptions {
+        limits: viewray_serve::Limits {
+            max_frame_samples: u64::MAX,
+            ..viewray_serve::Limits::default()
+        },
+        render_slots: 1,
+        slot_wait: Duration::from_secs(600),
+        ..viewray_serve::ServeOptions::default()
+    };
+    let server = viewray_serve::Server::bind(served, "127.0.0.1:0", options).unwrap();
+    let address = server.address().to_string();
+    let stopper = server.stopper();
+    let running = std::thread::spawn(move || server.run());
+
+    // 2048 x 2048 at 1024 samples a pixel, through a thin lens: 4 G samples.
+    let lens = encode(
+        "(eye: (0.0, 1.5, 5.0), look_at: (0.0, 0.5, 0.0), \
+         projection: ThinLens(fov_y: 40.0, aperture: 0.2, focus: 5.0))",
+    );
+    let slow = format!(
+        "/api/render?camera={lens}&width=2048&height=2048&samples=1024&ticket=page-1-render"
+    );
+    let first = {
+        let address = address.clone();
+        std::thread::spawn(move || get(&address, &slow).expect("answered"))
+    };
+    // Once it holds the slot, the same view asks for its next picture.
+    while render_counts(&address)[0] == 0 {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let next = get(
+        &address,
+        &format!("/api/render?camera={lens}&width=32&height=18&samples=1&ticket=page-1-render"),
+    )
+    .unwrap();
+    assert_eq!(next.status, 200, "{}", next.text());
+    let first = first.join().unwrap();
+    assert_eq!(first.status, 409, "{}", first.text());
+    assert_eq!(
+        serde_json::from_slice::<serde_json::Value>(&first.body).unwrap()["error"],
+        "ticket: superseded by a newer render with the same ticket"
+    );
+    // Running, waiting, rendered, superseded, busy.
+    assert_eq!(render_counts(&address), [0, 0, 1, 1, 0]);
+
+    // Another ticket does not stop it: two views of one page, or two pages.
+    let other = get(
+        &address,
+        "/api/render?width=32&height=18&samples=1&ticket=page-2-render",
+    )
+    .unwrap();
+    assert_eq!(other.status, 200);
+    assert_eq!(render_counts(&address), [0, 0, 2, 1, 0]);
+    let bad = get(&address, "/api/render?ticket=a%20b").unwrap();
+    assert_eq!(bad.status, 400);
+    assert_eq!(
+        serde_json::from_slice::<serde_json::Value>(&bad.body).unwrap()["error"],
+        "ticket: expected 1 to 64 letters, digits, `-` or `_`, found `a b`"
+    );
+    stopper.stop();
+    running.join().unwrap();
+}
+
 #[test]
 fn bad_requests_are_refused_with_the_command_lines_words() {
     let served = Served::start(BINARY, &[]);
