@@ -83,7 +83,7 @@ pub(crate) struct RenderRequest {
     /// What to render.
     pub(crate) view: View,
     /// The ticket it came with, if any.
-    pub(crate) ticket: Option<String>,
+    pub(crate) ticket: Option<params::Ticket>,
 }
 
 /// The parameters of each endpoint.
@@ -99,8 +99,8 @@ const DIAGRAM: [&str; 8] = [
     "camera", "width", "height", "row", "col", "view", "canvas", "mistakes",
 ];
 const DEPTH: [&str; 3] = ["camera", "width", "height"];
-const TRACE: [&str; 10] = [
-    "camera", "width", "height", "shading", "row", "col", "i", "j", "format", "mistakes",
+const TRACE: [&str; 9] = [
+    "camera", "width", "height", "shading", "row", "col", "i", "j", "format",
 ];
 const SLIDE: [&str; 9] = [
     "camera", "width", "height", "samples", "shading", "row", "col", "top", "mistakes",

@@ -4,9 +4,11 @@
 //!
 //! A page's view asks for one picture after another as a slider moves, and abandons
 //! each as the next is asked for; tiny_http cannot tell the server that the connection
-//! of an abandoned one closed. So each render may carry a `ticket` (the page's name for
-//! that view): a render with a ticket stops the render with the same ticket before it,
-//! running (at its next tile) or waiting for a slot (at once), which is answered 409.
+//! of an abandoned one closed. So each render may carry a `ticket`, `NAME.TURN` (the
+//! page's name for that view and the render's turn in it): a render with a ticket stops
+//! the renders of its name with an earlier turn, running (at their next tile) or waiting
+//! for a slot (at once), which are answered 409; one that arrives after a later turn of
+//! its name (requests overtake each other on their way in) is answered 409 at once.
 
 use std::collections::HashMap;
 use std::io;
@@ -19,6 +21,7 @@ use std::time::{Duration, Instant};
 use tiny_http::{Header, Method, Request, Response};
 
 use crate::api::{self, RenderRequest, Reply, Route};
+use crate::params::Ticket;
 use crate::slide;
 use crate::{Limits, ServedScene};
 
@@ -238,7 +241,7 @@ fn answer(shared: &Shared, request: Request) {
 /// waits for a slot (unless superseded in turn meanwhile), renders, and counts how it
 /// ended.
 fn render_in_slot(shared: &Shared, render: &RenderRequest) -> Reply {
-    let ticket = render.ticket.as_deref();
+    let ticket = render.ticket.as_ref();
     let cancelled = match ticket {
         Some(ticket) => shared.tickets.take(ticket, &shared.slots),
         None => Arc::new(AtomicBool::new(false)),
@@ -253,7 +256,7 @@ fn render_in_slot(shared: &Shared, render: &RenderRequest) -> Reply {
         Err(Refusal::Superseded) => api::superseded(),
     };
     if let Some(ticket) = ticket {
-        shared.tickets.release(ticket, &cancelled);
+        shared.tickets.release(&ticket.name, &cancelled);
     }
     let count = match reply.status {
         200 => &shared.counts.rendered,
@@ -298,33 +301,41 @@ fn header(name: &str, value: &str) -> Header {
         .unwrap_or_else(|()| Header::from_bytes(&b"X-Invalid"[..], &b"1"[..]).expect("ASCII"))
 }
 
-/// The renders with a ticket, running or waiting: for each ticket, the flag that stops
-/// the newest (an entry lives as long as its render, so there are at most as many as
-/// workers).
+/// The renders with a ticket, running or waiting: for each ticket's name, the turn of
+/// the latest and the flag that stops it (an entry lives as long as its render, so there
+/// are at most as many as workers).
 #[derive(Default)]
-struct Tickets(Mutex<HashMap<String, Arc<AtomicBool>>>);
+struct Tickets(Mutex<HashMap<String, (u64, Arc<AtomicBool>)>>);
 
 impl Tickets {
-    /// A render with `ticket` starts: stops the one before it (waking it if it waits
-    /// for a slot) and returns the flag that stops this one.
-    fn take(&self, ticket: &str, slots: &Slots) -> Arc<AtomicBool> {
+    /// A render with `ticket` comes: stops the one of its name with an earlier turn
+    /// (waking it if it waits for a slot) and returns the flag that stops this one; set
+    /// already if a later turn came first.
+    fn take(&self, ticket: &Ticket, slots: &Slots) -> Arc<AtomicBool> {
         let flag = Arc::new(AtomicBool::new(false));
         let mut tickets = self.0.lock().unwrap_or_else(PoisonError::into_inner);
-        let before = tickets.insert(ticket.to_owned(), Arc::clone(&flag));
+        if tickets
+            .get(&ticket.name)
+            .is_some_and(|&(turn, _)| turn > ticket.turn)
+        {
+            flag.store(true, Ordering::SeqCst);
+            return flag;
+        }
+        let before = tickets.insert(ticket.name.clone(), (ticket.turn, Arc::clone(&flag)));
         drop(tickets);
-        if let Some(before) = before {
+        if let Some((_, before)) = before {
             before.store(true, Ordering::SeqCst);
             slots.wake_all();
         }
         flag
     }
 
-    /// The render with `ticket` and `flag` ended: its entry goes, unless a newer render
-    /// took the ticket meanwhile.
-    fn release(&self, ticket: &str, flag: &Arc<AtomicBool>) {
+    /// The render of ticket `name` with `flag` ended: its entry goes, unless a later
+    /// turn took the name meanwhile.
+    fn release(&self, name: &str, flag: &Arc<AtomicBool>) {
         let mut tickets = self.0.lock().unwrap_or_else(PoisonError::into_inner);
-        if tickets.get(ticket).is_some_and(|f| Arc::ptr_eq(f, flag)) {
-            tickets.remove(ticket);
+        if tickets.get(name).is_some_and(|(_, f)| Arc::ptr_eq(f, flag)) {
+            tickets.remove(name);
         }
     }
 }
@@ -463,16 +474,23 @@ mod tests {
         assert_eq!((state.busy, state.waiting), (0, 0));
     }
 
+    fn ticket(turn: u64) -> Ticket {
+        Ticket {
+            name: "view".to_owned(),
+            turn,
+        }
+    }
+
     #[test]
-    fn a_newer_ticket_stops_the_render_waiting_for_a_slot() {
+    fn a_later_turn_stops_the_render_waiting_for_a_slot() {
         let slots = Slots::new(1);
         let tickets = Tickets::default();
         let held = slots
             .acquire(Duration::ZERO, 0, &AtomicBool::new(false))
             .expect("a free slot");
-        let first = tickets.take("view", &slots);
+        let first = tickets.take(&ticket(1), &slots);
         thread::scope(|scope| {
-            // Waits as long as it takes: only the newer ticket can end its wait.
+            // Waits as long as it takes: only the later turn can end its wait.
             let waiter = scope.spawn(|| {
                 slots
                     .acquire(Duration::from_secs(3600), 1, &first)
@@ -481,10 +499,14 @@ mod tests {
             while slots.now().1 == 0 {
                 thread::yield_now();
             }
-            let second = tickets.take("view", &slots);
+            let second = tickets.take(&ticket(2), &slots);
             assert_eq!(waiter.join().unwrap(), Err(Refusal::Superseded));
             assert!(!second.load(Ordering::SeqCst));
-            // The first's end leaves the newer entry; the newer's end removes it.
+            // An earlier turn arriving late is superseded at once, and takes nothing.
+            let late = tickets.take(&ticket(0), &slots);
+            assert!(late.load(Ordering::SeqCst) && !second.load(Ordering::SeqCst));
+            tickets.release("view", &late);
+            // The first's end leaves the later entry; the later's end removes it.
             tickets.release("view", &first);
             assert_eq!(tickets.0.lock().unwrap().len(), 1);
             tickets.release("view", &second);

@@ -616,7 +616,23 @@ fn a_camera_with_the_catalogues_mistakes_makes_the_mistaken_rays() {
         [0, 1, 2].map(|k| d[k].as_f64().unwrap())
     };
     let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    let u = |target: &str| -> f64 {
+        let line: serde_json::Value = serde_json::from_slice(&served.get(target).body).unwrap();
+        line["u"].as_f64().unwrap()
+    };
     for (row, col) in [(0, 0), (2, 5), (5, 7)] {
+        // The line prints the mistaken camera's own u: the mirrored column's.
+        let mirrored_u = u(&format!(
+            "/api/rays?{query}&row={row}&col={}",
+            width - 1 - col
+        ));
+        let u_sign_u = u(&format!(
+            "/api/rays?{query}&row={row}&col={col}&mistakes=u-sign"
+        ));
+        assert!(
+            (u_sign_u - mirrored_u).abs() < 1e-12,
+            "({row}, {col}): u {u_sign_u} {mirrored_u}"
+        );
         // u-sign: u = -((x/W - 1/2) vw), the u of the column mirrored about the middle.
         let mirrored = direction(&format!(
             "/api/rays?{query}&row={row}&col={}",
@@ -691,7 +707,7 @@ fn a_render_superseded_by_its_ticket_stops_and_frees_its_slot() {
          projection: ThinLens(fov_y: 40.0, aperture: 0.2, focus: 5.0))",
     );
     let slow = format!(
-        "/api/render?camera={lens}&width=2048&height=2048&samples=1024&ticket=page-1-render"
+        "/api/render?camera={lens}&width=2048&height=2048&samples=1024&ticket=page-1-render.1"
     );
     let first = {
         let address = address.clone();
@@ -703,7 +719,7 @@ fn a_render_superseded_by_its_ticket_stops_and_frees_its_slot() {
     }
     let next = get(
         &address,
-        &format!("/api/render?camera={lens}&width=32&height=18&samples=1&ticket=page-1-render"),
+        &format!("/api/render?camera={lens}&width=32&height=18&samples=1&ticket=page-1-render.2"),
     )
     .unwrap();
     assert_eq!(next.status, 200, "{}", next.text());
@@ -719,17 +735,23 @@ fn a_render_superseded_by_its_ticket_stops_and_frees_its_slot() {
     // Another ticket does not stop it: two views of one page, or two pages.
     let other = get(
         &address,
-        "/api/render?width=32&height=18&samples=1&ticket=page-2-render",
+        "/api/render?width=32&height=18&samples=1&ticket=page-2-render.7",
     )
     .unwrap();
     assert_eq!(other.status, 200);
     assert_eq!(render_counts(&address), [0, 0, 2, 1, 0]);
-    let bad = get(&address, "/api/render?ticket=a%20b").unwrap();
-    assert_eq!(bad.status, 400);
-    assert_eq!(
-        serde_json::from_slice::<serde_json::Value>(&bad.body).unwrap()["error"],
-        "ticket: expected 1 to 64 letters, digits, `-` or `_`, found `a b`"
-    );
+    for bad in ["a%20b.1", "page", "page.x", ".1"] {
+        let reply = get(&address, &format!("/api/render?ticket={bad}")).unwrap();
+        assert_eq!(reply.status, 400);
+        let error = serde_json::from_slice::<serde_json::Value>(&reply.body).unwrap();
+        assert!(
+            error["error"]
+                .as_str()
+                .unwrap()
+                .starts_with("ticket: expected NAME.TURN"),
+            "{bad}: {error}"
+        );
+    }
     stopper.stop();
     running.join().unwrap();
 }
