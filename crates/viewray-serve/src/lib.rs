@@ -30,15 +30,15 @@
 //! # Endpoints (GET)
 //! `camera` is URL-encoded RON (default: the served scene's); `width`, `height`,
 //! `samples` and `shading` override the served scene's. `/api/render`, `/api/frame`,
-//! `/api/rays`, `/api/diagram.svg`, `/api/trace` and `/api/slide.png` also take
+//! `/api/rays`, `/api/diagram.svg` and `/api/slide.png` also take
 //! `mistakes=u-sign,v-sign` (ids of the lecture's catalogue, [`viewray_camera::Mistake`]):
 //! the camera a student with those mistakes wrote
 //! ([`viewray_camera::Camera::with_mistakes`]; a mistake its family cannot make is a
 //! `400`). The page has the catalogue compiled in: each entry's words and the families it
-//! fits. `/api/render` also takes `ticket=T`: a render with a ticket stops the one before
-//! it with the same ticket, running or waiting for a slot, which is answered `409` (a
-//! page's view abandons each picture as the next is asked for, and the server cannot see
-//! a connection close while it renders).
+//! fits. `/api/render` also takes `ticket=NAME.TURN`: a render with a ticket stops the
+//! renders of its name with an earlier turn, running or waiting for a slot, which are
+//! answered `409` (a page's view abandons each picture as the next is asked for, and the
+//! server cannot see a connection close while it renders).
 //!
 //! | path | reply |
 //! |---|---|

@@ -1,8 +1,9 @@
 //! The pages: HTML, CSS (`base.css` shared, then each page's own) and JavaScript written by
 //! hand, compiled into the binary, and put together once per served scene with the
-//! scene's starting state. The playground's script
-//! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`) and `trace.js` (the
-//! chosen pixel's trace, a panel of its own), the lecture's in four
+//! scene's starting state (and the catalogue of mistakes). The playground's script
+//! is in four parts (`ron.js`, `live.js`, `page.js`, `presenter.js`), `trace.js` (the
+//! chosen pixel's trace, a panel of its own) and `mistakes.js` (the catalogue's menu and
+//! the label naming the mistakes made), the lecture's in four
 //! (`lecture-math.js`: MathML and the command line's digits, `lecture-trace.js`: the first
 //! step's pixel through the pseudocode, from its trace, `lecture-steps.js`: the steps in
 //! the lecture's order, `lecture.js`: requests, controls, keys).
@@ -20,14 +21,16 @@ const HTML: &str = include_str!("../page/index.html");
 /// put before each page's own sheet.
 const BASE_CSS: &str = include_str!("../page/base.css");
 const CSS: &str = include_str!("../page/page.css");
-/// The page's script in its four parts, and the trace's panel, in the order they are put
-/// together: the RON reader, the state and requests, the trace (which the requests ask
-/// for), the controls, the presenter (which starts the page).
-const SCRIPTS: [&str; 5] = [
+/// The page's script in its four parts, the trace's panel and the mistakes' menu, in the
+/// order they are put together: the RON reader, the state and requests, the trace (which
+/// the requests ask for), the controls, the mistakes, the presenter (which starts the
+/// page).
+const SCRIPTS: [&str; 6] = [
     include_str!("../page/ron.js"),
     include_str!("../page/live.js"),
     include_str!("../page/trace.js"),
     include_str!("../page/page.js"),
+    include_str!("../page/mistakes.js"),
     include_str!("../page/presenter.js"),
 ];
 
@@ -68,7 +71,7 @@ pub(crate) fn page(name: &str, camera_text: &str, scene: &Scene) -> String {
         "samples": scene.samples(),
         "shading": scene.shading().name(),
         "shadings": Shading::ALL.map(Shading::name),
-        "mistakes": catalogue(),
+        "catalogue": catalogue(),
         "limits": {
             "max_side": limits.max_side,
             "max_pixels": limits.max_pixels,
