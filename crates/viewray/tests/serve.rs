@@ -796,7 +796,7 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
         "/api/render?zoom=2",
         400,
         "unknown parameter `zoom`: this endpoint takes `camera`, `width`, `height`, `samples`, \
-         `shading` or `mistakes`",
+         `shading`, `mistakes` or `ticket`",
     );
     check(
         "/api/rays?row=0&col=0&mistakes=u-sign,left",
