@@ -11,7 +11,12 @@
 // of the picture shows, a parallel view as tall there); a refused camera leaves the page
 // on the last camera rendered (controls, numbers, picture, URL, status); the samples menu
 // offers only what the server renders; the presenter fits one screen at 1024 x 768 and
-// 1280 x 720; the keys work; the slide and the views save. Saves screenshots at 1024 x 768,
+// 1280 x 720; the keys work; the slide and the views save; the catalogue's mistakes (only
+// those the camera can make offered, the picture, the numbers and the top view the
+// mistaken camera's, held by the URL, a refused one undone); a thin lens's slider moved
+// quickly over many values ends on the last value's picture with no request refused as
+// busy (the server stops each abandoned render); the lens's tilt, swing, blades and
+// rotation controls. Saves screenshots at 1024 x 768,
 // 1280 x 720 and 1920 x 1080 in OUT_DIR. Exits 1 on the first failure.
 
 import { chromium } from "playwright-core";
@@ -44,6 +49,7 @@ const context = await chromium.launchPersistentContext(profile, {
     "--disable-component-update", "--no-first-run", "--disable-sync"],
 });
 const consoleErrors = [];
+const unanswered = new Map();
 let page;
 
 // Waits until the page has shown `count` renders, the last pass is shown and nothing is
@@ -84,6 +90,10 @@ try {
     if (message.type() === "error") consoleErrors.push(message.text());
   });
   page.on("pageerror", (error) => consoleErrors.push(String(error)));
+  // The requests sent and not yet answered (told on a failure).
+  page.on("request", (request) => unanswered.set(request, Date.now()));
+  page.on("requestfinished", (request) => unanswered.delete(request));
+  page.on("requestfailed", (request) => unanswered.delete(request));
   const renderRequests = [];
   page.on("request", (request) => {
     if (request.url().includes("/api/render?")) {
@@ -350,6 +360,162 @@ try {
   const [download] = await Promise.all([page.waitForEvent("download"), key("s")]);
   check(download.suggestedFilename() === "viewray-slide.png", "S saves the slide");
 
+  // The catalogue's mistakes: the menu offers those the camera can make; one made changes
+  // the picture, shows the top view (u-sign mirrors the picture left to right) and names
+  // itself and its lecture line over the picture; the numbers are the mistaken camera's;
+  // the URL holds it and a reload restores it.
+  await page.setViewportSize({ width: 1024, height: 768 });
+  await page.goto(url);
+  await page.reload();
+  await settled(1);
+  const rightPicture = await renderShot();
+  const offeredMistakes = () => page.evaluate(
+    () => [...document.querySelectorAll("#mistakes-list input")].map((box) => box.value));
+  const perspectiveOffers = await offeredMistakes();
+  check(perspectiveOffers.includes("u-sign") && perspectiveOffers.includes("distance-sign")
+    && !perspectiveOffers.some((id) => id.startsWith("ortho-") || id.startsWith("oblique-")),
+  `a perspective camera is offered ${perspectiveOffers.length} mistakes, none of the parallel cameras'`);
+  check(await page.locator("#top-frame").isHidden() && await page.locator("#mistakes-list").isHidden(),
+    "no top view for the right perspective camera, the menu closed");
+  await key("m");
+  check(await page.locator("#mistakes-list").isVisible(), "M opens the mistakes");
+  n = await renders();
+  await page.click('#mistakes-list input[value="u-sign"]');
+  await settled(n + 1);
+  await page.waitForFunction(() => !document.getElementById("top-frame").hidden
+    && document.getElementById("top-diagram").naturalWidth > 0 && document.body.dataset.busy === "0");
+  check(!(await renderShot()).equals(rightPicture), "u-sign changes the picture");
+  check(await page.locator("#top-frame").isVisible(), "u-sign shows the top view");
+  check((await fragment()).mistakes === "u-sign" && (await fragment()).top === undefined,
+    "the URL holds the mistake (and the top view follows from it)");
+  const label = await page.locator("#mistake-label").textContent();
+  check(label.includes("u-sign") && label.includes("u = ((j - 1/2)/W - 1/2) vw"),
+    `a label names it and its lecture line: ${label}`);
+  await key("Escape");
+  check(await page.locator("#mistakes-list").isHidden(), "Escape closes the menu");
+  // The pixel's ray is the mistaken camera's: u-sign's ray through column c is the right
+  // camera's through column W - 1 - c.
+  const mistakenFrame = await page.locator("#render").boundingBox();
+  await page.mouse.click(mistakenFrame.x + mistakenFrame.width * 0.3, mistakenFrame.y + mistakenFrame.height * 0.5);
+  await page.waitForFunction(() => document.getElementById("ray-json").textContent.includes("direction")
+    && document.body.dataset.busy === "0");
+  const mistakenState = await fragment();
+  const mistakenRay = JSON.parse((await page.locator("#ray-json").textContent()).split("\n")[1]);
+  const mirroredCol = Number(mistakenState.width) - 1 - Number(mistakenState.col);
+  const rayDir = mkdtempSync(join(tmpdir(), "viewray-rays-"));
+  const rayScene = join(rayDir, "camera.ron");
+  writeFileSync(rayScene, `(image: (width: ${mistakenState.width}, height: ${mistakenState.height}), camera: ${mistakenState.camera})`);
+  const mirroredRay = JSON.parse(execFileSync(viewray, ["rays", rayScene, "--pixel", `${mistakenState.row},${mirroredCol}`],
+    { encoding: "utf8" }));
+  rmSync(rayDir, { recursive: true, force: true });
+  check(mistakenRay.direction.every((x, k) => Math.abs(x - mirroredRay.direction[k]) < 1e-12)
+    && Math.abs(mistakenRay.u - mirroredRay.u) < 1e-12,
+  `pixel (${mistakenState.row}, ${mistakenState.col}) shows u-sign's u and ray: viewray rays' for column ${mirroredCol}`);
+  check((await page.locator("#trace").textContent()).includes("untick them"),
+    "the trace, the lecture's formulas, waits for the mistakes to be unticked");
+  // A basis mistake shows in the frame: u = w x up flips u.
+  const rightU = await page.locator("#frame-u").textContent();
+  await key("m");
+  await page.click('#mistakes-list input[value="u-cross-order"]');
+  await page.waitForFunction((u) => document.getElementById("frame-u").textContent !== u
+    && document.body.dataset.busy === "0", rightU);
+  const flipped = (text) => text.replace(/[()]/g, "").split(",").map(Number);
+  check(flipped(await page.locator("#frame-u").textContent()).every((x, k) => x === -flipped(rightU)[k]),
+    `u-cross-order's frame has u = w x up: ${await page.locator("#frame-u").textContent()}`);
+  check((await fragment()).mistakes === "u-sign,u-cross-order", "two mistakes, in the catalogue's order, in the URL");
+  const twoMistakes = await hash();
+  await page.reload();
+  await settled(1);
+  check(await hash() === twoMistakes && await page.locator('#mistakes-list input[value="u-cross-order"]').isChecked()
+    && (await page.locator("#mistake-label").textContent()).includes("u-cross-order"),
+  "a reload restores both, ticked and named");
+  await page.screenshot({ path: join(out, "mistakes-1024x768.png") });
+  // Another kind of camera offers its own: an orthographic one not distance-sign but
+  // ortho-origin-fixed; the mistakes it can make stay.
+  n = await renders();
+  await key("1");
+  await page.selectOption("#kind", "Orthographic");
+  await settled(n + 1);
+  const orthographicOffers = await offeredMistakes();
+  check(!orthographicOffers.includes("distance-sign") && orthographicOffers.includes("ortho-origin-fixed"),
+    "an orthographic camera is offered ortho-origin-fixed, not distance-sign");
+  check((await fragment()).mistakes === "u-sign,u-cross-order" && (await errorsShown()).length === 0,
+    "the mistakes it can make stay, with no error");
+  // A link with a mistake its camera cannot make is refused beside the menu, and the page
+  // goes back to the last camera it rendered, with its mistakes.
+  const madeHash = await hash();
+  const unfitting = new URLSearchParams({ ...(await fragment()), mistakes: "distance-sign" });
+  await page.evaluate((h) => { location.hash = h; }, unfitting.toString());
+  await page.waitForFunction(() => document.querySelector('output.error[data-for="mistakes"]').textContent
+    && document.body.dataset.busy === "0");
+  const mistakeError = await page.locator('output.error[data-for="mistakes"]').textContent();
+  check(mistakeError.startsWith("mistakes:") && mistakeError.includes("distance-sign"),
+    `distance-sign is refused beside the menu: ${mistakeError}`);
+  check(await hash() === madeHash && (await page.locator("#mistake-label").textContent()).includes("u-cross-order"),
+    "the URL and the label go back to the camera last rendered, with its mistakes");
+  const unfittingErrors = consoleErrors.splice(0);
+  check(unfittingErrors.every((e) => e.includes("status of 400")), "the only console errors are the refused requests");
+
+  // A thin lens's focus moved quickly over many values at 256 samples (each value's
+  // render abandoned for the next): the last value's picture arrives, and no request was
+  // told the server is busy (it stops each abandoned render at once).
+  const serverRenders = () => page.evaluate(() => fetch("/api/status").then((r) => r.json()).then((s) => s.renders));
+  const lensLink = new URLSearchParams({ camera: "(eye: (5.2, 1.6, 6.0), view: (-5.2, 0.0, -6.0), "
+    + "projection: ThinLens(fov_y: 32.0, aperture: 0.2, focus: 5.0))", width: 640, height: 360, samples: 256,
+  shading: "Lit" });
+  await page.goto(`${url}#${lensLink}`);
+  await page.reload();
+  await settled(1);
+  const before503 = await serverRenders();
+  const focusSlider = page.locator("#range-focus");
+  await focusSlider.focus();
+  for (let k = 0; k < 24; k++) await page.keyboard.press("ArrowRight");
+  await page.waitForFunction(() => sameSettings(rendered, settingsOf(state)) && document.body.dataset.busy === "0"
+    && document.body.dataset.shown === "full", null, { timeout: 120000 });
+  const after503 = await serverRenders();
+  check(Math.abs(await numberBox("focus") - 6.2) < 1e-9 && (await fragment()).camera.includes("focus: 6.2"),
+    "24 steps of the focus slider end at f = 6.2, in the URL");
+  check(after503.busy === before503.busy && !consoleErrors.some((e) => e.includes("503")),
+    `no render was refused as busy (the server stopped ${after503.superseded - before503.superseded} abandoned ones)`);
+  check(after503.running === 0 && after503.waiting === 0, "and nothing is left rendering");
+
+  // The lens's movements: tilt and swing (with a focal length), blades and their rotation,
+  // each a control that changes the camera, the URL and the picture.
+  const movable = new URLSearchParams({ camera: "(eye: (5.2, 1.6, 6.0), view: (-5.2, 0.0, -6.0), "
+    + "projection: ThinLens(focal_length: 35.0, aperture: 0.2, focus: 7.0))", width: 320,
+  height: 180, samples: 16, shading: "Lit" });
+  await page.goto(`${url}#${movable}`);
+  await page.reload();
+  await settled(1);
+  for (const [id, value, written] of [["lens_tilt", "8", "lens_tilt: 8"], ["lens_swing", "-6", "lens_swing: -6"]]) {
+    const unmoved = await renderShot();
+    n = await renders();
+    await page.fill(`#number-${id}`, value);
+    await page.locator(`#number-${id}`).dispatchEvent("change");
+    await settled(n + 1);
+    check((await fragment()).camera.includes(written) && !(await renderShot()).equals(unmoved),
+      `${id} = ${value} reaches the camera, the URL and the picture`);
+  }
+  let picture6 = await renderShot();
+  n = await renders();
+  await page.selectOption("#blades", "6");
+  await settled(n + 1);
+  check((await fragment()).camera.includes("blades: 6") && !(await renderShot()).equals(picture6)
+    && await page.locator("#number-blade_rotation").isVisible(), "6 blades reach the camera and offer their rotation");
+  picture6 = await renderShot();
+  n = await renders();
+  await page.fill("#number-blade_rotation", "30");
+  await page.locator("#number-blade_rotation").dispatchEvent("change");
+  await settled(n + 1);
+  check((await fragment()).camera.includes("blade_rotation: 30") && !(await renderShot()).equals(picture6),
+    "the blades' rotation reaches the camera and the picture");
+  n = await renders();
+  await page.selectOption("#blades", "0");
+  await settled(n + 1);
+  check(!(await fragment()).camera.includes("blades") && await page.locator("#number-blade_rotation").count() === 0,
+    "a round aperture leaves blades and their rotation out of the RON");
+  check((await errorsShown()).length === 0 && consoleErrors.length === 0, "the lens controls raise no error");
+
   // The default scene through a thin lens with a pixel chosen, as a lecturer would show
   // it, at 1024 x 768, 1280 x 720 and 1920 x 1080 (a link holds all of it); the largest
   // with the top view.
@@ -374,6 +540,16 @@ try {
 } catch (error) {
   if (page) await page.screenshot({ path: join(out, "failure.png") }).catch(() => {});
   console.error(error.message);
+  // What the page still waits for, and what the server is doing.
+  const waiting = page && await page.evaluate(async () => ({
+    inFlight: channels.map((c) => (c.inflight || c.pending || { url: "" }).url.split("?")[0]),
+    status: await fetch("/api/status").then((r) => r.text()).catch(() => "no answer"),
+  })).catch(() => null);
+  if (waiting) console.error(`the page waits for: ${waiting.inFlight.join(", ")}; the server: ${waiting.status}`);
+  for (const [request, sent] of unanswered) {
+    const [path, query] = request.url().split("?");
+    console.error(`unanswered after ${((Date.now() - sent) / 1000).toFixed(1)} s: ${path}?${decodeURIComponent(query || "")}`);
+  }
   if (consoleErrors.length) console.error(`console errors: ${consoleErrors.join(" | ")}`);
   await context.close();
   rmSync(profile, { recursive: true, force: true });

@@ -154,16 +154,21 @@ fn pixel_ray_line(
     ray: Option<(DVec3, DVec3)>,
     indices: PixelIndices,
 ) -> Value {
-    // The image-plane point, for the planar families; the panoramic ones have none.
-    let uv = camera.projection().viewport().map(|viewport| {
-        pixel_to_image_plane(
-            row,
-            col,
-            p_film,
-            (camera.width(), camera.height()),
-            viewport,
-        )
-    });
+    // The image-plane point, for the planar families; the panoramic ones have none. A
+    // camera with the catalogue's mistakes prints its own, mistaken, point.
+    let uv = if camera.mistakes().is_empty() {
+        camera.projection().viewport().map(|viewport| {
+            pixel_to_image_plane(
+                row,
+                col,
+                p_film,
+                (camera.width(), camera.height()),
+                viewport,
+            )
+        })
+    } else {
+        camera.image_plane_point(row, col, p_film)
+    };
     let [row_key, col_key] = indices.keys();
     let base = u64::from(indices.base());
     let mut line = Map::new();

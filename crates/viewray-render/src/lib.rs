@@ -123,7 +123,7 @@ pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};
 pub use crate::labels::{BACKGROUND_LABEL, object_labels};
 pub use crate::render::{
     MAX_REFLECTION_DEPTH, RenderError, RenderSettings, RenderStats, Rendered, TILE_SIZE, View,
-    render, render_view,
+    render, render_view, render_view_cancellable,
 };
 pub use crate::trace::{
     BlinnPhong, ClosestHit, DepthValue, GridLines, HeadlightTerms, LightSource, LightTerms,

@@ -1,7 +1,7 @@
 //! The render loop: tiles in parallel, samples per pixel, statistics.
 
 use std::cell::OnceCell;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 use glam::{DVec2, Vec3};
@@ -102,6 +102,10 @@ pub enum RenderError {
         /// What went wrong.
         message: String,
     },
+    /// The render was given up: its cancellation flag was set
+    /// ([`render_view_cancellable`]).
+    #[error("the render was cancelled")]
+    Cancelled,
 }
 
 /// Renders `scene`: for each pixel, generate viewing rays, find the closest object each
@@ -137,8 +141,25 @@ pub fn render_view(
     settings: &RenderSettings,
     progress: impl Fn(u64, u64) + Sync,
 ) -> Result<Rendered, RenderError> {
-    match settings.threads {
-        None => Ok(render_on_current_pool(scene, view, settings, &progress)),
+    render_view_cancellable(scene, view, settings, progress, &AtomicBool::new(false))
+}
+
+/// [`render_view`], given up as soon as `cancelled` is set (a live viewer's render whose
+/// picture nobody waits for any more): the flag is read before each tile, so a render
+/// stops within a tile's work of it being set.
+///
+/// # Errors
+/// [`RenderError::Cancelled`] if `cancelled` was set before the last tile;
+/// [`RenderError::ThreadPool`] as [`render_view`].
+pub fn render_view_cancellable(
+    scene: &Scene,
+    view: &View,
+    settings: &RenderSettings,
+    progress: impl Fn(u64, u64) + Sync,
+    cancelled: &AtomicBool,
+) -> Result<Rendered, RenderError> {
+    let rendered = match settings.threads {
+        None => render_on_current_pool(scene, view, settings, &progress, cancelled),
         Some(threads) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -148,9 +169,10 @@ pub fn render_view(
                     threads,
                     message: error.to_string(),
                 })?;
-            Ok(pool.install(|| render_on_current_pool(scene, view, settings, &progress)))
+            pool.install(|| render_on_current_pool(scene, view, settings, &progress, cancelled))
         }
-    }
+    };
+    rendered.ok_or(RenderError::Cancelled)
 }
 
 /// The side of the blocks of pixels whose viewing rays are traced together, as one
@@ -379,7 +401,8 @@ fn render_on_current_pool(
     view: &View,
     settings: &RenderSettings,
     progress: &(impl Fn(u64, u64) + Sync),
-) -> Rendered {
+    cancelled: &AtomicBool,
+) -> Option<Rendered> {
     let camera = &view.camera;
     let (width, height) = (camera.width(), camera.height());
     let samples = view.samples.max(1);
@@ -413,6 +436,10 @@ fn render_on_current_pool(
     tiles.par_iter().for_each_init(
         || TileBuffers::new(tile_size),
         |buffers: &mut TileBuffers, tile| {
+            // A cancelled render skips its remaining tiles.
+            if cancelled.load(Ordering::Relaxed) {
+                return;
+            }
             let rays = buffers.render(tile, &setup, samples);
             let buffer = &buffers.pixels;
 
@@ -434,17 +461,20 @@ fn render_on_current_pool(
         },
     );
     drop(bands);
+    if cancelled.load(Ordering::Relaxed) && done.load(Ordering::Relaxed) < total {
+        return None;
+    }
 
     let kind = match view.shading {
         Shading::Flat | Shading::Lit => PixelKind::Color,
         Shading::Normals | Shading::Depth => PixelKind::Data,
     };
-    Rendered {
+    Some(Rendered {
         image: Image::from_pixels(width, height, pixels, kind),
         stats: RenderStats {
             rays: rays + traced.into_inner(),
         },
-    }
+    })
 }
 
 /// The Depth map of `view`, with the range of depths its image shows (found by one

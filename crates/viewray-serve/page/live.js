@@ -1,7 +1,7 @@
 // viewray's live playground, part 2 of 4: the state and the requests. The state is the
 // camera as RON text (a scene file's `camera:` value) with the image size, samples,
-// shading, the chosen pixel and how the page shows them; the URL fragment holds all of
-// it. The server computes every number and picture: this page only edits the RON, sends
+// shading, the catalogue's mistakes the camera makes, the chosen pixel and how the page
+// shows them; the URL fragment holds all of it. The server computes every number and picture: this page only edits the RON, sends
 // it, and shows what comes back. Each view has a channel where the newest request wins;
 // the render comes in passes of 1, then 4, then 16... samples, each shown as it
 // finishes; a camera the server refuses is shown with its error beside the control, and
@@ -21,6 +21,7 @@ const state = {
   height: served.height,
   samples: served.samples,
   shading: served.shading,
+  mistakes: "", // the catalogue's ids, comma-separated in its order ("" for none)
   pixel: null, // [row, col], 0-based
   top: null, // the top view: true or false as chosen, null as the kind suggests
   pixels: false, // show the image's own W x H pixels rather than render at the size shown
@@ -47,10 +48,20 @@ let samplesAsked = null; // samples a link asked for beyond what the server rend
 
 // What a render depends on.
 function settingsOf(s) {
-  return { camera: s.camera, width: s.width, height: s.height, samples: s.samples, shading: s.shading };
+  return {
+    camera: s.camera, width: s.width, height: s.height, samples: s.samples, shading: s.shading,
+    mistakes: s.mistakes || "",
+  };
 }
 function sameSettings(a, b) {
-  return a !== null && b !== null && ["camera", "width", "height", "samples", "shading"].every((k) => a[k] === b[k]);
+  return a !== null && b !== null
+    && ["camera", "width", "height", "samples", "shading", "mistakes"].every((k) => a[k] === b[k]);
+}
+
+// The catalogue's ids in `text` (comma-separated), known ones only, in its order.
+function mistakesOf(text) {
+  const ids = (text || "").split(",").map((id) => id.trim());
+  return served.catalogue.filter((entry) => ids.includes(entry.id)).map((entry) => entry.id).join(",");
 }
 
 function readFragment() {
@@ -69,6 +80,7 @@ function readFragment() {
   samplesAsked = state.samples > most && state.width > 0 && state.height > 0 ? state.samples : null;
   if (samplesAsked !== null) state.samples = most;
   state.shading = params.get("shading") || served.shading;
+  state.mistakes = mistakesOf(params.get("mistakes"));
   const row = int("row", -1), col = int("col", -1);
   state.pixel = row >= 0 && col >= 0 ? [row, col] : null;
   const top = params.get("top");
@@ -84,6 +96,7 @@ function writeFragment() {
   params.set("height", state.height);
   params.set("samples", state.samples);
   params.set("shading", state.shading);
+  if (state.mistakes) params.set("mistakes", state.mistakes);
   if (state.pixel) { params.set("row", state.pixel[0]); params.set("col", state.pixel[1]); }
   if (state.top !== null) params.set("top", state.top ? "1" : "0");
   if (state.pixels) params.set("pixels", "image");
@@ -93,11 +106,14 @@ function writeFragment() {
   updateSaveLinks();
 }
 
-function cameraQuery(extra) {
+// The query of the camera at W x H, with the mistakes it makes unless `right` asks for
+// the camera as written.
+function cameraQuery(extra, right) {
   const params = new URLSearchParams();
   params.set("camera", state.camera);
   params.set("width", state.width);
   params.set("height", state.height);
+  if (state.mistakes && !right) params.set("mistakes", state.mistakes);
   for (const [k, v] of Object.entries(extra || {})) params.set(k, v);
   return params.toString();
 }
@@ -105,7 +121,10 @@ function cameraQuery(extra) {
 // ---------------------------------------------------------------------------------
 // Requests: one channel per view; the newest request wins. A render pass in flight is
 // aborted by a newer request; a preview in flight finishes (it is quick, and shows the
-// motion), and is shown unless something newer has been shown.
+// motion), and is shown unless something newer has been shown. The renders carry this
+// page's ticket, its name and the render's turn: the server stops a render it is still
+// making for this page as soon as a later one comes (answering the abandoned one 409), so
+// an abandoned picture holds no render slot.
 
 class Channel {
   constructor(handle) {
@@ -214,8 +233,11 @@ function passes(samples, [w, h]) {
 let renderUrl = null;
 let generation = 0; // counts the requests for new pictures; a pass of an old one stops
 let passShowing = ""; // what the picture shown is, while it is refined
+const TICKET = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}-render`;
+let turn = 0;
 const renderChannel = new Channel((job, response, body, superseded) => {
   const meta = job.meta;
+  if (response.status === 409) return; // superseded on the server by a newer render
   if (!response.ok) {
     if (!superseded && response.status === 400) refuse(meta.settings, body.error);
     else if (!superseded) setResult(`error: ${body.error}`, "error");
@@ -257,6 +279,8 @@ function sendPass(meta, pass) {
   params.set("height", meta.size[1]);
   params.set("samples", samples);
   params.set("shading", meta.settings.shading);
+  if (meta.settings.mistakes) params.set("mistakes", meta.settings.mistakes);
+  params.set("ticket", `${TICKET}.${++turn}`);
   renderChannel.send(`/api/render?${params}`, { ...meta, pass, samples, blob: true, abortable: !meta.preview });
 }
 
@@ -373,7 +397,7 @@ function refuse(settings, message) {
 function errorTarget(message, fallback) {
   const name = (/^(\w+)/.exec(message) || [])[1];
   if (name === "width" || name === "height") return "size";
-  if (name === "samples" || name === "shading") return name;
+  if (name === "samples" || name === "shading" || name === "mistakes") return name;
   if (name === "row" || name === "col" || name === "i" || name === "j") return "pixel";
   return fallback || lastCameraControl;
 }
@@ -391,6 +415,7 @@ function showError(message, fallback) {
   document.querySelectorAll(".invalid").forEach((e) => e.classList.remove("invalid"));
   const control = document.querySelector(`[data-control="${target}"]`);
   if (control) control.classList.add("invalid");
+  if (target === "mistakes") $("mistakes-menu").open = true;
   // The topic holding the control comes forward.
   const topic = (document.querySelector(`output.error[data-for="${target}"]`) || $("ron"))
     .closest("[data-topic]");

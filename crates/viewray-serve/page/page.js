@@ -8,6 +8,9 @@ function commit(mode, fromRonBox) {
   if (restoring) return; // a control taken off the page as the state goes back
   if (model && !fromRonBox) state.camera = writeRon(model, false);
   if (!fromRonBox) $("ron").value = model ? writeRon(model, true) : state.camera;
+  // A camera of another kind offers its own mistakes; those it cannot make go.
+  dropUnfittingMistakes();
+  buildMistakes();
   showViews();
   writeFragment();
   request(mode);
@@ -376,7 +379,7 @@ async function switchKind(to) {
   const asked = state.camera;
   let depth = null;
   try {
-    const response = await fetch(`/api/depth?${cameraQuery()}`);
+    const response = await fetch(`/api/depth?${cameraQuery({}, true)}`);
     if (response.ok) depth = (await response.json()).depth;
   } catch {
     // Without the server's answer, the page's own estimate.

@@ -108,6 +108,7 @@ function loadState() {
   $("ron").value = model && kindOf(model) ? writeRon(model, true) : state.camera;
   $("ron").classList.remove("invalid");
   buildControls();
+  buildMistakes();
   showImageSettings();
   if (!state.pixel) {
     $("ray").hidden = true;
@@ -221,11 +222,13 @@ function showTopic(topic) {
 }
 
 // Whether the top view stands beside the side view: as chosen, or where it helps
-// (oblique and axonometric views, whose receding axis the side view cannot show).
+// (oblique and axonometric views, whose receding axis the side view cannot show, and
+// mistakes that move the picture left or right).
 function topShown() {
   if (state.top !== null) return state.top;
   const kind = kindOf(model);
-  return ["Oblique", "Isometric", "Dimetric", "Trimetric", "Cavalier", "Cabinet"].includes(kind);
+  return ["Oblique", "Isometric", "Dimetric", "Trimetric", "Cavalier", "Cabinet"].includes(kind)
+    || sidewaysMistake();
 }
 
 function showViews() {
@@ -258,6 +261,7 @@ function updateSaveLinks() {
   const slide = new URLSearchParams({
     camera: state.camera, width: state.width, height: state.height, samples: state.samples,
     shading: state.shading, ...pixel, top: topShown() ? "1" : "0",
+    ...(state.mistakes ? { mistakes: state.mistakes } : {}),
   });
   $("save-slide").href = `/api/slide.png?${slide}`;
   $("save-side").href = `/api/diagram.svg?${cameraQuery(pixel)}`;
@@ -282,6 +286,7 @@ const KEYS = {
   "3": () => showTopic("image"),
   "4": () => showTopic("ron"),
   t: toggleTop,
+  m: () => { $("mistakes-menu").open = !$("mistakes-menu").open; },
   p: togglePixels,
   s: () => $("save-slide").click(),
   "[": () => stepKind(-1),
@@ -294,12 +299,13 @@ const KEYS = {
 function onKey(event) {
   if (event.key === "Escape") {
     $("keys").hidden = true;
+    $("mistakes-menu").open = false;
     if (document.activeElement && document.activeElement !== document.body) document.activeElement.blur();
     return;
   }
   const target = event.target;
   const typing = target instanceof HTMLTextAreaElement || target instanceof HTMLSelectElement
-    || (target instanceof HTMLInputElement && target.type !== "range");
+    || (target instanceof HTMLInputElement && target.type !== "range" && target.type !== "checkbox");
   if (typing || event.ctrlKey || event.metaKey || event.altKey) return;
   const action = KEYS[event.key.length === 1 ? event.key.toLowerCase() : event.key];
   if (action) {

@@ -2,6 +2,7 @@
 //! Nothing here touches the network or the file system; the served scene is in memory.
 
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use serde_json::json;
@@ -11,7 +12,7 @@ use viewray_json::{
     PixelIndices, camera_frame_line, project_line, ray_line, trace_lines, trace_text,
 };
 use viewray_output::Compression;
-use viewray_render::{RenderSettings, View, render_view, trace_pixel};
+use viewray_render::{RenderError, RenderSettings, View, render_view_cancellable, trace_pixel};
 use viewray_scene::parse_camera;
 
 use crate::depth::{depth_json, scene_depth};
@@ -71,27 +72,38 @@ pub(crate) enum Route {
     Now(Reply),
     /// A render, its parameters valid and within the limits (boxed: a camera with a lens
     /// is a few hundred bytes).
-    Render(Box<View>),
+    Render(Box<RenderRequest>),
     /// A slide: a render with the views and numbers around it.
     Slide(Box<SlideRequest>),
 }
 
+/// A render to make: the view, and the ticket of the stream of renders it belongs to
+/// (a newer render with the same ticket supersedes it).
+pub(crate) struct RenderRequest {
+    /// What to render.
+    pub(crate) view: View,
+    /// The ticket it came with, if any.
+    pub(crate) ticket: Option<params::Ticket>,
+}
+
 /// The parameters of each endpoint.
-const RENDER: [&str; 6] = [
-    "camera", "width", "height", "samples", "shading", "mistakes",
+const RENDER: [&str; 7] = [
+    "camera", "width", "height", "samples", "shading", "mistakes", "ticket",
 ];
 const FRAME: [&str; 4] = ["camera", "width", "height", "mistakes"];
 const RAYS: [&str; 8] = [
     "camera", "width", "height", "row", "col", "i", "j", "mistakes",
 ];
 const PROJECT: [&str; 4] = ["camera", "width", "height", "point"];
-const DIAGRAM: [&str; 7] = ["camera", "width", "height", "row", "col", "view", "canvas"];
+const DIAGRAM: [&str; 8] = [
+    "camera", "width", "height", "row", "col", "view", "canvas", "mistakes",
+];
 const DEPTH: [&str; 3] = ["camera", "width", "height"];
 const TRACE: [&str; 9] = [
     "camera", "width", "height", "shading", "row", "col", "i", "j", "format",
 ];
-const SLIDE: [&str; 8] = [
-    "camera", "width", "height", "samples", "shading", "row", "col", "top",
+const SLIDE: [&str; 9] = [
+    "camera", "width", "height", "samples", "shading", "row", "col", "top", "mistakes",
 ];
 
 /// Routes a `GET` of `path` with `query` (the text after `?`, possibly empty).
@@ -109,9 +121,7 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
             "text/plain; charset=utf-8",
             served.text.as_bytes(),
         ))),
-        "/api/render" => {
-            render_view_of(served, limits, query).map(|view| Route::Render(Box::new(view)))
-        }
+        "/api/render" => render_of(served, limits, query).map(|r| Route::Render(Box::new(r))),
         "/api/frame" => frame(served, limits, query).map(Route::Now),
         "/api/rays" => rays(served, limits, query).map(Route::Now),
         "/api/project" => project(served, limits, query).map(Route::Now),
@@ -125,7 +135,7 @@ pub(crate) fn route(served: &ServedScene, limits: &Limits, path: &str, query: &s
                 &format!(
                     "no such page: {path} (the playground serves /, /api/render, /api/frame, \
                      /api/rays, /api/project, /api/diagram.svg, /api/depth, /api/slide.png, \
-                     /api/trace and /api/scene)"
+                     /api/trace, /api/scene and /api/status)"
                 ),
             ));
         }
@@ -173,27 +183,50 @@ fn geometry_size(served: &ServedScene, query: &Query) -> Result<(u32, u32), BadR
 }
 
 /// `/api/render`: checks everything a render needs, before anything is allocated.
-fn render_view_of(served: &ServedScene, limits: &Limits, query: &str) -> Result<View, BadRequest> {
+fn render_of(
+    served: &ServedScene,
+    limits: &Limits,
+    query: &str,
+) -> Result<RenderRequest, BadRequest> {
     let query = Query::parse(query, &RENDER, &[])?;
+    let ticket = params::ticket(&query)?;
     let size = params::size(&query, scene_size(served), limits.image())?;
     let samples = params::samples(&query, served.scene.samples(), size, limits)?;
     let shading = params::shading(&query, served.scene.shading())?;
     let camera = camera(served, limits, &query, size)?;
-    Ok(View {
-        camera,
-        samples,
-        shading,
+    Ok(RenderRequest {
+        view: View {
+            camera,
+            samples,
+            shading,
+        },
+        ticket,
     })
 }
 
+/// The status of a render given up because a newer one with its ticket came.
+pub(crate) const SUPERSEDED: u16 = 409;
+
+/// The answer to a render superseded by a newer one with the same ticket.
+pub(crate) fn superseded() -> Reply {
+    Reply::error(
+        SUPERSEDED,
+        "ticket: superseded by a newer render with the same ticket",
+    )
+}
+
 /// Renders the served scene through `view` and encodes it as a PNG: the bytes `viewray
-/// render` writes for the same scene, camera, size, samples and shading.
-pub(crate) fn render(served: &ServedScene, view: &View) -> Reply {
+/// render` writes for the same scene, camera, size, samples and shading; given up (409)
+/// as soon as `cancelled` is set.
+pub(crate) fn render(served: &ServedScene, view: &View, cancelled: &AtomicBool) -> Reply {
     let started = Instant::now();
-    let rendered = match render_view(&served.scene, view, &RenderSettings::default(), |_, _| {}) {
-        Ok(rendered) => rendered,
-        Err(error) => return Reply::error(500, &error.to_string()),
-    };
+    let settings = RenderSettings::default();
+    let rendered =
+        match render_view_cancellable(&served.scene, view, &settings, |_, _| {}, cancelled) {
+            Ok(rendered) => rendered,
+            Err(RenderError::Cancelled) => return superseded(),
+            Err(error) => return Reply::error(500, &error.to_string()),
+        };
     let rendered_at = Instant::now();
     let mut png = Vec::new();
     // The same pixels as `viewray render` writes, encoded for speed rather than size.

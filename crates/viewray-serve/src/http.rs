@@ -1,16 +1,27 @@
 //! The HTTP side: tiny_http's listener, a fixed pool of workers that answer requests,
-//! and the render slots that bound how many renders run at once.
+//! the render slots that bound how many renders run at once, and the tickets through
+//! which a newer render stops the one it supersedes.
+//!
+//! A page's view asks for one picture after another as a slider moves, and abandons
+//! each as the next is asked for; tiny_http cannot tell the server that the connection
+//! of an abandoned one closed. So each render may carry a `ticket`, `NAME.TURN` (the
+//! page's name for that view and the render's turn in it): a render with a ticket stops
+//! the renders of its name with an earlier turn, running (at their next tile) or waiting
+//! for a slot (at once), which are answered 409; one that arrives after a later turn of
+//! its name (requests overtake each other on their way in) is answered 409 at once.
 
+use std::collections::HashMap;
 use std::io;
 use std::net::{SocketAddr, ToSocketAddrs};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use std::thread;
 use std::time::{Duration, Instant};
 
 use tiny_http::{Header, Method, Request, Response};
 
-use crate::api::{self, Reply, Route};
+use crate::api::{self, RenderRequest, Reply, Route};
+use crate::params::Ticket;
 use crate::slide;
 use crate::{Limits, ServedScene};
 
@@ -56,7 +67,20 @@ struct Shared {
     served: ServedScene,
     options: ServeOptions,
     slots: Slots,
+    tickets: Tickets,
+    counts: Counts,
     stopping: AtomicBool,
+}
+
+/// How many renders ended each way since the server started (`/api/status`).
+#[derive(Default)]
+struct Counts {
+    /// Renders answered with their picture.
+    rendered: AtomicU64,
+    /// Renders given up for a newer one with their ticket (running or waiting).
+    superseded: AtomicU64,
+    /// Renders refused for want of a free slot (503).
+    busy: AtomicU64,
 }
 
 /// Stops a running [`Server`] from another thread (a Ctrl-C handler): requests being
@@ -106,6 +130,8 @@ impl Server {
             shared: Arc::new(Shared {
                 served,
                 slots: Slots::new(options.render_slots),
+                tickets: Tickets::default(),
+                counts: Counts::default(),
                 options,
                 stopping: AtomicBool::new(false),
             }),
@@ -166,22 +192,21 @@ fn answer(shared: &Shared, request: Request) {
     let reply = if matches!(request.method(), Method::Get | Method::Head) {
         let url = request.url();
         let (path, query) = url.split_once('?').unwrap_or((url, ""));
-        match api::route(&shared.served, &shared.options.limits, path, query) {
-            Route::Now(reply) => reply,
-            Route::Render(view) => match shared
-                .slots
-                .acquire(shared.options.slot_wait, shared.options.max_waiting)
-            {
-                Some(_slot) => api::render(&shared.served, &view),
-                None => busy(),
-            },
-            Route::Slide(request) => match shared
-                .slots
-                .acquire(shared.options.slot_wait, shared.options.max_waiting)
-            {
-                Some(_slot) => slide::slide(&shared.served, &request),
-                None => busy(),
-            },
+        if path == "/api/status" {
+            status(shared)
+        } else {
+            match api::route(&shared.served, &shared.options.limits, path, query) {
+                Route::Now(reply) => reply,
+                Route::Render(render) => render_in_slot(shared, &render),
+                Route::Slide(request) => match shared.slots.acquire(
+                    shared.options.slot_wait,
+                    shared.options.max_waiting,
+                    &AtomicBool::new(false),
+                ) {
+                    Ok(_slot) => slide::slide(&shared.served, &request),
+                    Err(_) => busy(),
+                },
+            }
         }
     } else {
         Reply::error(
@@ -212,6 +237,56 @@ fn answer(shared: &Shared, request: Request) {
     let _ = request.respond(response);
 }
 
+/// Renders `render` in a free slot: first stops the render its ticket supersedes, then
+/// waits for a slot (unless superseded in turn meanwhile), renders, and counts how it
+/// ended.
+fn render_in_slot(shared: &Shared, render: &RenderRequest) -> Reply {
+    let ticket = render.ticket.as_ref();
+    let cancelled = match ticket {
+        Some(ticket) => shared.tickets.take(ticket, &shared.slots),
+        None => Arc::new(AtomicBool::new(false)),
+    };
+    let reply = match shared.slots.acquire(
+        shared.options.slot_wait,
+        shared.options.max_waiting,
+        &cancelled,
+    ) {
+        Ok(_slot) => api::render(&shared.served, &render.view, &cancelled),
+        Err(Refusal::Busy) => busy(),
+        Err(Refusal::Superseded) => api::superseded(),
+    };
+    if let Some(ticket) = ticket {
+        shared.tickets.release(&ticket.name, &cancelled);
+    }
+    let count = match reply.status {
+        200 => &shared.counts.rendered,
+        api::SUPERSEDED => &shared.counts.superseded,
+        503 => &shared.counts.busy,
+        _ => return reply,
+    };
+    count.fetch_add(1, Ordering::Relaxed);
+    reply
+}
+
+/// `/api/status`: the renders running and waiting now, and how many ended each way.
+fn status(shared: &Shared) -> Reply {
+    let (running, waiting) = shared.slots.now();
+    let count = |c: &AtomicU64| c.load(Ordering::Relaxed);
+    let counts = &shared.counts;
+    let mut body = serde_json::json!({
+        "renders": {
+            "running": running,
+            "waiting": waiting,
+            "rendered": count(&counts.rendered),
+            "superseded": count(&counts.superseded),
+            "busy": count(&counts.busy),
+        }
+    })
+    .to_string();
+    body.push('\n');
+    Reply::ok("application/json", body)
+}
+
 /// The answer to a render that found no free slot in time.
 fn busy() -> Reply {
     Reply::error(
@@ -224,6 +299,54 @@ fn busy() -> Reply {
 fn header(name: &str, value: &str) -> Header {
     Header::from_bytes(name.as_bytes(), value.as_bytes())
         .unwrap_or_else(|()| Header::from_bytes(&b"X-Invalid"[..], &b"1"[..]).expect("ASCII"))
+}
+
+/// The renders with a ticket, running or waiting: for each ticket's name, the turn of
+/// the latest and the flag that stops it (an entry lives as long as its render, so there
+/// are at most as many as workers).
+#[derive(Default)]
+struct Tickets(Mutex<HashMap<String, (u64, Arc<AtomicBool>)>>);
+
+impl Tickets {
+    /// A render with `ticket` comes: stops the one of its name with an earlier turn
+    /// (waking it if it waits for a slot) and returns the flag that stops this one; set
+    /// already if a later turn came first.
+    fn take(&self, ticket: &Ticket, slots: &Slots) -> Arc<AtomicBool> {
+        let flag = Arc::new(AtomicBool::new(false));
+        let mut tickets = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        if tickets
+            .get(&ticket.name)
+            .is_some_and(|&(turn, _)| turn > ticket.turn)
+        {
+            flag.store(true, Ordering::SeqCst);
+            return flag;
+        }
+        let before = tickets.insert(ticket.name.clone(), (ticket.turn, Arc::clone(&flag)));
+        drop(tickets);
+        if let Some((_, before)) = before {
+            before.store(true, Ordering::SeqCst);
+            slots.wake_all();
+        }
+        flag
+    }
+
+    /// The render of ticket `name` with `flag` ended: its entry goes, unless a later
+    /// turn took the name meanwhile.
+    fn release(&self, name: &str, flag: &Arc<AtomicBool>) {
+        let mut tickets = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        if tickets.get(name).is_some_and(|(_, f)| Arc::ptr_eq(f, flag)) {
+            tickets.remove(name);
+        }
+    }
+}
+
+/// Why a render got no slot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Refusal {
+    /// None came free in time, or too many were waiting.
+    Busy,
+    /// A newer render with its ticket came while it waited.
+    Superseded,
 }
 
 /// A counting semaphore for renders, with a bound on how many may wait.
@@ -260,24 +383,37 @@ impl Slots {
         }
     }
 
-    /// A free slot, waiting up to `wait` for one; `None` when none came free in time or
-    /// `max_waiting` requests are waiting already.
-    fn acquire(&self, wait: Duration, max_waiting: usize) -> Option<Slot<'_>> {
+    /// A free slot, waiting up to `wait` for one; refused when none came free in time,
+    /// when `max_waiting` requests are waiting already, or when `cancelled` is set
+    /// (before or while it waits: [`Slots::wake_all`] wakes it).
+    fn acquire(
+        &self,
+        wait: Duration,
+        max_waiting: usize,
+        cancelled: &AtomicBool,
+    ) -> Result<Slot<'_>, Refusal> {
         let deadline = Instant::now() + wait;
         let mut state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        if cancelled.load(Ordering::SeqCst) {
+            return Err(Refusal::Superseded);
+        }
         if state.busy < self.capacity {
             state.busy += 1;
-            return Some(Slot(self));
+            return Ok(Slot(self));
         }
         if state.waiting >= max_waiting {
-            return None;
+            return Err(Refusal::Busy);
         }
         state.waiting += 1;
         while state.busy >= self.capacity {
+            if cancelled.load(Ordering::SeqCst) {
+                state.waiting -= 1;
+                return Err(Refusal::Superseded);
+            }
             let left = deadline.saturating_duration_since(Instant::now());
             if left.is_zero() {
                 state.waiting -= 1;
-                return None;
+                return Err(Refusal::Busy);
             }
             state = self
                 .freed
@@ -287,7 +423,20 @@ impl Slots {
         }
         state.waiting -= 1;
         state.busy += 1;
-        Some(Slot(self))
+        Ok(Slot(self))
+    }
+
+    /// Wakes every request waiting for a slot, to look at its flag (taking the lock
+    /// first, so that one between its look and its wait is not missed).
+    fn wake_all(&self) {
+        drop(self.state.lock().unwrap_or_else(PoisonError::into_inner));
+        self.freed.notify_all();
+    }
+
+    /// The renders running and waiting now.
+    fn now(&self) -> (usize, usize) {
+        let state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        (state.busy, state.waiting)
     }
 }
 
@@ -298,17 +447,24 @@ mod tests {
     #[test]
     fn slots_bound_the_renders_and_the_waiting() {
         let slots = Slots::new(2);
-        let a = slots.acquire(Duration::ZERO, 0).expect("a free slot");
+        let go = AtomicBool::new(false);
+        let a = slots.acquire(Duration::ZERO, 0, &go).expect("a free slot");
         let b = slots
-            .acquire(Duration::ZERO, 0)
+            .acquire(Duration::ZERO, 0, &go)
             .expect("a second free slot");
         // Full, and nobody may wait.
-        assert!(slots.acquire(Duration::from_millis(50), 0).is_none());
+        assert_eq!(
+            slots.acquire(Duration::from_millis(50), 0, &go).err(),
+            Some(Refusal::Busy)
+        );
         // Full, waiting allowed, but nothing comes free in time.
-        assert!(slots.acquire(Duration::from_millis(20), 1).is_none());
+        assert_eq!(
+            slots.acquire(Duration::from_millis(20), 1, &go).err(),
+            Some(Refusal::Busy)
+        );
         // A slot given back goes to the one waiting.
         thread::scope(|scope| {
-            let waiter = scope.spawn(|| slots.acquire(Duration::from_secs(10), 1).is_some());
+            let waiter = scope.spawn(|| slots.acquire(Duration::from_secs(10), 1, &go).is_ok());
             thread::sleep(Duration::from_millis(20));
             drop(a);
             assert!(waiter.join().unwrap());
@@ -316,5 +472,47 @@ mod tests {
         drop(b);
         let state = slots.state.lock().unwrap();
         assert_eq!((state.busy, state.waiting), (0, 0));
+    }
+
+    fn ticket(turn: u64) -> Ticket {
+        Ticket {
+            name: "view".to_owned(),
+            turn,
+        }
+    }
+
+    #[test]
+    fn a_later_turn_stops_the_render_waiting_for_a_slot() {
+        let slots = Slots::new(1);
+        let tickets = Tickets::default();
+        let held = slots
+            .acquire(Duration::ZERO, 0, &AtomicBool::new(false))
+            .expect("a free slot");
+        let first = tickets.take(&ticket(1), &slots);
+        thread::scope(|scope| {
+            // Waits as long as it takes: only the later turn can end its wait.
+            let waiter = scope.spawn(|| {
+                slots
+                    .acquire(Duration::from_secs(3600), 1, &first)
+                    .map(drop)
+            });
+            while slots.now().1 == 0 {
+                thread::yield_now();
+            }
+            let second = tickets.take(&ticket(2), &slots);
+            assert_eq!(waiter.join().unwrap(), Err(Refusal::Superseded));
+            assert!(!second.load(Ordering::SeqCst));
+            // An earlier turn arriving late is superseded at once, and takes nothing.
+            let late = tickets.take(&ticket(0), &slots);
+            assert!(late.load(Ordering::SeqCst) && !second.load(Ordering::SeqCst));
+            tickets.release("view", &late);
+            // The first's end leaves the later entry; the later's end removes it.
+            tickets.release("view", &first);
+            assert_eq!(tickets.0.lock().unwrap().len(), 1);
+            tickets.release("view", &second);
+            assert!(tickets.0.lock().unwrap().is_empty());
+        });
+        drop(held);
+        assert_eq!(slots.now(), (0, 0));
     }
 }

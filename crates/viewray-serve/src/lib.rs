@@ -29,16 +29,22 @@
 //!
 //! # Endpoints (GET)
 //! `camera` is URL-encoded RON (default: the served scene's); `width`, `height`,
-//! `samples` and `shading` override the served scene's. `/api/render`, `/api/frame` and
-//! `/api/rays` also take `mistakes=u-sign,v-sign` (ids of the lecture's catalogue,
-//! [`viewray_camera::Mistake`]): the camera a student with those mistakes wrote
-//! ([`viewray_camera::Camera::with_mistakes`]).
+//! `samples` and `shading` override the served scene's. `/api/render`, `/api/frame`,
+//! `/api/rays`, `/api/diagram.svg` and `/api/slide.png` also take
+//! `mistakes=u-sign,v-sign` (ids of the lecture's catalogue, [`viewray_camera::Mistake`]):
+//! the camera a student with those mistakes wrote
+//! ([`viewray_camera::Camera::with_mistakes`]; a mistake its family cannot make is a
+//! `400`). The page has the catalogue compiled in: each entry's words and the families it
+//! fits. `/api/render` also takes `ticket=NAME.TURN`: a render with a ticket stops the
+//! renders of its name with an earlier turn, running or waiting for a slot, which are
+//! answered `409` (a page's view abandons each picture as the next is asked for, and the
+//! server cannot see a connection close while it renders).
 //!
 //! | path | reply |
 //! |---|---|
 //! | `/` | the page (HTML, CSS and JavaScript compiled in; the URL fragment holds its state) |
 //! | `/lecture` | the lecture as live steps, each with its render, views, controls and formulas (MathML, the command line's digits); the URL fragment names the step and the camera |
-//! | `/api/render?camera&width&height&samples&shading` | `image/png`: pixel for pixel what `viewray render` writes for the scene with that camera and settings |
+//! | `/api/render?camera&width&height&samples&shading[&ticket]` | `image/png`: pixel for pixel what `viewray render` writes for the scene with that camera and settings |
 //! | `/api/frame?camera` | the line of `viewray frame` |
 //! | `/api/rays?camera&width&height&row&col` (or `i&j`, 1-based) | the line of `viewray rays --pixel R,C` (`--one-based --pixel I,J`) |
 //! | `/api/project?camera&width&height&point=X,Y,Z` (repeatable) | the lines of `viewray project` |
@@ -47,6 +53,7 @@
 //! | `/api/slide.png?camera&width&height&samples&shading[&row&col][&top=1]` | a 1920 x 1080 slide: the render at the slide's size, the side view (and the top view), the frame's and the pixel's numbers |
 //! | `/api/trace?camera&width&height&shading&row&col` (or `i&j`)`[&format=text]` | the lines of `viewray trace --pixel R,C --json` for the image `/api/render` makes with one sample (with `format=text`, the trace as text) |
 //! | `/api/scene` | the served scene's RON text |
+//! | `/api/status` | `{"renders": {"running", "waiting", "rendered", "superseded", "busy"}}`: the renders in a slot and waiting for one now, and how many were answered, given up for a newer one with their ticket, and refused `503` since the server started |
 //!
 //! Bad parameters are `400` with `{"error": "..."}`, in the command line's words where
 //! they are the same and in the query's where the command line would name a flag (`i=I&j=J`

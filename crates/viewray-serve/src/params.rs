@@ -209,6 +209,43 @@ pub(crate) fn mistakes(query: &Query) -> Result<Mistakes, BadRequest> {
     Ok(mistakes)
 }
 
+/// The longest name of a ticket.
+const MAX_TICKET: usize = 64;
+
+/// A render's ticket, `ticket=NAME.TURN`: the page's name for the stream of renders one
+/// of its views asks for, and the render's turn in it (a render supersedes those of its
+/// stream with an earlier turn).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Ticket {
+    /// The stream's name: 1 to 64 letters, digits, `-` or `_`.
+    pub(crate) name: String,
+    /// The render's turn in it.
+    pub(crate) turn: u64,
+}
+
+/// The ticket of a render, if it has one.
+pub(crate) fn ticket(query: &Query) -> Result<Option<Ticket>, BadRequest> {
+    let Some(text) = query.get("ticket") else {
+        return Ok(None);
+    };
+    let wrong = || {
+        BadRequest(format!(
+            "ticket: expected NAME.TURN, a name of 1 to {MAX_TICKET} letters, digits, `-` or \
+             `_` and a whole number, found `{text}`"
+        ))
+    };
+    let (name, turn) = text.rsplit_once('.').ok_or_else(wrong)?;
+    let fine = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+    if name.is_empty() || name.len() > MAX_TICKET || !name.chars().all(fine) {
+        return Err(wrong());
+    }
+    let turn = turn.parse::<u64>().map_err(|_| wrong())?;
+    Ok(Some(Ticket {
+        name: name.to_owned(),
+        turn,
+    }))
+}
+
 /// The pixel of a rays request: `row` and `col` (0-based), or `i` and `j` (1-based, the
 /// lecture's); `(first, second, one_based)`.
 pub(crate) fn pixel(query: &Query) -> Result<(i64, i64, bool), BadRequest> {

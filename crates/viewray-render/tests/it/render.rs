@@ -1,10 +1,13 @@
 //! Renders of tiny scenes, checked against what the geometry determines.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::{DVec3, Vec3};
-use viewray_render::{Image, RenderSettings, Rendered, View, render, render_view};
+use viewray_render::{
+    Image, RenderError, RenderSettings, Rendered, View, render, render_view,
+    render_view_cancellable,
+};
 use viewray_scene::{LoadOptions, Scene};
 
 /// A scene from RON text.
@@ -660,6 +663,37 @@ fn progress_reaches_the_total_and_rays_are_counted() {
     assert_eq!(calls.into_inner(), 6);
     assert_eq!(finished.into_inner(), 800);
     assert_eq!(rendered.stats.rays, 800 * 3);
+}
+
+#[test]
+fn a_cancelled_render_stops_at_the_next_tile_and_an_uncancelled_one_is_the_same() {
+    let scene = scene(&sphere_ahead(40, 20, 3, "Flat", ""));
+    let view = View::of(&scene);
+    // One thread: the flag set after the first of the 6 tiles stops the render there.
+    let settings = RenderSettings {
+        threads: Some(1),
+        ..RenderSettings::default()
+    };
+    let cancelled = AtomicBool::new(false);
+    let tiles = AtomicUsize::new(0);
+    let result = render_view_cancellable(
+        &scene,
+        &view,
+        &settings,
+        |_, _| {
+            tiles.fetch_add(1, Ordering::Relaxed);
+            cancelled.store(true, Ordering::Relaxed);
+        },
+        &cancelled,
+    );
+    assert!(matches!(result, Err(RenderError::Cancelled)), "{result:?}");
+    assert_eq!(tiles.into_inner(), 1);
+    // A flag never set changes nothing.
+    let never = AtomicBool::new(false);
+    assert_eq!(
+        render_view_cancellable(&scene, &view, &settings, |_, _| {}, &never).unwrap(),
+        render_with(&scene, RenderSettings::default())
+    );
 }
 
 /// The scene files of the repository: `fixtures/scenes/*.ron` and the default scene.

@@ -616,7 +616,23 @@ fn a_camera_with_the_catalogues_mistakes_makes_the_mistaken_rays() {
         [0, 1, 2].map(|k| d[k].as_f64().unwrap())
     };
     let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    let u = |target: &str| -> f64 {
+        let line: serde_json::Value = serde_json::from_slice(&served.get(target).body).unwrap();
+        line["u"].as_f64().unwrap()
+    };
     for (row, col) in [(0, 0), (2, 5), (5, 7)] {
+        // The line prints the mistaken camera's own u: the mirrored column's.
+        let mirrored_u = u(&format!(
+            "/api/rays?{query}&row={row}&col={}",
+            width - 1 - col
+        ));
+        let u_sign_u = u(&format!(
+            "/api/rays?{query}&row={row}&col={col}&mistakes=u-sign"
+        ));
+        assert!(
+            (u_sign_u - mirrored_u).abs() < 1e-12,
+            "({row}, {col}): u {u_sign_u} {mirrored_u}"
+        );
         // u-sign: u = -((x/W - 1/2) vw), the u of the column mirrored about the middle.
         let mirrored = direction(&format!(
             "/api/rays?{query}&row={row}&col={}",
@@ -653,6 +669,91 @@ fn a_camera_with_the_catalogues_mistakes_makes_the_mistaken_rays() {
     let mirrored = served.get(&format!("/api/render?{query}&samples=1&mistakes=u-sign"));
     assert_eq!(mirrored.status, 200);
     assert_ne!(right.body, mirrored.body);
+}
+
+/// The `renders` counts of `/api/status`: running, waiting, rendered, superseded, busy.
+fn render_counts(address: &str) -> [u64; 5] {
+    let status = get(address, "/api/status").expect("answered");
+    assert_eq!(status.status, 200, "{}", status.text());
+    let status: serde_json::Value = serde_json::from_slice(&status.body).unwrap();
+    ["running", "waiting", "rendered", "superseded", "busy"]
+        .map(|key| status["renders"][key].as_u64().expect(key))
+}
+
+#[test]
+fn a_render_superseded_by_its_ticket_stops_and_frees_its_slot() {
+    // One render slot, a long wait for it, and limits that let a render run for hours:
+    // only the newer render's ticket can end the first.
+    let text = default_text();
+    let path = fixtures().join("default.ron");
+    let served = viewray_serve::ServedScene::parse("default.ron", text, &path).unwrap();
+    let options = viewray_serve::ServeOptions {
+        limits: viewray_serve::Limits {
+            max_frame_samples: u64::MAX,
+            ..viewray_serve::Limits::default()
+        },
+        render_slots: 1,
+        slot_wait: Duration::from_secs(600),
+        ..viewray_serve::ServeOptions::default()
+    };
+    let server = viewray_serve::Server::bind(served, "127.0.0.1:0", options).unwrap();
+    let address = server.address().to_string();
+    let stopper = server.stopper();
+    let running = std::thread::spawn(move || server.run());
+
+    // 2048 x 2048 at 1024 samples a pixel, through a thin lens: 4 G samples.
+    let lens = encode(
+        "(eye: (0.0, 1.5, 5.0), look_at: (0.0, 0.5, 0.0), \
+         projection: ThinLens(fov_y: 40.0, aperture: 0.2, focus: 5.0))",
+    );
+    let slow = format!(
+        "/api/render?camera={lens}&width=2048&height=2048&samples=1024&ticket=page-1-render.1"
+    );
+    let first = {
+        let address = address.clone();
+        std::thread::spawn(move || get(&address, &slow).expect("answered"))
+    };
+    // Once it holds the slot, the same view asks for its next picture.
+    while render_counts(&address)[0] == 0 {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let next = get(
+        &address,
+        &format!("/api/render?camera={lens}&width=32&height=18&samples=1&ticket=page-1-render.2"),
+    )
+    .unwrap();
+    assert_eq!(next.status, 200, "{}", next.text());
+    let first = first.join().unwrap();
+    assert_eq!(first.status, 409, "{}", first.text());
+    assert_eq!(
+        serde_json::from_slice::<serde_json::Value>(&first.body).unwrap()["error"],
+        "ticket: superseded by a newer render with the same ticket"
+    );
+    // Running, waiting, rendered, superseded, busy.
+    assert_eq!(render_counts(&address), [0, 0, 1, 1, 0]);
+
+    // Another ticket does not stop it: two views of one page, or two pages.
+    let other = get(
+        &address,
+        "/api/render?width=32&height=18&samples=1&ticket=page-2-render.7",
+    )
+    .unwrap();
+    assert_eq!(other.status, 200);
+    assert_eq!(render_counts(&address), [0, 0, 2, 1, 0]);
+    for bad in ["a%20b.1", "page", "page.x", ".1"] {
+        let reply = get(&address, &format!("/api/render?ticket={bad}")).unwrap();
+        assert_eq!(reply.status, 400);
+        let error = serde_json::from_slice::<serde_json::Value>(&reply.body).unwrap();
+        assert!(
+            error["error"]
+                .as_str()
+                .unwrap()
+                .starts_with("ticket: expected NAME.TURN"),
+            "{bad}: {error}"
+        );
+    }
+    stopper.stop();
+    running.join().unwrap();
 }
 
 #[test]
@@ -695,7 +796,7 @@ fn bad_requests_are_refused_with_the_command_lines_words() {
         "/api/render?zoom=2",
         400,
         "unknown parameter `zoom`: this endpoint takes `camera`, `width`, `height`, `samples`, \
-         `shading` or `mistakes`",
+         `shading`, `mistakes` or `ticket`",
     );
     check(
         "/api/rays?row=0&col=0&mistakes=u-sign,left",
