@@ -27,13 +27,17 @@ use viewray_scene::Scene;
 const PIXEL_MOVES: [f64; 4] = [2.0, 5.0, 12.0, 30.0];
 
 /// The smallest move of an eye that is named, in pixels.
-const SMALLEST_MOVE: f64 = 2.0;
+const SMALLEST_MOVE: f64 = 4.0;
 
 /// The first step of the descent, in pixels along each of its axes.
 const FIRST_STEP: f64 = 4.0;
 
 /// The descent stops when its pixel steps are below this.
 const FINEST_STEP: f64 = 0.2;
+
+/// The agreement below which the lowest point of the distance is no moved eye's picture:
+/// the agreement is not searched near it.
+const HOPELESS: f64 = 0.7;
 
 /// How many of the best starts the distance is descended from.
 const DESCENTS: usize = 2;
@@ -68,6 +72,21 @@ pub(crate) struct EyeSearch {
     /// The size of one pixel's move, in scene units, for an eye moved to the side: along
     /// u and along v; and forward.
     pixel: [f64; 3],
+}
+
+/// A picture the search explains: its edges and their judgement by the right camera's
+/// and the catalogue's maps, and its move in pixels (x right, y down) as the image
+/// judgement measured it, when it did.
+#[derive(Clone, Copy)]
+pub(crate) struct Seen<'a> {
+    /// The right camera's and the catalogue's maps.
+    pub(crate) candidates: &'a CameraCandidates,
+    /// The picture's edges.
+    pub(crate) edges: &'a PictureEdges,
+    /// Their judgement by `candidates`.
+    pub(crate) judged: &'a GeometryJudgement,
+    /// The picture's measured move.
+    pub(crate) measured: Option<(f64, f64)>,
 }
 
 /// A move the search tries, in pixels (see the module's docs): the eye's right, up and
@@ -105,17 +124,15 @@ impl EyeSearch {
         }
     }
 
-    /// The moved eye whose map explains `edges` clearly better than the right camera
-    /// (`judged` is the candidates' judgement of them), if one does. `measured` is the
-    /// picture's move in pixels (x right, y down) as the image judgement measured it.
-    pub(crate) fn search(
-        &self,
-        scene: &Scene,
-        candidates: &CameraCandidates,
-        edges: &PictureEdges,
-        judged: &GeometryJudgement,
-        measured: Option<(f64, f64)>,
-    ) -> Option<MovedEye> {
+    /// The moved eye whose map explains the `seen` picture clearly better than the right
+    /// camera, if one does.
+    pub(crate) fn search(&self, scene: &Scene, seen: &Seen<'_>) -> Option<MovedEye> {
+        let Seen {
+            candidates,
+            edges,
+            judged,
+            measured,
+        } = *seen;
         let camera = scene.camera();
         let map = |step: Move| -> Option<LabelMap> {
             let (moved, _) = self.moved_camera(camera, step)?;
@@ -163,8 +180,14 @@ impl EyeSearch {
         };
         let (mut best, mut best_cost) = ([0.0; 5], f64::INFINITY);
         for &(start_cost, start) in scored.iter().take(DESCENTS) {
-            let (end, end_cost) =
-                descend(start, start_cost, FIRST_STEP, axes, DESCENT_BUDGET, &cost);
+            let (end, end_cost) = descend(
+                start,
+                start_cost,
+                (FIRST_STEP, FINEST_STEP),
+                axes,
+                DESCENT_BUDGET,
+                &cost,
+            );
             if end_cost < best_cost {
                 (best, best_cost) = (end, end_cost);
             }
@@ -183,6 +206,10 @@ impl EyeSearch {
             (0, 3)
         };
         let mut grid = (best, disagreement(best));
+        // Far from any eye's picture, the agreement is not looked at further.
+        if -grid.1 < HOPELESS {
+            return None;
+        }
         for i in -4_i32..=4 {
             for j in -3_i32..=3 {
                 let mut next = best;
@@ -197,7 +224,7 @@ impl EyeSearch {
         let (best, _) = descend(
             grid.0,
             grid.1,
-            POLISH_STEP,
+            (POLISH_STEP, FINEST_STEP),
             axes,
             POLISH_BUDGET,
             &disagreement,
@@ -254,19 +281,19 @@ impl EyeSearch {
 
 /// The move near `start` (whose cost is `start_cost`) where `cost` is lowest, found by
 /// stepping along each of `axes` each way, taking the best step, and halving the step when
-/// none is better, from `step` until it is below [`FINEST_STEP`] or `budget` moves are
+/// none is better, from `steps.0` until it is below `steps.1` or `budget` moves are
 /// tried; with its cost.
 fn descend(
     start: Move,
     start_cost: f64,
-    mut step: f64,
+    (mut step, finest): (f64, f64),
     axes: &[usize],
     budget: usize,
     cost: &dyn Fn(Move) -> f64,
 ) -> (Move, f64) {
     let (mut best, mut best_cost) = (start, start_cost);
     let mut tried = 0;
-    while step >= FINEST_STEP && tried < budget {
+    while step >= finest && tried < budget {
         let mut moved = None;
         for &axis in axes {
             for sign in [1.0, -1.0] {
@@ -394,6 +421,39 @@ mod tests {
                 score: 1.0,
             },
         }
+    }
+
+    #[test]
+    fn the_descent_finds_the_bottom_of_a_bowl_within_its_finest_step() {
+        let bottom = [7.3, -2.6, 0.0, 1.1, 0.4];
+        let bowl = |m: Move| -> f64 { m.iter().zip(bottom).map(|(a, b)| (a - b).powi(2)).sum() };
+        let start = [0.0; 5];
+        let (found, cost) = descend(
+            start,
+            bowl(start),
+            (4.0, FINEST_STEP),
+            &[0, 1, 3, 4],
+            1000,
+            &bowl,
+        );
+        for axis in [0, 1, 3, 4] {
+            assert!(
+                (found[axis] - bottom[axis]).abs() <= FINEST_STEP,
+                "{found:?}"
+            );
+        }
+        assert_eq!(found[2], 0.0, "an axis not given is not moved");
+        assert!(cost < bowl(start));
+        // The budget stops it early, having moved downhill.
+        let (early, _) = descend(
+            start,
+            bowl(start),
+            (4.0, FINEST_STEP),
+            &[0, 1, 3, 4],
+            8,
+            &bowl,
+        );
+        assert!(bowl(early) < bowl(start) && bowl(early) > cost, "{early:?}");
     }
 
     #[test]

@@ -10,7 +10,7 @@ use viewray_compare::{
 };
 use viewray_scene::Scene;
 
-use crate::eye::{self, EyeSearch};
+use crate::eye::{self, EyeSearch, Seen};
 use crate::picture::{CameraVerdict, PictureJudge};
 
 /// How far from every boundary (beyond the pixels on and next to it) a pixel must be to
@@ -126,9 +126,9 @@ impl CameraJudge for SceneJudge {
         match verdict {
             CameraVerdict::Right { agreement } => CameraFinding::Right { agreement },
             CameraVerdict::Mistaken { explanation, right } => {
-                // A moved eye that explains the picture better than the best entry is
-                // what the student did. As well as it is not enough: a picture that
-                // both explain perfectly (a horizon alone, looking backwards) is the
+                // A moved eye that explains the picture clearly better than the best
+                // entry is what the student did. As well as it is not enough: a picture
+                // that both explain perfectly (a horizon alone, looking backwards) is the
                 // entry's, which the lecture names.
                 let entry = match &judged.verdict {
                     GeometryVerdict::Candidate(group) => group
@@ -141,8 +141,15 @@ impl CameraJudge for SceneJudge {
                 // room to do better: the search is not run.
                 let moved = (entry + CANDIDATE_MARGIN < 1.0)
                     .then(|| {
-                        self.eye
-                            .search(&self.scene, candidates, &edges, &judged, None)
+                        self.eye.search(
+                            &self.scene,
+                            &Seen {
+                                candidates,
+                                edges: &edges,
+                                judged: &judged,
+                                measured: None,
+                            },
+                        )
                     })
                     .flatten();
                 match moved {
@@ -167,10 +174,13 @@ impl CameraJudge for SceneJudge {
             CameraVerdict::Unexplained { right, .. } => {
                 let measured = measure();
                 let shift = measured.map(|m| m.shift);
-                match self
-                    .eye
-                    .search(&self.scene, candidates, &edges, &judged, shift)
-                {
+                let seen = Seen {
+                    candidates,
+                    edges: &edges,
+                    judged: &judged,
+                    measured: shift,
+                };
+                match self.eye.search(&self.scene, &seen) {
                     Some(moved) => eye_moved(moved, right),
                     // A lens's picture blurred unlike the reference (more samples, or
                     // fewer) is explained by no sharp map: that convicts no camera.
