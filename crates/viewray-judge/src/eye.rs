@@ -2,18 +2,18 @@
 //! scene is labelled from moved eyes (the view kept, or turned to keep looking at a point
 //! ahead, as a `look_at` camera whose eye was typed wrong turns) and the eye whose map
 //! explains the picture is named, never guessed: only a map that explains the picture
-//! clearly better than the right camera's is.
+//! clearly better than the right camera's is, and only for a move of a few pixels or more.
 //!
 //! The agreement of a map with a picture is a needle (high within about a pixel of the
-//! right move, as low a few pixels off as far away), so the search descends the chamfer
-//! distance between the map's boundaries and the picture's edges
-//! ([`PictureEdges::distance`]), which falls steadily as they approach, and judges only
-//! the eye it ends at by the agreement. A move is measured in the image's pixels: an eye
-//! moved by `D vw / (d W)` to the side moves a point at depth `D` by one pixel (`vw / W`
-//! for a parallel camera), one moved forward by `2 D / W` grows the picture by about a
-//! pixel at its edges, `D` the median depth of what the right camera sees; the turn is
-//! the share of the move the view follows, 1 when it keeps looking at the point `D`
-//! ahead.
+//! right move, as low a few pixels off as far away), so the search first descends the
+//! chamfer distance between the map's boundaries and the picture's edges
+//! ([`PictureEdges::distance`]), which falls steadily as they approach, from the best of
+//! a few starts; near its lowest point (when the agreement there says some eye's picture
+//! could be it) the agreement is looked at on a grid and descended. A move is measured in
+//! the image's pixels: an eye moved by `D vw / (d W)` to the side moves a point at depth
+//! `D` by one pixel (`vw / W` for a parallel camera), one moved forward by `2 D / W` grows
+//! the picture by about a pixel at its edges, `D` the median depth of what the right
+//! camera sees; where the point `D` ahead shows is the view's turn (see [`Move`]).
 
 use glam::DVec3;
 use viewray_camera::{Camera, Frame, Projection};
