@@ -62,6 +62,7 @@
 
 mod appearance;
 mod camera;
+mod chamfer;
 mod comparison;
 mod diagnosis;
 mod estimate;

@@ -13,10 +13,11 @@
 //!
 //! - [`SceneJudge`]: the same, as the [`viewray_compare::CameraJudge`] that `viewray
 //!   compare` and `viewray grade` hand to viewray-compare, one per scene: its answers are
-//!   plain data in the catalogue's words ([`catalogue_entry`]), and when nothing of the
-//!   catalogue explains a picture it looks for a moved eye, labelling the scene from
+//!   plain data in the catalogue's words ([`catalogue_entry`]), and when the right
+//!   camera does not explain a picture it looks for a moved eye, labelling the scene from
 //!   there (module `eye`) so that a moved eye is named only when its picture is the
-//!   student's.
+//!   student's (over an entry of the catalogue, only when it explains the picture
+//!   clearly better).
 //!
 //! Where to start reading: [`PictureJudge::new`] and [`PictureJudge::judge`], then
 //! [`SceneJudge`].

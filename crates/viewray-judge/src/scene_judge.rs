@@ -5,11 +5,12 @@
 
 use viewray_camera::{Mistake, Projection};
 use viewray_compare::{
-    CameraFinding, CameraJudge, CameraMistake, CatalogueEntry, PictureEdges, RgbaImage,
+    CANDIDATE_MARGIN, CameraFinding, CameraJudge, CameraMistake, CatalogueEntry, GeometryVerdict,
+    PictureEdges, RgbaImage,
 };
 use viewray_scene::Scene;
 
-use crate::eye::{self, EyeSearch};
+use crate::eye::{self, EyeSearch, Seen};
 use crate::picture::{CameraVerdict, PictureJudge};
 
 /// How far from every boundary (beyond the pixels on and next to it) a pixel must be to
@@ -115,34 +116,72 @@ impl CameraJudge for SceneJudge {
         if !self.judges && !verdict.passed() {
             return CameraFinding::Unjudged;
         }
+        let right_eye = self.scene.camera().frame().e();
+        let eye_moved = |moved: eye::MovedEye, right: f64| CameraFinding::EyeMoved {
+            offset: moved.offset,
+            sentence: eye::sentence(&moved, right_eye),
+            agreement: moved.fit.agreement,
+            right,
+        };
         match verdict {
             CameraVerdict::Right { agreement } => CameraFinding::Right { agreement },
-            CameraVerdict::Mistaken { explanation, right } => CameraFinding::Mistaken {
-                entries: explanation
-                    .mistakes
-                    .iter()
-                    .copied()
-                    .map(catalogue_entry)
-                    .collect(),
-                agreement: explanation.agreement,
-                right,
-            },
+            CameraVerdict::Mistaken { explanation, right } => {
+                // A moved eye that explains the picture clearly better than the best
+                // entry is what the student did. As well as it is not enough: a picture
+                // that both explain perfectly (a horizon alone, looking backwards) is the
+                // entry's, which the lecture names.
+                let entry = match &judged.verdict {
+                    GeometryVerdict::Candidate(group) => group
+                        .iter()
+                        .map(|&k| judged.candidates[k].score)
+                        .fold(0.0, f64::max),
+                    _ => 0.0,
+                };
+                // An entry within the margin of a perfect score leaves a moved eye no
+                // room to do better: the search is not run.
+                let moved = (entry + CANDIDATE_MARGIN < 1.0)
+                    .then(|| {
+                        self.eye.search(
+                            &self.scene,
+                            &Seen {
+                                candidates,
+                                edges: &edges,
+                                judged: &judged,
+                                measured: None,
+                            },
+                        )
+                    })
+                    .flatten();
+                match moved {
+                    Some(moved) if moved.fit.score > entry + CANDIDATE_MARGIN => {
+                        eye_moved(moved, right)
+                    }
+                    _ => CameraFinding::Mistaken {
+                        entries: explanation
+                            .mistakes
+                            .iter()
+                            .copied()
+                            .map(catalogue_entry)
+                            .collect(),
+                        agreement: explanation.agreement,
+                        right,
+                    },
+                }
+            }
             CameraVerdict::WrongSize { found, expected } => {
                 CameraFinding::WrongSize { found, expected }
             }
             CameraVerdict::Unexplained { right, .. } => {
                 let measured = measure();
                 let shift = measured.map(|m| m.shift);
-                match self
-                    .eye
-                    .search(&self.scene, candidates, &edges, &judged, shift)
-                {
-                    Some(moved) => CameraFinding::EyeMoved {
-                        offset: moved.offset,
-                        sentence: eye::sentence(&moved, self.scene.camera().frame().e()),
-                        agreement: moved.fit.agreement,
-                        right,
-                    },
+                let seen = Seen {
+                    candidates,
+                    edges: &edges,
+                    judged: &judged,
+                    measured: shift,
+                };
+                match self.eye.search(&self.scene, &seen) {
+                    Some(moved) => eye_moved(moved, right),
                     // A lens's picture blurred unlike the reference (more samples, or
                     // fewer) is explained by no sharp map: that convicts no camera.
                     None if self.defocus => CameraFinding::Unjudged,

@@ -1,7 +1,8 @@
 //! What grading a class costs: `viewray grade` on 200 students x 10 images of 320 x 240,
 //! rendered by viewray from fixture scenes at 1, 2 and 4 samples per pixel against 16-sample
 //! references, with a few planted camera mistakes (from viewray-compare's test matrix), a
-//! missing image and a file that is not a PNG. The target: under 30 s on 2 cores.
+//! missing image and a file that is not a PNG, judged by their cameras with the scenes
+//! (`--scene`). The target: under 30 s on 2 cores.
 //!
 //! `cargo bench -p viewray --bench grade` renders the class into the target folder once
 //! (about 50 renders; the students' files are copies of them), then prints one line for
@@ -92,16 +93,42 @@ impl Assignment {
     }
 }
 
-/// Writes the class into `root` (reference/, submissions/student_NNN/) unless it is there.
+/// Writes the class into `root` (reference/, scenes/, submissions/student_NNN/) unless it
+/// is there.
 fn class(root: &Path) -> (PathBuf, PathBuf) {
     let (reference, submissions) = (root.join("reference"), root.join("submissions"));
-    if root.join("complete").is_file() {
+    if root.join("complete").is_file() && root.join("scenes").is_dir() {
         return (reference, submissions);
     }
     let _ = std::fs::remove_dir_all(root);
     let renders = root.join("renders");
     std::fs::create_dir_all(&reference).unwrap();
     std::fs::create_dir_all(&renders).unwrap();
+    // The scenes, for the camera judgement; the fixtures' meshes where their scenes find
+    // them (`../meshes/`).
+    let scenes = root.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    let meshes = root.join("meshes");
+    std::fs::create_dir_all(&meshes).unwrap();
+    for entry in std::fs::read_dir(planted::fixtures().join("meshes")).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(entry.path(), meshes.join(entry.file_name())).unwrap();
+    }
+    for assignment in ASSIGNMENT {
+        let name = assignment.name();
+        let text = match assignment {
+            Assignment::Planted(base) => {
+                Case::new(base, SIZE, planted::REFERENCE_SAMPLES, Mistake::None).reference_scene()
+            }
+            Assignment::Fixture(name) => std::fs::read_to_string(
+                planted::fixtures()
+                    .join("scenes")
+                    .join(format!("{name}.ron")),
+            )
+            .unwrap(),
+        };
+        std::fs::write(scenes.join(format!("{name}.ron")), text).unwrap();
+    }
     for (index, assignment) in ASSIGNMENT.iter().enumerate() {
         let name = assignment.name();
         assignment
@@ -168,13 +195,16 @@ fn children_cpu_time() -> Option<f64> {
     Some(ticks / 100.0)
 }
 
-/// Runs `viewray grade REFERENCE SUBMISSIONS --csv ...`; exit code 1 (the planted
-/// mistakes fail).
+/// Runs `viewray grade REFERENCE SUBMISSIONS --scene SCENES --csv ...` (the camera
+/// judgement, with the scenes); exit code 1 (the planted mistakes fail).
 fn grade(reference: &Path, submissions: &Path, csv: &Path) {
+    let scenes = reference.with_file_name("scenes");
     let output = Command::new(BINARY)
         .arg("grade")
         .arg(reference)
         .arg(submissions)
+        .arg("--scene")
+        .arg(scenes)
         .arg("--csv")
         .arg(csv)
         .output()
