@@ -1,24 +1,35 @@
-//! The HTTP side: tiny_http's listener, a fixed pool of workers that answer requests,
-//! the render slots that bound how many renders run at once, and the tickets through
-//! which a newer render stops the one it supersedes.
+//! The HTTP side: hyper's HTTP/1.1 connections on a small tokio runtime, requests
+//! answered on a bounded pool of blocking threads (the renders and every other answer
+//! are plain synchronous code), the render slots that bound how many renders run at
+//! once, and the tickets through which a newer render stops the one it supersedes.
+//!
+//! A browser keeps its connections open between requests and opens several at once; an
+//! idle connection costs no thread here, so none waits for another to close.
 //!
 //! A page's view asks for one picture after another as a slider moves, and abandons
-//! each as the next is asked for; tiny_http cannot tell the server that the connection
-//! of an abandoned one closed. So each render may carry a `ticket`, `NAME.TURN` (the
+//! each as the next is asked for; the server is not told that the connection of an
+//! abandoned one closed while it renders. So each render may carry a `ticket`, `NAME.TURN` (the
 //! page's name for that view and the render's turn in it): a render with a ticket stops
 //! the renders of its name with an earlier turn, running (at their next tile) or waiting
 //! for a slot (at once), which are answered 409; one that arrives after a later turn of
 //! its name (requests overtake each other on their way in) is answered 409 at once.
 
 use std::collections::HashMap;
+use std::convert::Infallible;
 use std::io;
 use std::net::{SocketAddr, ToSocketAddrs};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
-use std::thread;
 use std::time::{Duration, Instant};
 
-use tiny_http::{Header, Method, Request, Response};
+use http_body_util::Full;
+use hyper::body::{Bytes, Incoming};
+use hyper::header::{HeaderName, HeaderValue};
+use hyper::service::service_fn;
+use hyper::{Method, Request, Response, StatusCode};
+use hyper_util::rt::TokioIo;
+use hyper_util::server::graceful::GracefulShutdown;
+use tokio::sync::Notify;
 
 use crate::api::{self, RenderRequest, Reply, Route};
 use crate::params::Ticket;
@@ -30,7 +41,8 @@ use crate::{Limits, ServedScene};
 pub struct ServeOptions {
     /// How much one request may ask for.
     pub limits: Limits,
-    /// How many requests are answered at once (each by a thread of its own).
+    /// How many requests are answered at once (each by a thread of its own; more wait
+    /// their turn, their connections open).
     pub workers: usize,
     /// How many renders run at once (each uses every core through the render's own
     /// threads, so one or two keep the machine busy).
@@ -57,7 +69,7 @@ impl Default for ServeOptions {
 /// A running HTTP server for one [`ServedScene`], bound to its address; [`Server::run`]
 /// answers requests until a [`Stopper`] stops it.
 pub struct Server {
-    http: Arc<tiny_http::Server>,
+    listener: std::net::TcpListener,
     shared: Arc<Shared>,
     address: SocketAddr,
 }
@@ -69,7 +81,8 @@ struct Shared {
     slots: Slots,
     tickets: Tickets,
     counts: Counts,
-    stopping: AtomicBool,
+    /// Told when the server is to stop (a permit kept if nobody waits yet).
+    stop: Notify,
 }
 
 /// How many renders ended each way since the server started (`/api/status`).
@@ -87,18 +100,13 @@ struct Counts {
 /// answered are finished, then [`Server::run`] returns.
 #[derive(Clone)]
 pub struct Stopper {
-    http: Arc<tiny_http::Server>,
     shared: Arc<Shared>,
 }
 
 impl Stopper {
     /// Asks the server to stop.
     pub fn stop(&self) {
-        self.shared.stopping.store(true, Ordering::SeqCst);
-        // Each unblock wakes one worker waiting for a request.
-        for _ in 0..self.shared.options.workers {
-            self.http.unblock();
-        }
+        self.shared.stop.notify_one();
     }
 }
 
@@ -115,25 +123,23 @@ impl Server {
         let address = address.to_socket_addrs()?.next().ok_or_else(|| {
             io::Error::new(io::ErrorKind::InvalidInput, "the address names no host")
         })?;
-        let http = tiny_http::Server::http(address).map_err(io::Error::other)?;
-        let address = http
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| io::Error::other("the server is not on an IP address"))?;
+        let listener = std::net::TcpListener::bind(address)?;
+        listener.set_nonblocking(true)?;
+        let address = listener.local_addr()?;
         let options = ServeOptions {
             workers: options.workers.max(1),
             render_slots: options.render_slots.max(1),
             ..options
         };
         Ok(Server {
-            http: Arc::new(http),
+            listener,
             shared: Arc::new(Shared {
                 served,
                 slots: Slots::new(options.render_slots),
                 tickets: Tickets::default(),
                 counts: Counts::default(),
                 options,
-                stopping: AtomicBool::new(false),
+                stop: Notify::new(),
             }),
             address,
         })
@@ -152,46 +158,74 @@ impl Server {
     /// A handle that stops [`Server::run`].
     pub fn stopper(&self) -> Stopper {
         Stopper {
-            http: Arc::clone(&self.http),
             shared: Arc::clone(&self.shared),
         }
     }
 
-    /// Answers requests with [`ServeOptions::workers`] threads until stopped; returns
-    /// when every worker has finished its request. The listening socket closes when the
-    /// server is dropped.
-    pub fn run(self) {
-        let workers: Vec<_> = (0..self.shared.options.workers)
-            .map(|k| {
-                let http = Arc::clone(&self.http);
-                let shared = Arc::clone(&self.shared);
-                thread::Builder::new()
-                    .name(format!("viewray-serve-{k}"))
-                    .spawn(move || work(&http, &shared))
-            })
-            .collect();
-        for worker in workers.into_iter().flatten() {
-            let _ = worker.join();
-        }
+    /// Answers requests, [`ServeOptions::workers`] at once, until stopped; then stops
+    /// listening, lets the requests being answered finish, closes the idle connections
+    /// and returns.
+    ///
+    /// # Errors
+    /// The runtime or the listener could not be set up (no threads, no sockets left).
+    pub fn run(self) -> io::Result<()> {
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .max_blocking_threads(self.shared.options.workers)
+            .thread_name("viewray-serve")
+            .enable_io()
+            .build()?;
+        runtime.block_on(serve(self.listener, self.shared))
     }
 }
 
-/// A worker: takes requests and answers them until the server stops.
-fn work(http: &tiny_http::Server, shared: &Shared) {
-    while !shared.stopping.load(Ordering::SeqCst) {
-        match http.recv() {
-            Ok(request) => answer(shared, request),
-            // Unblocked by a stop, or the listener failed: either way, stop.
-            Err(_) => break,
+/// Accepts connections until told to stop, each served by hyper on the runtime.
+async fn serve(listener: std::net::TcpListener, shared: Arc<Shared>) -> io::Result<()> {
+    let listener = tokio::net::TcpListener::from_std(listener)?;
+    let graceful = GracefulShutdown::new();
+    loop {
+        tokio::select! {
+            accepted = listener.accept() => {
+                // A connection that failed before it was accepted is the client's loss.
+                let Ok((stream, _)) = accepted else { continue };
+                let shared = Arc::clone(&shared);
+                let service = service_fn(move |request| {
+                    let shared = Arc::clone(&shared);
+                    async move { Ok::<_, Infallible>(respond(shared, request).await) }
+                });
+                let connection = hyper::server::conn::http1::Builder::new()
+                    .serve_connection(TokioIo::new(stream), service);
+                let connection = graceful.watch(connection);
+                tokio::spawn(async move {
+                    // A client that went away cannot be told anything.
+                    let _ = connection.await;
+                });
+            }
+            () = shared.stop.notified() => break,
         }
     }
+    drop(listener);
+    graceful.shutdown().await;
+    Ok(())
 }
 
-/// Answers one request.
-fn answer(shared: &Shared, request: Request) {
-    let reply = if matches!(request.method(), Method::Get | Method::Head) {
-        let url = request.url();
-        let (path, query) = url.split_once('?').unwrap_or((url, ""));
+/// Answers one request on a blocking thread (renders take a while; the rest is quick).
+async fn respond(shared: Arc<Shared>, request: Request<Incoming>) -> Response<Full<Bytes>> {
+    let method = request.method().clone();
+    let target = request
+        .uri()
+        .path_and_query()
+        .map_or_else(|| "/".to_owned(), |target| target.as_str().to_owned());
+    let reply = tokio::task::spawn_blocking(move || answer(&shared, &method, &target))
+        .await
+        .unwrap_or_else(|_| Reply::error(500, "the server failed answering this request"));
+    response(reply)
+}
+
+/// Answers one request: `method` on `target` (a path with its query).
+fn answer(shared: &Shared, method: &Method, target: &str) -> Reply {
+    if *method == Method::GET || *method == Method::HEAD {
+        let (path, query) = target.split_once('?').unwrap_or((target, ""));
         if path == "/api/status" {
             status(shared)
         } else {
@@ -211,30 +245,35 @@ fn answer(shared: &Shared, request: Request) {
     } else {
         Reply::error(
             405,
-            &format!(
-                "method {} is not allowed: the playground answers GET",
-                request.method()
-            ),
+            &format!("method {method} is not allowed: the playground answers GET"),
         )
+    }
+}
+
+/// The HTTP response for `reply`: a Content-Length rather than chunks, whatever the
+/// size (bodies are in memory); hyper sends no body to a HEAD request.
+fn response(reply: Reply) -> Response<Full<Bytes>> {
+    let mut response = Response::new(Full::new(Bytes::from(reply.body)));
+    *response.status_mut() =
+        StatusCode::from_u16(reply.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+    let headers = response.headers_mut();
+    let mut add = |name: &'static str, value: &str| {
+        if let Ok(value) = HeaderValue::from_str(value) {
+            headers.insert(HeaderName::from_static(name), value);
+        }
     };
-    // A Content-Length rather than chunks, whatever the size: bodies are in memory.
-    // (tiny_http sends no body to a HEAD request.)
-    let mut response = Response::from_data(reply.body)
-        .with_chunked_threshold(usize::MAX)
-        .with_status_code(reply.status)
-        .with_header(header("Content-Type", reply.content_type))
-        .with_header(header("Cache-Control", "no-store"))
-        .with_header(header("X-Content-Type-Options", "nosniff"));
+    add("content-type", reply.content_type);
+    add("cache-control", "no-store");
+    add("x-content-type-options", "nosniff");
     if let Some(timing) = &reply.timing {
-        response = response.with_header(header("Server-Timing", timing));
+        add("server-timing", timing);
     }
     match reply.status {
-        405 => response = response.with_header(header("Allow", "GET, HEAD")),
-        503 => response = response.with_header(header("Retry-After", "1")),
+        405 => add("allow", "GET, HEAD"),
+        503 => add("retry-after", "1"),
         _ => {}
     }
-    // A client that went away cannot be told anything.
-    let _ = request.respond(response);
+    response
 }
 
 /// Renders `render` in a free slot: first stops the render its ticket supersedes, then
@@ -293,12 +332,6 @@ fn busy() -> Reply {
         503,
         "the server is busy rendering for others: try again in a moment",
     )
-}
-
-/// A header from ASCII name and value (all of ours are).
-fn header(name: &str, value: &str) -> Header {
-    Header::from_bytes(name.as_bytes(), value.as_bytes())
-        .unwrap_or_else(|()| Header::from_bytes(&b"X-Invalid"[..], &b"1"[..]).expect("ASCII"))
 }
 
 /// The renders with a ticket, running or waiting: for each ticket's name, the turn of
@@ -442,6 +475,8 @@ impl Slots {
 
 #[cfg(test)]
 mod tests {
+    use std::thread;
+
     use super::*;
 
     #[test]

@@ -9,7 +9,8 @@
 //!   file's `camera:` value, which is parsed alone ([`viewray_scene::parse_camera`]) and
 //!   rendered through [`viewray_render::render_view`], so a new camera costs a render
 //!   and nothing else.
-//! - [`Server`] (`http`: tiny_http, a fixed pool of workers, render slots), the
+//! - [`Server`] (`http`: hyper on a small tokio runtime, requests answered on a
+//!   bounded pool of blocking threads, render slots), the
 //!   endpoints (`api`: each a function from path and query to status and body), the
 //!   query's parameters (`params`: each checked before anything is allocated) and the
 //!   page (`page`: HTML, CSS and JavaScript by hand, compiled in).

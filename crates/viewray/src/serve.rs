@@ -68,7 +68,7 @@ pub(crate) fn serve(args: &ServeArgs) -> Result<()> {
     if args.open {
         open_in_browser(&url);
     }
-    server.run();
+    server.run().context("the server stopped")?;
     if interactive {
         eprintln!("stopped");
     }
