@@ -349,11 +349,15 @@ fn check_hits(
             })
             .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
         let share = |n: usize| 100.0 * n as f64 / rays.len() as f64;
+        let embree_agrees = if cfg!(feature = "embree") {
+            format!(", Embree on {embree_agrees} ({:.4}%)", share(embree_agrees))
+        } else {
+            String::new()
+        };
         println!(
-            "{name} rays: {} rays, {hits} hits; obvhs agrees on {obvhs_agrees} ({:.4}%), Embree on {embree_agrees} ({:.4}%)",
+            "{name} rays: {} rays, {hits} hits; obvhs agrees on {obvhs_agrees} ({:.4}%){embree_agrees}",
             rays.len(),
             share(obvhs_agrees),
-            share(embree_agrees)
         );
     }
 }
