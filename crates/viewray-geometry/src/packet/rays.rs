@@ -17,9 +17,9 @@ use crate::bvh::{BoxRay, slab_numbers};
 /// visit many nodes none of its rays needs, and its rays are traced one by one (or side
 /// by side, see [`Bvh::closest_walks`](crate::Bvh::closest_walks)).
 ///
-/// A thin lens's viewing rays spread beyond 0.05 (a block's rays each start at their own
-/// lens point), and so do a mirror sphere's reflections and a nearby light's shadow rays;
-/// traced as packets up to 0.2, the lens demos' render took 9% fewer instructions and the
+/// A thin lens's block of viewing rays spreads by roughly the aperture over the focus
+/// distance (a block's rays each start at their own lens point), beyond 0.05 for the lens
+/// demos; traced as packets up to 0.2, their render took 9% fewer instructions and the
 /// default scene's 3% (docs/performance.md, "Lit renders"). Random directions spread by
 /// about 2 and stay apart.
 const MAX_DIRECTION_SPREAD: f32 = 0.2;
