@@ -14,6 +14,11 @@
 use glam::Vec3;
 use viewray_geometry::{Mesh, MeshData, Ray};
 
+// The bench's rays: a profile traces the same incoherent rays the bench times.
+#[path = "../benches/bvh/rays.rs"]
+#[allow(dead_code)]
+mod rays;
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let workload = args.next().unwrap_or_else(|| "coherent".to_owned());
@@ -39,7 +44,7 @@ fn main() {
             .filter_map(|r| mesh.closest_triangle(r, 0.0..f32::INFINITY))
             .map(|h| f64::from(h.t))
             .sum(),
-        "incoherent" => incoherent_rays(100_000)
+        "incoherent" => rays::incoherent_rays(100_000)
             .iter()
             .filter_map(|r| mesh.closest_triangle(r, 0.0..f32::INFINITY))
             .map(|h| f64::from(h.t))
@@ -69,25 +74,4 @@ fn primary_rays(size: usize) -> Vec<Ray> {
         }
     }
     rays
-}
-
-/// Rays with origins in `[-1, 1]^3` and directions on the sphere, from a fixed seed.
-fn incoherent_rays(count: usize) -> Vec<Ray> {
-    let mut state = 0x5eed_u64;
-    let mut uniform = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    };
-    (0..count)
-        .map(|_| {
-            let origin = Vec3::new(uniform(), uniform(), uniform()) * 2.0 - 1.0;
-            let z = 2.0 * uniform() - 1.0;
-            let phi = std::f32::consts::TAU * uniform();
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            Ray::new(origin, Vec3::new(r * phi.cos(), r * phi.sin(), z))
-        })
-        .collect()
 }
