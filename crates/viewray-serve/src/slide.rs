@@ -30,6 +30,10 @@ const NUMBER_SIZE: f32 = 26.0;
 
 const INK: Color = Color::from_hex(0x1A1A1A);
 const MUTED: Color = Color::from_hex(0x5C5C5C);
+/// The mistake label over the render: its type size, its margin, its accent.
+const MISTAKE_SIZE: f32 = 22.0;
+const MISTAKE_PADDING: f32 = 14.0;
+const MISTAKE_INK: Color = Color::from_hex(0xB3261E);
 
 /// A slide to make: the render at the slide's size, the camera at the image size the
 /// numbers are for, the chosen pixel, whether to add the top view.
@@ -96,6 +100,11 @@ fn compose(
         rect: Rect::from_xywh(at.x, at.y, size.x, size.y),
         sampling: Sampling::Nearest,
     });
+    push_mistake_label(
+        &mut figure,
+        &request.camera,
+        Rect::from_xywh(at.x, at.y, size.x, size.y),
+    );
     // The side view, and the top view under it.
     let scene = served.scene();
     let camera = &request.camera;
@@ -156,6 +165,98 @@ fn compose(
     figure
 }
 
+/// Over the render's top left corner (`picture`), on a light panel as the page shows
+/// it: each mistake the camera makes (the catalogue's id and summary) and the lecture's
+/// line it breaks, so that a slide of a mistaken camera says which mistake it shows.
+/// Lines wider than the picture are wrapped between words.
+fn push_mistake_label(figure: &mut viewray_draw::Figure, camera: &Camera, picture: Rect) {
+    let lines = mistake_lines(camera);
+    if lines.is_empty() {
+        return;
+    }
+    let left = picture.min.x + MISTAKE_PADDING;
+    let room = picture.width() - 4.0 * MISTAKE_PADDING;
+    let mut baseline = picture.min.y + MISTAKE_PADDING + MISTAKE_SIZE;
+    let mut labels = Vec::new();
+    for (name, fix) in lines {
+        for (text, face, color, gap) in [
+            (name, FontFace::Bold, MISTAKE_INK, 1.3),
+            (fix, FontFace::Regular, INK, 1.6),
+        ] {
+            let wrapped = wrap(&text, room, |line| {
+                Label::new(line, Vec2::ZERO)
+                    .with_size(MISTAKE_SIZE)
+                    .with_face(face)
+            });
+            let count = wrapped.len();
+            for (k, line) in wrapped.into_iter().enumerate() {
+                labels.push(
+                    Label::new(line, Vec2::new(left, baseline))
+                        .with_size(MISTAKE_SIZE)
+                        .with_face(face)
+                        .with_color(color)
+                        .with_anchor(Anchor::Start, Baseline::Alphabetic),
+                );
+                baseline += MISTAKE_SIZE * if k + 1 == count { gap } else { 1.25 };
+            }
+        }
+    }
+    let text = labels
+        .iter()
+        .map(Label::bounds)
+        .reduce(|a, b| a.union(&b))
+        .unwrap_or(Rect::from_xywh(left, picture.min.y, 0.0, 0.0));
+    let (min, max) = (
+        text.min - Vec2::splat(MISTAKE_PADDING),
+        text.max + Vec2::splat(MISTAKE_PADDING),
+    );
+    figure.push(Item::Polygon {
+        points: vec![min, Vec2::new(max.x, min.y), max, Vec2::new(min.x, max.y)],
+        fill: Color::from_hex(0xFFFFFF).with_alpha(0.88),
+        stroke: Some(viewray_draw::Stroke::new(MISTAKE_INK, 2.0)),
+    });
+    for label in labels {
+        figure.push(label);
+    }
+}
+
+/// `text` in lines no wider than `room` as `label` draws them, broken between words (a
+/// word wider than `room` stands alone on its line).
+fn wrap(text: &str, room: f32, label: impl Fn(&str) -> Label) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let longer = if line.is_empty() {
+            word.to_owned()
+        } else {
+            format!("{line} {word}")
+        };
+        if !line.is_empty() && label(&longer).bounds().width() > room {
+            lines.push(std::mem::replace(&mut line, word.to_owned()));
+        } else {
+            line = longer;
+        }
+    }
+    lines.push(line);
+    lines
+}
+
+/// The mistake label's lines: per mistake the camera makes, in the catalogue's order,
+/// "id: summary" and "the lecture: fix".
+pub(crate) fn mistake_lines(camera: &Camera) -> Vec<(String, String)> {
+    camera
+        .mistakes()
+        .iter()
+        .map(|mistake| {
+            let entry = mistake.entry();
+            (
+                format!("{}: {}", entry.id, entry.summary),
+                format!("the lecture: {}", entry.fix),
+            )
+        })
+        .collect()
+}
+
 /// The slide's lines of numbers: the frame (`viewray frame`'s digits) and, for a chosen
 /// pixel, its viewing ray (`viewray rays`').
 pub(crate) fn number_lines(camera: &Camera, pixel: Option<(u32, u32)>) -> Vec<String> {
@@ -211,6 +312,7 @@ fn scalar(value: &Value) -> String {
 mod tests {
     use std::path::Path;
 
+    use viewray_camera::{Mistake, Mistakes};
     use viewray_scene::parse_camera;
 
     use super::*;
@@ -254,6 +356,72 @@ mod tests {
             "{}",
             with_pixel[7]
         );
+    }
+
+    #[test]
+    fn a_mistaken_cameras_slide_names_each_mistake_and_the_lecture_line_it_breaks() {
+        let right = parse_camera(
+            "(eye: (5.2, 1.6, 6.0), view: (-5.2, 0.0, -6.0), projection: Perspective(fov_y: 32.0))",
+            Path::new("camera"),
+            640,
+            360,
+        )
+        .unwrap();
+        assert!(mistake_lines(&right).is_empty());
+        let mistaken = right
+            .with_mistakes(Mistakes::one(Mistake::USign).with(Mistake::PixelCorner))
+            .unwrap();
+        let lines = mistake_lines(&mistaken);
+        assert_eq!(lines.len(), 2);
+        // In the catalogue's order, whatever order they were given in.
+        for ((name, fix), mistake) in lines.iter().zip([Mistake::PixelCorner, Mistake::USign]) {
+            let entry = mistake.entry();
+            assert_eq!(name, &format!("{}: {}", entry.id, entry.summary));
+            assert_eq!(fix, &format!("the lecture: {}", entry.fix));
+        }
+        // And the label is drawn: the slide of the mistaken camera has more items.
+        let items = |camera: &Camera| {
+            let mut figure = viewray_draw::Figure::new(SLIDE.0, SLIDE.1);
+            push_mistake_label(&mut figure, camera, PICTURE);
+            figure.items.len()
+        };
+        assert_eq!(items(&right), 0);
+        assert_eq!(items(&mistaken), 1 + 2 * 2);
+        // Every label fits in a 4:3 image's picture (780 pixels wide), wrapped where
+        // it must be, and a wrapped line is never wider than the room.
+        let narrow = Rect::from_xywh(0.0, 0.0, 780.0, 585.0);
+        let kinds = [
+            "Perspective(fov_y: 32.0)",
+            "Orthographic(height: 5.0)",
+            "Oblique(viewport: (6.0, 4.5), ratio: 0.5, angle: 30.0)",
+        ]
+        .map(|projection| {
+            let text =
+                format!("(eye: (0.0, 1.0, 6.0), view: (0.0, 0.0, -1.0), projection: {projection})");
+            parse_camera(&text, Path::new("camera"), 640, 480).unwrap()
+        });
+        for mistake in Mistake::ALL {
+            let mut figure = viewray_draw::Figure::new(SLIDE.0, SLIDE.1);
+            let camera = kinds
+                .iter()
+                .find_map(|kind| kind.with_mistakes(Mistakes::one(mistake)).ok())
+                .unwrap();
+            push_mistake_label(&mut figure, &camera, narrow);
+            let Some(Item::Polygon { points, .. }) = figure.items.first() else {
+                panic!("no panel for {}", mistake.id());
+            };
+            assert!(
+                points[2].x <= narrow.max.x,
+                "{}: {:?}",
+                mistake.id(),
+                points
+            );
+        }
+        let label = |line: &str| Label::new(line, Vec2::ZERO);
+        let lines = wrap("aaa bbb ccc ddd", 0.0, label);
+        assert_eq!(lines, ["aaa", "bbb", "ccc", "ddd"]);
+        let lines = wrap("aaa bbb", 1e6, label);
+        assert_eq!(lines, ["aaa bbb"]);
     }
 
     #[test]
