@@ -136,6 +136,67 @@ proptest! {
     }
 }
 
+proptest! {
+    /// Every lane `World::surely_clear` clears is one `World::any_hit` answers `false`
+    /// for: rays from inside and far around the objects, toward a point at `t = 1`
+    /// (a point light) and without end (a directional light).
+    #[test]
+    fn rays_surely_clear_meet_nothing(objects in prop::collection::vec(object(), 1..30), rays in prop::collection::vec((vec3(-8.0..8.0), direction()), 4 * 16)) {
+        let world = World::new(objects).unwrap();
+        for four in rays.chunks(4) {
+            let lanes = |f: &dyn Fn(&(Vec3, Vec3)) -> Vec3| {
+                let v: Vec<Vec3> = four.iter().map(f).collect();
+                [0, 1, 2].map(|axis| glam::Vec4::new(v[0][axis], v[1][axis], v[2][axis], v[3][axis]))
+            };
+            let (origin, direction) = (lanes(&|r| r.0), lanes(&|r| r.1));
+            for t_range in [0.0..1.0, 1e-4..f32::INFINITY] {
+                let clear = world.surely_clear(origin, direction, t_range.clone());
+                prop_assert_eq!(clear & !0b1111, 0);
+                for (lane, &(o, d)) in four.iter().enumerate() {
+                    if clear & (1 << lane) != 0 {
+                        prop_assert!(!world.any_hit(&Ray::new(o, d), t_range.clone()), "lane {} of {:?}", lane, four);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `World::surely_clear` clears rays away from the objects and no ray toward one: two
+/// spheres over a ground plane, rays up from far off, toward a sphere, down to the
+/// ground. With one bounded object (met without a box test) it clears nothing; with
+/// planes only, whatever misses the planes.
+#[test]
+fn rays_far_from_every_object_are_surely_clear() {
+    let ground = Object::Plane(Plane::new(Vec3::ZERO, Vec3::Y));
+    let spheres = [
+        Object::Sphere(Sphere::new(Vec3::new(0.0, 1.0, 0.0), 1.0)),
+        Object::Sphere(Sphere::new(Vec3::new(3.0, 1.0, 0.0), 0.5)),
+    ];
+    let rays = [
+        // Up from far off: clear.
+        (Vec3::new(20.0, 0.1, 0.0), Vec3::Y),
+        // Toward the first sphere: not clear.
+        (Vec3::new(-5.0, 1.0, 0.0), Vec3::X),
+        // Down to the ground, far off: not clear (the plane).
+        (Vec3::new(20.0, 5.0, 0.0), Vec3::NEG_Y),
+        // Past the objects on the side, toward +z: clear.
+        (Vec3::new(-4.0, 1.0, 3.0), Vec3::Z),
+    ];
+    let origin = [0, 1, 2].map(|axis| glam::Vec4::from_array(rays.map(|(o, _)| o[axis])));
+    let direction = [0, 1, 2].map(|axis| glam::Vec4::from_array(rays.map(|(_, d)| d[axis])));
+    let all = 0.0..f32::INFINITY;
+    let world =
+        World::new([ground.clone(), spheres[0].clone(), spheres[1].clone()].to_vec()).unwrap();
+    assert_eq!(world.surely_clear(origin, direction, all.clone()), 0b1001);
+    // Short of the ground, the third ray is clear too.
+    assert_eq!(world.surely_clear(origin, direction, 0.0..4.0), 0b1101);
+    let single = World::new(vec![ground.clone(), spheres[0].clone()]).unwrap();
+    assert_eq!(single.surely_clear(origin, direction, all.clone()), 0);
+    let planes = World::new(vec![ground]).unwrap();
+    assert_eq!(planes.surely_clear(origin, direction, all), 0b1011);
+}
+
 /// Packets of up to 130 rays (so that some span several packets of 64) of the kinds a
 /// camera makes and of the kinds that stress packets:
 /// - perspective: one origin, directions within a small cone, some exactly along an

@@ -152,15 +152,25 @@ impl Shader<'_> {
                 };
                 let facing = !lanes::bits(behind) & group.lanes;
                 *toward = (facing, l, distance_squared);
-                if facing != 0 {
+                *count += u64::from(facing.count_ones());
+                // Rays that surely reach the light (outside the box around every
+                // object, past every plane) need no trace: the world would answer
+                // "not blocked". Each ray is traced when a sample is followed, so that
+                // its trace shows it.
+                let traced = if R::ACTIVE || facing == 0 {
+                    facing
+                } else {
+                    let (o, d) = (group.origin, ray_direction);
+                    facing & !world.surely_clear([o.x, o.y, o.z], [d.x, d.y, d.z], source.t_range())
+                };
+                if traced != 0 {
                     let (origins, directions) = (group.origin.to_lanes(), ray_direction.to_lanes());
-                    for j in lanes_of(facing) {
+                    for j in lanes_of(traced) {
                         shadow_rays.push(Ray::new(origins[j], directions[j]));
                         shadow_samples.push(4 * g + j);
                     }
                 }
             }
-            *count += shadow_rays.len() as u64;
             answers.clear();
             answers.resize(shadow_rays.len(), false);
             world.any_hits(shadow_rays, source.t_range(), answers);
