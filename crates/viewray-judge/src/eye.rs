@@ -293,13 +293,24 @@ fn descend(
 ) -> (Move, f64) {
     let (mut best, mut best_cost) = (start, start_cost);
     let mut tried = 0;
+    // Every point costed so far: each cost is a render, and the walk comes back to
+    // points it has seen (the one it just left, and the coarser steps' points after a
+    // halving). A point's cost is always the same, so the walk takes the same path.
+    let mut known = vec![(start, start_cost)];
     while step >= finest && tried < budget {
         let mut moved = None;
         for &axis in axes {
             for sign in [1.0, -1.0] {
                 let mut next = best;
                 next[axis] += sign * step;
-                let c = cost(next);
+                let c = match known.iter().find(|(point, _)| *point == next) {
+                    Some(&(_, c)) => c,
+                    None => {
+                        let c = cost(next);
+                        known.push((next, c));
+                        c
+                    }
+                };
                 tried += 1;
                 if c < best_cost {
                     (best_cost, moved) = (c, Some(next));
@@ -454,6 +465,23 @@ mod tests {
             &bowl,
         );
         assert!(bowl(early) < bowl(start) && bowl(early) > cost, "{early:?}");
+    }
+
+    #[test]
+    fn the_descent_never_renders_a_point_twice() {
+        // Each cost is a render: stepping back to the point just left (or to the
+        // start) would pay for one whose cost is known.
+        let bottom = [2.5, -1.25, 0.0, 0.75, 0.0];
+        let seen = std::cell::RefCell::new(vec![[0.0; 5]]);
+        let bowl = |m: Move| -> f64 {
+            let mut seen = seen.borrow_mut();
+            assert!(!seen.contains(&m), "{m:?} costed twice");
+            seen.push(m);
+            m.iter().zip(bottom).map(|(a, b)| (a - b).powi(2)).sum()
+        };
+        let start = [0.0; 5];
+        let (found, _) = descend(start, 8.375, (1.0, 0.25), &[0, 1, 3], 1000, &bowl);
+        assert_eq!(found, bottom);
     }
 
     #[test]
