@@ -349,7 +349,8 @@ impl World {
     /// For each ray of `rays`, whether anything is hit with `t` in `t_range`, into
     /// `hits`: the same answers as [`World::any_hit`] ray by ray, found faster when the
     /// rays are coherent (the shadow rays of neighbouring pixels toward one light, in
-    /// batches of up to 64), because each batch walks the top-level BVH as a packet.
+    /// batches of up to 64), because each batch walks the top-level BVH as a packet and
+    /// the rays that reach a mesh walk its BVH as a packet too.
     ///
     /// # Panics
     ///
@@ -366,6 +367,13 @@ impl World {
                     searching &= !self.any_planes(packet, t_min, t_max);
                 }
                 let any_object = |object: u32, lanes: u64| {
+                    // A mesh takes the packet's rays together, as for closest hits; a
+                    // lone ray (an incoherent packet's, for one) goes on alone.
+                    if let Object::Instance(instance) = &self.objects[object as usize]
+                        && lanes & lanes.wrapping_sub(1) != 0
+                    {
+                        return instance.any_packet(packet, rays, lanes, t_min..t_max);
+                    }
                     lanes_of(lanes).fold(0, |found, lane| {
                         let ray = &rays[usize::from(packet.rays()[lane])];
                         if self.any_object(object, ray, t_min, t_max) {

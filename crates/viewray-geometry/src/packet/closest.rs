@@ -21,9 +21,9 @@ const MANY_CHILDREN: u32 = 6;
 /// A child marked for single rays stays with the packet if at least this many of its
 /// rays (a quarter of a full packet) enter its box: a subtree that many rays need is
 /// walked once more cheaply than by each of them.
-const KEEP_PACKET: u32 = 16;
+pub(super) const KEEP_PACKET: u32 = 16;
 /// Stack entry flag: the child is to be handed to single rays.
-const SINGLE: u32 = 1 << 31;
+pub(super) const SINGLE: u32 = 1 << 31;
 
 /// A closest-hit query of some of a packet's rays: which lanes, from where along the
 /// rays, and each lane's closest hit so far, which the query lowers.
