@@ -530,7 +530,7 @@ fn icosphere_packets_match_single_rays() {
 /// placed as it is, small ones placed by scaling instances, a ground of two triangles, a
 /// sphere and a plane) get the answers of the same rays asked one by one: toward a sun
 /// (parallel rays from neighbouring hits, coherent), toward a point light (each its own
-/// direction and length), and random rays; with `t` ranges that end before the blockers
+/// direction and length), and random rays (in all octants, and in one); with `t` ranges that end before the blockers
 /// of some rays and beyond them, and exactly at one ray's blocker (excluded) or just
 /// past it.
 #[test]
@@ -593,16 +593,21 @@ fn shadow_packets_in_a_world_of_several_objects_match_single_rays() {
             Ray::new(origin, direction)
         })
         .collect();
+    // The same rays turned into one octant: incoherent packets (scattered over the
+    // octants, the rays above are asked one by one).
+    let random_one_octant: Vec<Ray> = random_rays
+        .iter()
+        .map(|ray| Ray::new(ray.origin, ray.direction.abs()))
+        .collect();
 
     // With the AVX box tests where the processor has them, and with the baseline's.
     #[cfg(target_arch = "x86_64")]
     let baselines = [false, true];
     #[cfg(not(target_arch = "x86_64"))]
     let baselines = [false];
-    for (baseline, rays) in baselines
-        .into_iter()
-        .flat_map(|baseline| [&toward_sun, &toward_light, &random_rays].map(|r| (baseline, r)))
-    {
+    for (baseline, rays) in baselines.into_iter().flat_map(|baseline| {
+        [&toward_sun, &toward_light, &random_rays, &random_one_octant].map(|r| (baseline, r))
+    }) {
         #[cfg(target_arch = "x86_64")]
         crate::avx::BASELINE_ONLY.set(baseline);
         let _ = baseline;
