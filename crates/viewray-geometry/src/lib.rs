@@ -91,7 +91,7 @@
 //!
 //! # Unsafe code
 //!
-//! The workspace denies `unsafe_code`; this crate opts in at 13 sites (11 in the
+//! The workspace denies `unsafe_code`; this crate opts in at 14 sites (12 in the
 //! library, 2 in tests), each with a `SAFETY` comment and allowed where it stands
 //! (`avx.rs` allows it for the whole module), all for x86_64 intrinsics or one system
 //! call. (The triangle packets reuse the build
@@ -102,8 +102,9 @@
 //!   the buffer owns, which never changes their contents).
 //! - `bvh/build.rs` (one): the builder's SSE2 conversion of an item's three bins to
 //!   integers (register arithmetic; SSE2 is part of the x86_64 baseline).
-//! - `bvh/traverse.rs` (two) and `packet/closest.rs` (one): calls into the traversals
-//!   compiled for AVX, made only where AVX and POPCNT were detected at run time.
+//! - `bvh/traverse.rs` (two), `packet/closest.rs` (one) and `packet/any.rs` (one): calls
+//!   into the traversals compiled for AVX, made only where AVX and POPCNT were detected
+//!   at run time.
 //! - `avx.rs` (five, and one in its tests), the only home of the AVX intrinsics: an
 //!   unaligned 256-bit load of a node's row of eight planes and a store of eight entry
 //!   distances, each exactly eight `f32`, and three calls that need AVX, made through an
