@@ -128,7 +128,6 @@ impl Bvh {
         let nodes = self.nodes();
         debug_assert!(nodes.len() < (1 << 28), "entries are node * 8 + slot");
         let (t_min, t_max) = (traversal.t_min, traversal.t_max);
-        let t_min4 = Vec4::splat(t_min);
         let t_max_lanes = [Vec4::splat(t_max); PACKET_GROUPS];
         let mut hit = 0;
         let mut searching = lanes;
@@ -171,8 +170,13 @@ impl Bvh {
                     current = child as usize;
                     break;
                 }
-                let rays =
-                    packet.rays_hitting::<OCTANT>(parent, slot, searching, t_min4, &t_max_lanes);
+                let rays = traversal.boxes.rays_hitting::<OCTANT>(
+                    parent,
+                    slot,
+                    searching,
+                    t_min,
+                    &t_max_lanes,
+                );
                 if child & LEAF == 0 && (!single || rays.count_ones() >= KEEP_PACKET) {
                     // The packet's subtree (skipped when none of the rays still
                     // searching enters it).

@@ -209,6 +209,14 @@ impl<'a> BoxPacket<'a> {
         )
     }
 
+    /// Each lane's slab numbers (see [`slab_numbers`]): the origins moved for the near
+    /// and the far planes and the reciprocal directions, per axis.
+    #[inline(always)]
+    pub(crate) fn slab_lanes(&self) -> [&[Lanes; 3]; 3] {
+        let numbers = self.numbers;
+        [&numbers.origin_near, &numbers.origin_far, &numbers.inverse]
+    }
+
     /// The single ray of lane `lane`.
     #[inline(always)]
     pub(crate) fn lane_ray(&self, lane: usize) -> BoxRay {
