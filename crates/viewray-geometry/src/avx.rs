@@ -22,6 +22,7 @@ use std::arch::x86_64::{
 use glam::Vec4;
 
 use crate::bvh::{BoxRay, ChildBoxes, Node, ROBUST, WIDTH, plane_index};
+use crate::packet::Lanes;
 use crate::packet::{BoxPacket, PacketBoxes};
 
 /// Whether this processor runs AVX, and POPCNT, which every processor with AVX has
@@ -120,6 +121,75 @@ impl PacketBoxes for AvxPacket<'_> {
         // SAFETY: as above.
         unsafe { AvxRay::new(&self.packet.lane_ray(lane)) }
     }
+
+    #[inline(always)]
+    fn rays_hitting<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        slot: usize,
+        lanes: u64,
+        t_min: f32,
+        t_max: &Lanes,
+    ) -> u64 {
+        // SAFETY: as above.
+        unsafe { packet_rays_hitting::<OCTANT>(self.packet, node, slot, lanes, t_min, t_max) }
+    }
+}
+
+/// [`BoxPacket::rays_hitting`] eight rays per instruction (two groups of four lanes in
+/// one register): for each ray `(plane - origin) * inverse` on each axis, then the
+/// entry, exit and mask of [`crate::bvh::slab_test`], the same operations lane for lane.
+#[target_feature(enable = "avx")]
+#[inline]
+fn packet_rays_hitting<const OCTANT: u8>(
+    packet: &BoxPacket<'_>,
+    node: &Node,
+    slot: usize,
+    lanes: u64,
+    t_min: f32,
+    t_max: &Lanes,
+) -> u64 {
+    let plane = |axis: usize, far: bool| {
+        _mm256_set1_ps(node.planes[plane_index::<OCTANT>(axis, far)][slot])
+    };
+    let [origin_near, origin_far, inverse] = packet.slab_lanes();
+    // Groups `2 * pair` and `2 * pair + 1` of some lanes, in one register.
+    let pair_of = |lanes: &Lanes, pair: usize| {
+        _mm256_setr_m128(lanes[2 * pair].into(), lanes[2 * pair + 1].into())
+    };
+    let mut hit = 0;
+    let mut rest = lanes;
+    while rest != 0 {
+        let pair = rest.trailing_zeros() as usize / 8;
+        rest &= !(0xff << (8 * pair));
+        let distance = |axis: usize, far: bool| {
+            let origin = if far { origin_far } else { origin_near };
+            _mm256_mul_ps(
+                _mm256_sub_ps(plane(axis, far), pair_of(&origin[axis], pair)),
+                pair_of(&inverse[axis], pair),
+            )
+        };
+        let t_near = _mm256_max_ps(
+            _mm256_max_ps(
+                _mm256_max_ps(distance(0, false), distance(1, false)),
+                distance(2, false),
+            ),
+            _mm256_set1_ps(t_min),
+        );
+        let t_far = _mm256_min_ps(
+            _mm256_mul_ps(
+                _mm256_min_ps(
+                    _mm256_min_ps(distance(0, true), distance(1, true)),
+                    distance(2, true),
+                ),
+                _mm256_set1_ps(ROBUST),
+            ),
+            pair_of(t_max, pair),
+        );
+        let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(t_near, t_far)) as u64;
+        hit |= mask << (8 * pair);
+    }
+    hit & lanes
 }
 
 /// `v` in both halves.

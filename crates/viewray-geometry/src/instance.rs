@@ -7,8 +7,8 @@ use glam::{Affine3A, Mat3A, Vec3, Vec4};
 
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
-    PACKET_GROUPS, PACKET_SIZE, PacketQuery, for_each_packet, lane as packet_lane, lanes_of,
-    set_lane,
+    BoxPacket, PACKET_GROUPS, PACKET_SIZE, PacketQuery, for_each_packet, lane as packet_lane,
+    lanes_of, set_lane,
 };
 use crate::{Aabb, GeometryError, Mesh, Ray};
 
@@ -115,7 +115,51 @@ impl Instance {
 
     /// Whether the mesh is hit with `t` in `t_range`.
     pub fn any_hit(&self, ray: &Ray, t_range: Range<f32>) -> bool {
-        self.mesh.any_hit(&self.object_ray(ray), t_range)
+        if self.identity {
+            // As in `intersect`: the ray is its own object-space ray.
+            self.mesh.any_hit(ray, t_range)
+        } else {
+            self.mesh.any_hit(&self.object_ray(ray), t_range)
+        }
+    }
+
+    /// Which rays of `lanes` of a packet (in world space, filled from `rays`) hit the
+    /// mesh with `t` in `t_range`: the answers of [`Instance::any_hit`] ray by ray. As in
+    /// [`Instance::intersect_packet`], the rays are carried into the mesh's space and
+    /// regrouped into packets there, unless the transform is the identity.
+    pub(crate) fn any_packet(
+        &self,
+        packet: &BoxPacket<'_>,
+        rays: &[Ray],
+        lanes: u64,
+        t_range: Range<f32>,
+    ) -> u64 {
+        if self.identity {
+            return self.mesh.any_packet(packet, rays, lanes, t_range);
+        }
+        let mut object_rays = [Ray::new(Vec3::ZERO, Vec3::ZERO); PACKET_SIZE];
+        let mut lane_of = [0u8; PACKET_SIZE];
+        let mut count = 0;
+        for lane in lanes_of(lanes) {
+            object_rays[count] = self.object_ray(&rays[usize::from(packet.rays()[lane])]);
+            lane_of[count] = lane as u8;
+            count += 1;
+        }
+        let object_rays = &object_rays[..count];
+        let mut found = 0;
+        for_each_packet(object_rays, |object_packet| {
+            let hit = self.mesh.any_packet(
+                object_packet,
+                object_rays,
+                object_packet.all_lanes(),
+                t_range.clone(),
+            );
+            for object_lane in lanes_of(hit) {
+                let ray = usize::from(object_packet.rays()[object_lane]);
+                found |= 1 << lane_of[ray];
+            }
+        });
+        found
     }
 
     pub(crate) fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<RawHit> {

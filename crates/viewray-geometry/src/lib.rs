@@ -91,8 +91,8 @@
 //!
 //! # Unsafe code
 //!
-//! The workspace denies `unsafe_code`; this crate opts in at 13 sites (11 in the
-//! library, 2 in tests), each with a `SAFETY` comment and allowed where it stands
+//! The workspace denies `unsafe_code`; this crate opts in at 16 sites (13 in the
+//! library, 3 in tests), each with a `SAFETY` comment and allowed where it stands
 //! (`avx.rs` allows it for the whole module), all for x86_64 intrinsics or one system
 //! call. (The triangle packets reuse the build
 //! items' buffer through bytemuck, with no unsafe code.)
@@ -102,13 +102,14 @@
 //!   the buffer owns, which never changes their contents).
 //! - `bvh/build.rs` (one): the builder's SSE2 conversion of an item's three bins to
 //!   integers (register arithmetic; SSE2 is part of the x86_64 baseline).
-//! - `bvh/traverse.rs` (two) and `packet/closest.rs` (one): calls into the traversals
-//!   compiled for AVX, made only where AVX and POPCNT were detected at run time.
-//! - `avx.rs` (five, and one in its tests), the only home of the AVX intrinsics: an
+//! - `bvh/traverse.rs` (two), `packet/closest.rs` (one) and `packet/any.rs` (one): calls
+//!   into the traversals compiled for AVX, made only where AVX and POPCNT were detected
+//!   at run time.
+//! - `avx.rs` (six, and one in its tests), the only home of the AVX intrinsics: an
 //!   unaligned 256-bit load of a node's row of eight planes and a store of eight entry
-//!   distances, each exactly eight `f32`, and three calls that need AVX, made through an
+//!   distances, each exactly eight `f32`, and four calls that need AVX, made through an
 //!   `AvxRay` or `AvxPacket`, which exist only where AVX was detected.
-//! - `packet/tests.rs` (one): a test's `AvxPacket`, made after the same detection.
+//! - `packet/tests.rs` (two): a test's `AvxPacket`s, made after the same detection.
 
 mod aabb;
 #[cfg(target_arch = "x86_64")]

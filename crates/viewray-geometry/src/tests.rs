@@ -587,6 +587,125 @@ fn icosphere_packets_match_single_rays() {
     }
 }
 
+/// Shadow rays handed over together in a world of several objects (a large icosphere
+/// placed as it is, small ones placed by scaling instances, a ground of two triangles, a
+/// sphere and a plane) get the answers of the same rays asked one by one: toward a sun
+/// (parallel rays from neighbouring hits, coherent), toward a point light (each its own
+/// direction and length), and random rays (in all octants, and in one); with `t` ranges that end before the blockers
+/// of some rays and beyond them, and exactly at one ray's blocker (excluded) or just
+/// past it.
+#[test]
+fn shadow_packets_in_a_world_of_several_objects_match_single_rays() {
+    let large = Arc::new(Mesh::icosphere(5, 1.0));
+    let small = Arc::new(Mesh::icosphere(2, 1.0));
+    let mut objects = vec![Object::Instance(Instance::from_mesh(large))];
+    for (centre, radius) in [
+        (Vec3::new(1.2, 0.9, 0.3), 0.3),
+        (Vec3::new(-1.1, -0.8, 0.6), 0.35),
+        (Vec3::new(-1.0, 1.0, -1.0), 0.4),
+    ] {
+        let transform =
+            Affine3A::from_scale_rotation_translation(Vec3::splat(radius), Quat::IDENTITY, centre);
+        objects.push(Object::Instance(
+            Instance::new(small.clone(), transform).unwrap(),
+        ));
+    }
+    let (a, b, c, d) = (
+        Vec3::new(-10.0, -1.3, -10.0),
+        Vec3::new(-10.0, -1.3, 10.0),
+        Vec3::new(10.0, -1.3, 10.0),
+        Vec3::new(10.0, -1.3, -10.0),
+    );
+    objects.push(Object::Triangle(Triangle::new(a, b, c)));
+    objects.push(Object::Triangle(Triangle::new(a, c, d)));
+    objects.push(Object::Sphere(Sphere::new(Vec3::new(0.9, -1.0, 1.2), 0.25)));
+    objects.push(Object::Plane(Plane::new(
+        Vec3::new(0.0, -4.0, 0.0),
+        Vec3::Y,
+    )));
+    let world = World::new(objects).unwrap();
+
+    // The hits of 64 x 64 viewing rays in blocks of 8 x 8, from the eye (0, 0, 3).
+    let eye = Vec3::new(0.0, 0.0, 3.0);
+    let mut points = Vec::new();
+    for block in 0..64 {
+        for i in 0..64 {
+            let (x, y) = (8 * (block % 8) + i % 8, 8 * (block / 8) + i / 8);
+            let direction = Vec3::new(
+                (x as f32 + 0.5) / 64.0 - 0.5,
+                0.5 - (y as f32 + 0.5) / 64.0,
+                -1.0,
+            );
+            let ray = Ray::new(eye, direction);
+            if let Some(hit) = world.closest_hit(&ray, 0.0..f32::INFINITY) {
+                points.push(hit.point + hit.normal * 1e-3);
+            }
+        }
+    }
+    let sun = Vec3::new(1.0, 2.0, 1.5).normalize();
+    let light = Vec3::new(-0.5, 2.5, 2.0);
+    let toward_sun: Vec<Ray> = points.iter().map(|&p| Ray::new(p, sun)).collect();
+    let toward_light: Vec<Ray> = points.iter().map(|&p| Ray::new(p, light - p)).collect();
+    let mut random = splitmix(43);
+    let random_rays: Vec<Ray> = (0..4096)
+        .map(|_| {
+            let origin = Vec3::new(random(), random(), random()) * 3.0 - 1.5;
+            let direction = Vec3::new(random(), random(), random()) * 2.0 - 1.0;
+            Ray::new(origin, direction)
+        })
+        .collect();
+    // The same rays turned into one octant: incoherent packets (scattered over the
+    // octants, the rays above are asked one by one).
+    let random_one_octant: Vec<Ray> = random_rays
+        .iter()
+        .map(|ray| Ray::new(ray.origin, ray.direction.abs()))
+        .collect();
+
+    // With the AVX box tests where the processor has them, and with the baseline's.
+    #[cfg(target_arch = "x86_64")]
+    let baselines = [false, true];
+    #[cfg(not(target_arch = "x86_64"))]
+    let baselines = [false];
+    for (baseline, rays) in baselines.into_iter().flat_map(|baseline| {
+        [&toward_sun, &toward_light, &random_rays, &random_one_octant].map(|r| (baseline, r))
+    }) {
+        #[cfg(target_arch = "x86_64")]
+        crate::avx::BASELINE_ONLY.set(baseline);
+        let _ = baseline;
+        // Ranges ending at a blocker: one ray's closest hit, and the next float above.
+        let blocker = rays
+            .iter()
+            .find_map(|ray| world.closest_object(ray, 0.0..f32::INFINITY))
+            .expect("a blocked ray")
+            .t;
+        let mut counts = Vec::new();
+        for t_range in [
+            0.0..f32::INFINITY,
+            0.0..1.0,
+            0.01..0.3,
+            0.0..blocker,
+            0.0..blocker.next_up(),
+        ] {
+            let mut blocked = vec![false; rays.len()];
+            world.any_hits(rays, t_range.clone(), &mut blocked);
+            for (ray, &blocked) in rays.iter().zip(&blocked) {
+                assert_eq!(
+                    blocked,
+                    world.any_hit(ray, t_range.clone()),
+                    "any_hits differs from any_hit for {ray:?} in {t_range:?}"
+                );
+            }
+            counts.push(blocked.iter().filter(|&&b| b).count());
+        }
+        // Some rays blocked and some not, and the ranges ending before blockers count
+        // fewer.
+        assert!(0 < counts[0] && counts[0] < rays.len(), "{counts:?}");
+        assert!(counts[2] < counts[0], "{counts:?}");
+    }
+    #[cfg(target_arch = "x86_64")]
+    crate::avx::BASELINE_ONLY.set(false);
+}
+
 fn shared_mesh() -> Arc<Mesh> {
     static MESH: std::sync::OnceLock<Arc<Mesh>> = std::sync::OnceLock::new();
     MESH.get_or_init(|| Arc::new(Mesh::icosphere(2, 0.5)))
@@ -600,6 +719,8 @@ fn object() -> impl Strategy<Value = Object> {
         (vec3(-2.0..2.0), vec3(-1.0..1.0), vec3(-1.0..1.0))
             .prop_map(|(a, e1, e2)| Object::Triangle(Triangle::new(a, a + e1, a + e2))),
         (vec3(-3.0..3.0), direction()).prop_map(|(p, n)| Object::Plane(Plane::new(p, n))),
+        // A mesh placed as it is (rays are not carried into its space).
+        Just(Object::Instance(Instance::from_mesh(shared_mesh()))),
         (vec3(-2.0..2.0), vec3(0.2..2.0), vec3(-3.0..3.0)).prop_map(|(t, s, r)| {
             let transform = Affine3A::from_scale_rotation_translation(
                 s,

@@ -8,7 +8,7 @@ use crate::bvh::{BoxRay, BuildParams, Bvh, slab_numbers, slab_test};
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
     BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, at, for_each_packet,
-    lane as lane_value, lane_mask, lanes_of, set_lane,
+    for_each_packet_unless_scattered, lane as lane_value, lane_mask, lanes_of, set_lane,
 };
 use crate::shapes::{PlaneFrame, WatertightRay};
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
@@ -389,7 +389,9 @@ impl World {
     /// For each ray of `rays`, whether anything is hit with `t` in `t_range`, into
     /// `hits`: the same answers as [`World::any_hit`] ray by ray, found faster when the
     /// rays are coherent (the shadow rays of neighbouring pixels toward one light, in
-    /// batches of up to 64), because each batch walks the top-level BVH as a packet.
+    /// batches of up to 64), because each batch walks the top-level BVH as a packet and
+    /// the rays that reach a mesh walk its BVH as a packet too. A batch whose directions
+    /// are scattered over most octants (random rays) is asked ray by ray.
     ///
     /// # Panics
     ///
@@ -399,13 +401,20 @@ impl World {
         let (t_min, t_max) = (t_range.start, t_range.end);
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(false);
-            for_each_packet(rays, |packet| {
+            let packets = for_each_packet_unless_scattered(rays, |packet| {
                 // Planes first, as `any_hit` does, four rays at a time.
                 let mut searching = packet.all_lanes();
                 if !self.planes.is_empty() {
                     searching &= !self.any_planes(packet, t_min, t_max);
                 }
                 let any_object = |object: u32, lanes: u64| {
+                    // A mesh takes the packet's rays together, as for closest hits; a
+                    // lone ray (an incoherent packet's, for one) goes on alone.
+                    if let Object::Instance(instance) = &self.objects[object as usize]
+                        && lanes & lanes.wrapping_sub(1) != 0
+                    {
+                        return instance.any_packet(packet, rays, lanes, t_min..t_max);
+                    }
                     lanes_of(lanes).fold(0, |found, lane| {
                         let ray = &rays[usize::from(packet.rays()[lane])];
                         if self.any_object(object, ray, t_min, t_max) {
@@ -441,6 +450,11 @@ impl World {
                     hits[usize::from(i)] = blocked & (1 << lane) != 0;
                 }
             });
+            if !packets {
+                for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+                    *hit = self.any_hit(ray, t_range.clone());
+                }
+            }
         }
     }
 

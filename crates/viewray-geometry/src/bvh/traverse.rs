@@ -638,7 +638,7 @@ impl Bvh {
             return unsafe { self.any_in_octant_avx::<OCTANT>(ray, t_min, t_max, leaf) };
         }
         with_stack(|stack| {
-            self.any_with_stack::<OCTANT, _>(ray, t_min, t_max, leaf, &mut stack.refs)
+            self.any_with_stack::<OCTANT, _>(ray, 0, t_min, t_max, leaf, &mut stack.refs)
         })
     }
 
@@ -655,23 +655,25 @@ impl Bvh {
     ) -> bool {
         let ray = crate::avx::AvxRay::new(ray);
         with_stack(|stack| {
-            self.any_with_stack::<OCTANT, _>(&ray, t_min, t_max, leaf, &mut stack.refs)
+            self.any_with_stack::<OCTANT, _>(&ray, 0, t_min, t_max, leaf, &mut stack.refs)
         })
     }
 
-    /// The any-hit traversal from the root for rays whose direction signs are
-    /// `OCTANT`, with a stack to use.
+    /// The any-hit traversal of the subtree `root` (a child reference: a node, 0 for
+    /// the whole tree, or a leaf) for rays whose direction signs are `OCTANT`, with a
+    /// stack to use.
     #[inline(always)]
     pub(crate) fn any_with_stack<const OCTANT: u8, R: ChildBoxes>(
         &self,
         ray: &R,
+        root: u32,
         t_min: f32,
         t_max: f32,
         mut leaf: impl FnMut(u32, u32) -> bool,
         stack: &mut [u32; STACK_ROOM],
     ) -> bool {
         let mut sp = 0usize;
-        let mut current = 0u32;
+        let mut current = root;
         loop {
             if current & LEAF != 0 {
                 let (start, count) = decode_leaf(current);

@@ -51,7 +51,7 @@ impl BoxPacket<'_> {
     /// t_max[lane]]`: for each ray exactly the test of [`BoxRay::hit_children_sse`], four
     /// rays at a time.
     #[inline(always)]
-    pub(super) fn rays_hitting<const OCTANT: u8>(
+    pub(crate) fn rays_hitting<const OCTANT: u8>(
         &self,
         node: &Node,
         slot: usize,
@@ -105,6 +105,18 @@ pub(crate) trait PacketBoxes {
 
     /// The ray of lane `lane`.
     fn lane_ray(&self, lane: usize) -> Self::Ray;
+
+    /// The rays of `lanes` that hit child `slot` of `node` with `t` in `[t_min,
+    /// t_max[lane]]`, each with exactly its single-ray test (see
+    /// [`BoxPacket::rays_hitting`]).
+    fn rays_hitting<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        slot: usize,
+        lanes: u64,
+        t_min: f32,
+        t_max: &Lanes,
+    ) -> u64;
 }
 
 impl PacketBoxes for BoxPacket<'_> {
@@ -128,5 +140,17 @@ impl PacketBoxes for BoxPacket<'_> {
     #[inline(always)]
     fn lane_ray(&self, lane: usize) -> BoxRay {
         BoxPacket::lane_ray(self, lane)
+    }
+
+    #[inline(always)]
+    fn rays_hitting<const OCTANT: u8>(
+        &self,
+        node: &Node,
+        slot: usize,
+        lanes: u64,
+        t_min: f32,
+        t_max: &Lanes,
+    ) -> u64 {
+        BoxPacket::rays_hitting::<OCTANT>(self, node, slot, lanes, Vec4::splat(t_min), t_max)
     }
 }

@@ -2,8 +2,6 @@
 //! at a time through the subtrees and leaves its rays enter apart; an incoherent
 //! packet's rays walk the whole tree on their own, side by side in a large one.
 
-use glam::Vec4;
-
 use super::boxes::PacketBoxes;
 use super::lanes::{Lanes, PACKET_SIZE, lane, lanes_of, max_lane, set_lane};
 use super::rays::BoxPacket;
@@ -21,9 +19,9 @@ const MANY_CHILDREN: u32 = 6;
 /// A child marked for single rays stays with the packet if at least this many of its
 /// rays (a quarter of a full packet) enter its box: a subtree that many rays need is
 /// walked once more cheaply than by each of them.
-const KEEP_PACKET: u32 = 16;
+pub(super) const KEEP_PACKET: u32 = 16;
 /// Stack entry flag: the child is to be handed to single rays.
-const SINGLE: u32 = 1 << 31;
+pub(super) const SINGLE: u32 = 1 << 31;
 
 /// A closest-hit query of some of a packet's rays: which lanes, from where along the
 /// rays, and each lane's closest hit so far, which the query lowers.
@@ -218,7 +216,6 @@ impl Bvh {
     ) {
         let nodes = self.nodes();
         let packet = traversal.boxes.packet();
-        let t_min4 = Vec4::splat(traversal.t_min);
         if !packet.coherent {
             self.single_rays::<OCTANT, B, V, P>(traversal, 0, lanes, t_max);
             return;
@@ -301,7 +298,13 @@ impl Bvh {
                     current = child as usize;
                     continue 'nodes;
                 }
-                let rays = packet.rays_hitting::<OCTANT>(parent, slot, lanes, t_min4, t_max);
+                let rays = traversal.boxes.rays_hitting::<OCTANT>(
+                    parent,
+                    slot,
+                    lanes,
+                    traversal.t_min,
+                    t_max,
+                );
                 // A subtree a quarter of the packet enters is still the packet's.
                 if child & LEAF == 0 && rays.count_ones() >= KEEP_PACKET {
                     current = child as usize;

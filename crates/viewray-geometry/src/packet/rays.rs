@@ -209,6 +209,14 @@ impl<'a> BoxPacket<'a> {
         )
     }
 
+    /// Each lane's slab numbers (see [`slab_numbers`]): the origins moved for the near
+    /// and the far planes and the reciprocal directions, per axis.
+    #[inline(always)]
+    pub(crate) fn slab_lanes(&self) -> [&[Lanes; 3]; 3] {
+        let numbers = self.numbers;
+        [&numbers.origin_near, &numbers.origin_far, &numbers.inverse]
+    }
+
     /// The single ray of lane `lane`.
     #[inline(always)]
     pub(crate) fn lane_ray(&self, lane: usize) -> BoxRay {
@@ -328,31 +336,62 @@ thread_local! {
 /// Splits `rays` (at most [`PACKET_SIZE`]) into packets of one octant each and calls
 /// `trace(packet)` for each (see [`BoxPacket::rays`]). Rays that hit nothing by
 /// definition (a non-finite origin or direction, a zero direction) are in no packet.
-pub(crate) fn for_each_packet(rays: &[Ray], mut trace: impl FnMut(&BoxPacket<'_>)) {
+pub(crate) fn for_each_packet(rays: &[Ray], trace: impl FnMut(&BoxPacket<'_>)) {
+    split_into_packets(rays, 8, trace);
+}
+
+/// [`for_each_packet`], unless the rays' directions fall into [`SCATTERED_OCTANTS`] or
+/// more octants: then no packet is traced, and `false` says that the rays are to be
+/// traced one by one.
+pub(crate) fn for_each_packet_unless_scattered(
+    rays: &[Ray],
+    trace: impl FnMut(&BoxPacket<'_>),
+) -> bool {
+    split_into_packets(rays, SCATTERED_OCTANTS - 1, trace)
+}
+
+/// Rays whose directions fall into this many of the eight octants or more are scattered:
+/// they split into packets of a few incoherent rays each (random rays, about eight to an
+/// octant in 64), which are traced ray by ray anyway after being gathered and set up (a
+/// sixth of the instructions of the bench's random shadow rays, `BoxPacket::new`). The
+/// rays toward one light from a block of neighbouring points take one to four.
+const SCATTERED_OCTANTS: u32 = 5;
+
+/// [`for_each_packet`] if the rays fall into at most `max_octants` octants (returning
+/// `true`); else `false`, with no packet traced.
+fn split_into_packets(
+    rays: &[Ray],
+    max_octants: u32,
+    mut trace: impl FnMut(&BoxPacket<'_>),
+) -> bool {
     if rays.is_empty() {
-        return;
+        return true;
     }
     let mut split = |buffers: &mut PacketBuffers| {
         let PacketBuffers { chunk, gathered } = buffers;
         chunk.fill(rays);
         let chunk = &*chunk;
+        let octants = chunk.octants.iter().filter(|&&mask| mask != 0).count();
+        if octants as u32 > max_octants {
+            return false;
+        }
         for (octant, &mask) in chunk.octants.iter().enumerate() {
             if mask != 0 {
                 trace(&BoxPacket::new(chunk, gathered, octant as u8, mask));
             }
         }
+        true
     };
     let done = PACKET_BUFFERS.with(|all| {
         for cell in all {
             if let Ok(mut buffers) = cell.try_borrow_mut() {
-                split(&mut buffers);
-                return true;
+                return Some(split(&mut buffers));
             }
         }
-        false
+        None
     });
-    if !done {
+    done.unwrap_or_else(|| {
         let mut fresh = PacketBuffers::EMPTY;
-        split(&mut fresh);
-    }
+        split(&mut fresh)
+    })
 }

@@ -54,7 +54,8 @@ proptest::proptest! {
     /// enters, the packet enters, and no earlier than the ray; where the processor
     /// runs AVX, its AVX test gives the same bits (for rays of one
     /// octant whose directions differ in length and in angle, so that the extreme
-    /// reciprocals differ, against boxes ahead, around and behind the origins).
+    /// reciprocals differ, against boxes ahead, around and behind the origins). Each
+    /// lane's test of one box is its single ray's, with SSE and AVX alike.
     #[test]
     fn the_packet_box_test_bounds_each_ray_box_test(
         rays in proptest::collection::vec(
@@ -94,6 +95,33 @@ proptest::proptest! {
                 (mask, near.map(f32::to_bits)),
                 (packet_mask, packet_near.map(f32::to_bits))
             );
+        }
+        // Each lane's own test of one box, four lanes at a time (and eight with AVX), is
+        // its single ray's test to the bit, with a `t_max` of its own, for all lanes
+        // and for every third.
+        let mut t_max_lanes: Lanes = [Vec4::ZERO; PACKET_GROUPS];
+        for i in 0..PACKET_SIZE {
+            set_lane(&mut t_max_lanes, i, t_max * (0.25 + i as f32 / 48.0));
+        }
+        for lanes in [packet.all_lanes(), packet.all_lanes() & 0x9249_2492_4924_9249] {
+            for slot in 0..WIDTH {
+                let hit = packet.rays_hitting::<0>(&node, slot, lanes, t_min4, &t_max_lanes);
+                for (i, ray) in rays.iter().enumerate() {
+                    let ray = BoxRay::new(ray);
+                    let t_max4 = Vec4::splat(lane(&t_max_lanes, i));
+                    let alone = ray.hit_children_sse::<0>(&node, t_min4, t_max4).0 >> slot & 1;
+                    let expected = u64::from(alone) & (lanes >> i) & 1;
+                    proptest::prop_assert_eq!(hit >> i & 1, expected, "lane {} slot {}", i, slot);
+                }
+                #[cfg(target_arch = "x86_64")]
+                if crate::avx::detected() {
+                    #[allow(unsafe_code)]
+                    // SAFETY: the processor runs AVX and POPCNT.
+                    let avx = unsafe { crate::avx::AvxPacket::new(&packet) };
+                    let wide = avx.rays_hitting::<0>(&node, slot, lanes, 0.0, &t_max_lanes);
+                    proptest::prop_assert_eq!(wide, hit, "slot {}", slot);
+                }
+            }
         }
         for ray in &rays {
             let (mask, near) = BoxRay::new(ray).hit_children_sse::<0>(&node, t_min4, t_max4);
