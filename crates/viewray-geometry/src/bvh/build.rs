@@ -35,7 +35,9 @@ impl Bounded for Aabb {
 /// ```
 ///
 /// A leaf is made when it is no dearer than the best split and holds at most
-/// `max_leaf_items` items.
+/// `max_leaf_items` items. A range of at most one block (and at most `max_leaf_items`
+/// items) is always a leaf: no split tests fewer blocks, and each side takes a block of
+/// its own (a triangle packet, with lanes to spare).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BuildParams {
     /// How many items one intersection test handles at once (4 for triangle packets).
@@ -457,10 +459,14 @@ impl Builder {
     ) -> Split {
         let n = items.len();
         let small = n <= self.params.max_leaf_items as usize;
-        // A leaf costs `blocks(n)` per unit of area, a split at least `traversal_cost`:
-        // when the leaf is no dearer, it wins without binning (the second look at the
-        // children of up to one block in `build_node`, where most small ranges end).
-        if n <= 1 || small && self.blocks(n as u32) <= traversal_cost {
+        // One block is a leaf: split, it would take two blocks (for a mesh, two triangle
+        // packets with lanes to spare), and the SAH's areas can favour that while the
+        // node has free slots, where a split costs no node. Otherwise a leaf costs
+        // `blocks(n)` per unit of area, a split at least `traversal_cost`: when the leaf
+        // is no dearer, it wins without binning.
+        if n <= self.params.block_size.min(self.params.max_leaf_items) as usize
+            || small && self.blocks(n as u32) <= traversal_cost
+        {
             return Split::Leaf;
         }
         if depth >= FORCE_MEDIAN_DEPTH {
