@@ -610,6 +610,26 @@ mod tests {
     use crate::Perspective;
 
     /// A coordinate, now and then a signed zero (where `e + 0` and `e` can differ).
+    /// A block's rays, `(row, col, ray)`, are `expected`'s bit for bit, in order.
+    fn same_rays(
+        got: Vec<(u32, u32, Option<DRay>)>,
+        expected: Vec<(u32, u32, Option<DRay>)>,
+    ) -> Result<(), TestCaseError> {
+        let bits = |r: Option<DRay>| {
+            r.map(|r| {
+                (
+                    r.origin.to_array().map(f64::to_bits),
+                    r.direction.to_array().map(f64::to_bits),
+                )
+            })
+        };
+        prop_assert_eq!(got.len(), expected.len());
+        for (g, e) in got.into_iter().zip(expected) {
+            prop_assert_eq!((g.0, g.1, bits(g.2)), (e.0, e.1, bits(e.2)));
+        }
+        Ok(())
+    }
+
     fn coordinate() -> impl Strategy<Value = f64> {
         prop_oneof![Just(0.0), Just(-0.0), -10.0..10.0f64]
     }
@@ -718,13 +738,7 @@ mod tests {
             camera.generate_sampled_block_rays(rows, cols, sample, |row, col, ray| {
                 got.push((row, col, ray));
             });
-            let bits = |r: Option<DRay>| {
-                r.map(|r| (r.origin.to_array().map(f64::to_bits), r.direction.to_array().map(f64::to_bits)))
-            };
-            prop_assert_eq!(got.len(), expected.len());
-            for (g, e) in got.into_iter().zip(expected) {
-                prop_assert_eq!((g.0, g.1, bits(g.2)), (e.0, e.1, bits(e.2)));
-            }
+            same_rays(got, expected)?;
         }
 
         /// A block's rays are the rays of its pixels one at a time, bit for bit, for
@@ -775,13 +789,7 @@ mod tests {
             camera.generate_block_rays(rows, cols, sample, |row, col, ray| {
                 got.push((row, col, ray));
             });
-            let bits = |r: Option<DRay>| {
-                r.map(|r| (r.origin.to_array().map(f64::to_bits), r.direction.to_array().map(f64::to_bits)))
-            };
-            prop_assert_eq!(got.len(), expected.len());
-            for (g, e) in got.into_iter().zip(expected) {
-                prop_assert_eq!((g.0, g.1, bits(g.2)), (e.0, e.1, bits(e.2)));
-            }
+            same_rays(got, expected)?;
         }
     }
 }

@@ -72,4 +72,4 @@ pub use figure::{ArrowEnds, Figure, Item, Sampling, Stroke};
 pub use mapping::Mapping;
 pub use output::{write_png, write_svg};
 pub use rect::Rect;
-pub use text::{Anchor, Baseline, FontFace, Label};
+pub use text::{Anchor, Baseline, FontFace, Label, wrap_parts};

@@ -504,6 +504,45 @@ fn layout_text(text: &str, size: f32, face: FontFace) -> TextLayout {
     }
 }
 
+/// Breaks a paragraph into lines: `parts`, each with the separator written before it
+/// when it follows another part on the same line, as many to a line as `fits` allows (a
+/// part that does not fit alone stands alone on its line). Where a line breaks, the
+/// separator's trailing punctuation stays at its end (`", "` leaves a comma, `" "`
+/// nothing).
+///
+/// ```
+/// use viewray_draw::wrap_parts;
+///
+/// let words = "one two three".split(' ').map(|w| (w, " "));
+/// assert_eq!(wrap_parts(words, |line| line.len() <= 7), ["one two", "three"]);
+/// let parts = [("d = 1", ",  "), ("shift (0, 1)", ",  ")];
+/// assert_eq!(wrap_parts(parts, |line| line.len() <= 12), ["d = 1,", "shift (0, 1)"]);
+/// ```
+pub fn wrap_parts<'a>(
+    parts: impl IntoIterator<Item = (&'a str, &'a str)>,
+    fits: impl Fn(&str) -> bool,
+) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for (part, separator) in parts {
+        if line.is_empty() {
+            part.clone_into(&mut line);
+            continue;
+        }
+        let longer = format!("{line}{separator}{part}");
+        if fits(&longer) {
+            line = longer;
+        } else {
+            lines.push(format!("{line}{}", separator.trim_end()));
+            part.clone_into(&mut line);
+        }
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,9 @@ use image::{DynamicImage, RgbaImage};
 use serde_json::Value;
 use viewray_camera::{Camera, CameraSample};
 use viewray_diagram::{SideViewCanvas, SideWindow, side_view};
-use viewray_draw::{Anchor, Baseline, Color, FontFace, Item, Label, Rect, Sampling, raster};
+use viewray_draw::{
+    Anchor, Baseline, Color, FontFace, Item, Label, Rect, Sampling, raster, wrap_parts,
+};
 use viewray_json::{PixelIndices, frame_line, ray_line};
 use viewray_output::{Compression, encode_png};
 use viewray_render::{RenderSettings, View, render_view};
@@ -183,20 +185,20 @@ fn push_mistake_label(figure: &mut viewray_draw::Figure, camera: &Camera, pictur
             (name, FontFace::Bold, MISTAKE_INK, 1.3),
             (fix, FontFace::Regular, INK, 1.6),
         ] {
-            let wrapped = wrap(&text, room, |line| {
-                Label::new(line, Vec2::ZERO)
+            let label = |line: &str, at: Vec2| {
+                Label::new(line, at)
                     .with_size(MISTAKE_SIZE)
                     .with_face(face)
+                    .with_color(color)
+                    .with_anchor(Anchor::Start, Baseline::Alphabetic)
+            };
+            let words = text.split(' ').map(|word| (word, " "));
+            let wrapped = wrap_parts(words, |line| {
+                label(line, Vec2::ZERO).bounds().width() <= room
             });
             let count = wrapped.len();
-            for (k, line) in wrapped.into_iter().enumerate() {
-                labels.push(
-                    Label::new(line, Vec2::new(left, baseline))
-                        .with_size(MISTAKE_SIZE)
-                        .with_face(face)
-                        .with_color(color)
-                        .with_anchor(Anchor::Start, Baseline::Alphabetic),
-                );
+            for (k, line) in wrapped.iter().enumerate() {
+                labels.push(label(line, Vec2::new(left, baseline)));
                 baseline += MISTAKE_SIZE * if k + 1 == count { gap } else { 1.25 };
             }
         }
@@ -218,27 +220,6 @@ fn push_mistake_label(figure: &mut viewray_draw::Figure, camera: &Camera, pictur
     for label in labels {
         figure.push(label);
     }
-}
-
-/// `text` in lines no wider than `room` as `label` draws them, broken between words (a
-/// word wider than `room` stands alone on its line).
-fn wrap(text: &str, room: f32, label: impl Fn(&str) -> Label) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    let mut line = String::new();
-    for word in text.split(' ') {
-        let longer = if line.is_empty() {
-            word.to_owned()
-        } else {
-            format!("{line} {word}")
-        };
-        if !line.is_empty() && label(&longer).bounds().width() > room {
-            lines.push(std::mem::replace(&mut line, word.to_owned()));
-        } else {
-            line = longer;
-        }
-    }
-    lines.push(line);
-    lines
 }
 
 /// The mistake label's lines: per mistake the camera makes, in the catalogue's order,
@@ -417,10 +398,10 @@ mod tests {
                 points
             );
         }
-        let label = |line: &str| Label::new(line, Vec2::ZERO);
-        let lines = wrap("aaa bbb ccc ddd", 0.0, label);
+        let words = |text: &'static str| text.split(' ').map(|word| (word, " "));
+        let lines = wrap_parts(words("aaa bbb ccc ddd"), |_| false);
         assert_eq!(lines, ["aaa", "bbb", "ccc", "ddd"]);
-        let lines = wrap("aaa bbb", 1e6, label);
+        let lines = wrap_parts(words("aaa bbb"), |_| true);
         assert_eq!(lines, ["aaa bbb"]);
     }
 

@@ -3,7 +3,7 @@
 
 use glam::{DVec2, Vec2};
 use viewray_camera::{Camera, Projection};
-use viewray_draw::{Anchor, Baseline, Label};
+use viewray_draw::{Anchor, Baseline, Label, wrap_parts};
 use viewray_output::number;
 
 use super::canvas::SideViewCanvas;
@@ -114,26 +114,12 @@ fn wrap(paragraph: &Paragraph, width: f32) -> Vec<String> {
             .width()
             <= width
     };
-    let mut lines: Vec<String> = Vec::new();
-    let mut line = String::new();
-    for (part, separator) in paragraph {
-        if line.is_empty() {
-            line.clone_from(part);
-            continue;
-        }
-        let longer = format!("{line}{separator}{part}");
-        if fits(&longer) {
-            line = longer;
-        } else {
-            // The separator's comma or semicolon stays at the end of the line.
-            lines.push(format!("{line}{}", separator.trim_end()));
-            line.clone_from(part);
-        }
-    }
-    if !line.is_empty() {
-        lines.push(line);
-    }
-    lines
+    wrap_parts(
+        paragraph
+            .iter()
+            .map(|(part, separator)| (part.as_str(), *separator)),
+        fits,
+    )
 }
 
 /// The caption's parts: the projection and its parameters in the lecture's notation, the
