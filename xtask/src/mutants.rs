@@ -43,7 +43,8 @@ pub struct MutantsArgs {
     /// this regular expression; may be repeated (any one matching is enough).
     #[arg(long = "re", short = 'F', value_name = "REGEX")]
     pub regex: Vec<String>,
-    /// How many mutants to build and test at once.
+    /// How many mutants to build and test at once (under CI, which mutates its clone in
+    /// place, one).
     #[arg(long, short = 'j', default_value_t = 1)]
     pub jobs: usize,
 }
@@ -89,8 +90,6 @@ pub fn mutants(root: &Path, args: &MutantsArgs) -> Result<()> {
         &args.krate,
         "--test-package",
         &args.krate,
-        "--jobs",
-        &args.jobs.to_string(),
         // The auto-set timeout is a few times the unmutated tests' time; on a busy shared
         // machine that is too tight, and a slow test is not a survivor. The crates' tests
         // take 2-5 s unoptimized; a mutant that loops forever costs a job this long.
@@ -108,7 +107,11 @@ pub fn mutants(root: &Path, args: &MutantsArgs) -> Result<()> {
         // CI's clone is thrown away afterwards and `cargo test` has just built it: mutate
         // it in place and reuse that build rather than copy the tree and build it afresh.
         // (Not on a developer's checkout, whose files must not change under their editor.)
+        // In place there is one tree, so one mutant at a time: cargo-mutants refuses
+        // `--jobs` beside `--in-place`.
         command.arg("--in-place");
+    } else {
+        command.args(["--jobs", &args.jobs.to_string()]);
     }
     for file in &args.file {
         command.args(["--file", file]);
