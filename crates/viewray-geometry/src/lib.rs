@@ -38,10 +38,10 @@
 //!
 //! # Where to start reading
 //!
-//! `ray.rs` and [`Aabb::slab_interval`] hold the lecture's formulas; `shapes.rs` the
+//! `ray.rs` and [`Aabb::slab_interval`] hold the lecture's formulas; `shapes/mod.rs` the
 //! watertight triangle test every mesh shares. Then `bvh/mod.rs`, the hierarchy's map:
 //! `bvh/traverse.rs` walks a single ray through it (`Bvh::closest_step` is one step of
-//! that walk) and `bvh/build.rs` builds it. `mesh/mod.rs` and `world.rs` put triangles
+//! that walk) and `bvh/build.rs` builds it. `mesh/mod.rs` and `world/mod.rs` put triangles
 //! and objects in it; `packet/mod.rs` traces many rays through it together. `tests.rs`
 //! states what the crate promises, checked against brute force.
 //!
@@ -49,14 +49,16 @@
 //!
 //! - `ray`, `hit`, `error`: the rays, what queries report, why data was refused.
 //! - `aabb`: boxes, their slab test and their corners.
-//! - `shapes`: sphere, plane, triangle, and the watertight ray/triangle test.
+//! - `shapes`: sphere, plane, triangle, and the watertight ray/triangle test; four
+//!   rays at once against a sphere or a triangle (`shapes/lanes.rs`).
 //! - `bvh`: the eight-wide hierarchy: node layout, build, a single ray's walks, and the
 //!   prefetch and huge-pages hints.
 //! - `mesh`: mesh data and its checks, the build into triangle packets in leaf order,
 //!   the four-triangle test, and the mesh's queries.
 //! - `instance`: meshes placed by transforms, rays carried into object space.
 //! - `world`: the objects of a scene under a top-level hierarchy, with the packet
-//!   queries a renderer uses for primary, mirror and shadow rays.
+//!   queries a renderer uses for primary, mirror and shadow rays (`world/loose.rs`: a
+//!   packet's lanes against loose spheres and triangles, four at a time).
 //! - `packet`: up to 64 rays of one octant traced together, and incoherent rays walked
 //!   side by side.
 //! - `avx`: the box tests in AVX registers, chosen at run time.

@@ -8,6 +8,10 @@ use glam::{Vec2, Vec3, Vec4};
 use crate::hit::{Hit, RawHit, face_toward};
 use crate::{Aabb, Ray};
 
+mod lanes;
+
+pub(crate) use self::lanes::WatertightLanes;
+
 /// A sphere `|p - center| = radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {

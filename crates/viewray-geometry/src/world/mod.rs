@@ -13,6 +13,10 @@ use crate::packet::{
 use crate::shapes::{PlaneFrame, WatertightRay};
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
+mod loose;
+
+use self::loose::Loose;
+
 /// How much larger than the box around a world's bounded objects the box of
 /// [`World::surely_clear`] is, per unit of the largest coordinate (plus one).
 const CLEAR_MARGIN: f32 = 1e-3;
@@ -410,10 +414,32 @@ impl World {
                 let any_object = |object: u32, lanes: u64| {
                     // A mesh takes the packet's rays together, as for closest hits; a
                     // lone ray (an incoherent packet's, for one) goes on alone.
-                    if let Object::Instance(instance) = &self.objects[object as usize]
-                        && lanes & lanes.wrapping_sub(1) != 0
-                    {
-                        return instance.any_packet(packet, rays, lanes, t_min..t_max);
+                    // Loose spheres and triangles take them four at a time.
+                    if lanes & lanes.wrapping_sub(1) != 0 {
+                        match &self.objects[object as usize] {
+                            Object::Instance(instance) => {
+                                return instance.any_packet(packet, rays, lanes, t_min..t_max);
+                            }
+                            Object::Sphere(sphere) => {
+                                let shape = (Loose::Sphere(sphere), object);
+                                return self.any_loose(
+                                    shape,
+                                    (packet, rays),
+                                    lanes,
+                                    (t_min, t_max),
+                                );
+                            }
+                            Object::Triangle(triangle) => {
+                                let shape = (Loose::Triangle(triangle), object);
+                                return self.any_loose(
+                                    shape,
+                                    (packet, rays),
+                                    lanes,
+                                    (t_min, t_max),
+                                );
+                            }
+                            Object::Plane(_) | Object::Box(_) => {}
+                        }
                     }
                     lanes_of(lanes).fold(0, |found, lane| {
                         let ray = &rays[usize::from(packet.rays()[lane])];
@@ -599,9 +625,15 @@ impl World {
     /// The closest hits of a query's rays with object `object`: an instance traces them
     /// as packets, other shapes ray by ray.
     fn intersect_object_packet(&self, object: u32, query: PacketQuery<'_>) {
-        if let Object::Instance(instance) = &self.objects[object as usize] {
-            instance.intersect_packet(query, object);
-            return;
+        match &self.objects[object as usize] {
+            Object::Instance(instance) => return instance.intersect_packet(query, object),
+            Object::Sphere(sphere) => {
+                return self.closest_loose(Loose::Sphere(sphere), object, query);
+            }
+            Object::Triangle(triangle) => {
+                return self.closest_loose(Loose::Triangle(triangle), object, query);
+            }
+            Object::Plane(_) | Object::Box(_) => {}
         }
         for lane in lanes_of(query.lanes) {
             let t_max = lane_value(query.t_max, lane);
