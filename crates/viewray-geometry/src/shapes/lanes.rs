@@ -1,13 +1,42 @@
-//! Four rays at once against one sphere or one triangle, from the rays' origins and
+//! Four rays at once against one plane, sphere or triangle, from the rays' origins and
 //! directions per axis (as a packet holds them): what a world's packets do at a leaf of
 //! loose shapes. Every lane works out what the single-ray test does, with the same
 //! operations in the same order, so its `t` (and barycentrics) have the same bits.
 
 use glam::{BVec4A, Vec3, Vec4};
 
-use super::Sphere;
 #[cfg(doc)]
 use super::WatertightRay;
+use super::{Plane, Sphere};
+
+/// `Vec3::dot` of four pairs of vectors given per axis: (x x') + (y y') + (z z').
+#[inline(always)]
+fn dot(p: &[Vec4; 3], q: &[Vec4; 3]) -> Vec4 {
+    (p[0] * q[0]) + (p[1] * q[1]) + (p[2] * q[2])
+}
+
+impl Plane {
+    /// [`Plane::intersect_t`] of four rays at once, from their origins and directions
+    /// per axis: the mask of the lanes that meet the plane with `t_min <= t < t_max`,
+    /// and each lane's `t`. Every lane works out what the single-ray test does, in the
+    /// same order, so its `t` has the same bits.
+    #[inline(always)]
+    pub(crate) fn intersect_t_lanes(
+        &self,
+        origin: [Vec4; 3],
+        direction: [Vec4; 3],
+        t_min: Vec4,
+        t_max: Vec4,
+    ) -> (u32, Vec4) {
+        let n = self.normal.to_array().map(Vec4::splat);
+        let p = self.point.to_array().map(Vec4::splat);
+        let denominator = dot(&n, &direction);
+        let numerator = dot(&n, &[0, 1, 2].map(|axis| p[axis] - origin[axis]));
+        let t = numerator / denominator;
+        let hit = denominator.cmpne(Vec4::ZERO) & t.cmpge(t_min) & t.cmplt(t_max);
+        (hit.bitmask(), t)
+    }
+}
 
 impl Sphere {
     /// [`Sphere::intersect_t`] of four rays: the mask of the lanes that meet the sphere
@@ -23,8 +52,6 @@ impl Sphere {
         let center = self.center.to_array().map(Vec4::splat);
         let f = [0, 1, 2].map(|axis| origin[axis] - center[axis]);
         let d = direction;
-        // `Vec3::dot`: (x x') + (y y') + (z z').
-        let dot = |p: &[Vec4; 3], q: &[Vec4; 3]| (p[0] * q[0]) + (p[1] * q[1]) + (p[2] * q[2]);
         let a = dot(&d, &d);
         let b = dot(&f, &d);
         let r2 = Vec4::splat(self.radius * self.radius);

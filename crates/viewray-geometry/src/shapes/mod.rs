@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3};
 
 use crate::hit::{Hit, RawHit, face_toward};
 use crate::{Aabb, Ray};
@@ -156,29 +156,6 @@ impl Plane {
         }
         let t = self.normal.dot(self.point - ray.origin) / denominator;
         (t >= t_min && t < t_max).then_some(t)
-    }
-
-    /// [`Plane::intersect_t`] of four rays at once, from their origins and directions
-    /// per axis: the mask of the lanes that meet the plane with `t_min <= t < t_max`,
-    /// and each lane's `t`. Every lane works out what the single-ray test does, in the
-    /// same order, so its `t` has the same bits.
-    #[inline(always)]
-    pub(crate) fn intersect_t_lanes(
-        &self,
-        origin: [Vec4; 3],
-        direction: [Vec4; 3],
-        t_min: Vec4,
-        t_max: Vec4,
-    ) -> (u32, Vec4) {
-        let n = self.normal.to_array().map(Vec4::splat);
-        let p = self.point.to_array().map(Vec4::splat);
-        // `Vec3::dot`: (x x') + (y y') + (z z').
-        let denominator = (n[0] * direction[0]) + (n[1] * direction[1]) + (n[2] * direction[2]);
-        let numerator =
-            (n[0] * (p[0] - origin[0])) + (n[1] * (p[1] - origin[1])) + (n[2] * (p[2] - origin[2]));
-        let t = numerator / denominator;
-        let hit = denominator.cmpne(Vec4::ZERO) & t.cmpge(t_min) & t.cmplt(t_max);
-        (hit.bitmask(), t)
     }
 
     /// The hit with `t` in `t_range`, `None` when the ray is parallel to the plane.

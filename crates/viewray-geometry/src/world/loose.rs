@@ -5,7 +5,7 @@
 
 use glam::{Vec2, Vec4};
 
-use super::World;
+use super::{Object, World};
 use crate::hit::RawHit;
 use crate::packet::{BoxPacket, PacketQuery, lane_mask, lanes_of};
 use crate::shapes::WatertightLanes;
@@ -27,7 +27,17 @@ struct GroupHits {
     barycentric: [Vec4; 2],
 }
 
-impl Loose<'_> {
+impl<'a> Loose<'a> {
+    /// The loose shape `object` is, if it is one.
+    #[inline(always)]
+    pub(super) fn of(object: &'a Object) -> Option<Self> {
+        match object {
+            Object::Sphere(sphere) => Some(Loose::Sphere(sphere)),
+            Object::Triangle(triangle) => Some(Loose::Triangle(triangle)),
+            Object::Plane(_) | Object::Box(_) | Object::Instance(_) => None,
+        }
+    }
+
     /// The shape against the lanes `lanes` (low four bits) of group `group`.
     #[inline(always)]
     fn group_hits(

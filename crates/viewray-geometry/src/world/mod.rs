@@ -416,29 +416,13 @@ impl World {
                     // lone ray (an incoherent packet's, for one) goes on alone.
                     // Loose spheres and triangles take them four at a time.
                     if lanes & lanes.wrapping_sub(1) != 0 {
-                        match &self.objects[object as usize] {
-                            Object::Instance(instance) => {
-                                return instance.any_packet(packet, rays, lanes, t_min..t_max);
-                            }
-                            Object::Sphere(sphere) => {
-                                let shape = (Loose::Sphere(sphere), object);
-                                return self.any_loose(
-                                    shape,
-                                    (packet, rays),
-                                    lanes,
-                                    (t_min, t_max),
-                                );
-                            }
-                            Object::Triangle(triangle) => {
-                                let shape = (Loose::Triangle(triangle), object);
-                                return self.any_loose(
-                                    shape,
-                                    (packet, rays),
-                                    lanes,
-                                    (t_min, t_max),
-                                );
-                            }
-                            Object::Plane(_) | Object::Box(_) => {}
+                        let shape = &self.objects[object as usize];
+                        if let Object::Instance(instance) = shape {
+                            return instance.any_packet(packet, rays, lanes, t_min..t_max);
+                        }
+                        if let Some(shape) = Loose::of(shape) {
+                            let (packet, t_range) = ((packet, rays), (t_min, t_max));
+                            return self.any_loose((shape, object), packet, lanes, t_range);
                         }
                     }
                     lanes_of(lanes).fold(0, |found, lane| {
@@ -625,15 +609,12 @@ impl World {
     /// The closest hits of a query's rays with object `object`: an instance traces them
     /// as packets, other shapes ray by ray.
     fn intersect_object_packet(&self, object: u32, query: PacketQuery<'_>) {
-        match &self.objects[object as usize] {
-            Object::Instance(instance) => return instance.intersect_packet(query, object),
-            Object::Sphere(sphere) => {
-                return self.closest_loose(Loose::Sphere(sphere), object, query);
-            }
-            Object::Triangle(triangle) => {
-                return self.closest_loose(Loose::Triangle(triangle), object, query);
-            }
-            Object::Plane(_) | Object::Box(_) => {}
+        let shape = &self.objects[object as usize];
+        if let Object::Instance(instance) = shape {
+            return instance.intersect_packet(query, object);
+        }
+        if let Some(shape) = Loose::of(shape) {
+            return self.closest_loose(shape, object, query);
         }
         for lane in lanes_of(query.lanes) {
             let t_max = lane_value(query.t_max, lane);
