@@ -474,7 +474,8 @@ mod tests {
 
     /// A parallel camera's origin keeps the frame transform's last term `0 W`: with an
     /// axis-aligned frame and an eye at `-0`, `e + ((u U + v V) + 0 W)` has a `+0` where
-    /// leaving the term out (or subtracting it) leaves a `-0`.
+    /// leaving the term out (or subtracting it) leaves a `-0`; and the axes' zeros make
+    /// any other term (`0 / W`) a NaN.
     #[test]
     fn parallel_origins_keep_the_signed_zero() {
         let eye = DVec3::splat(-0.0);
@@ -500,11 +501,13 @@ mod tests {
                 0.0f64.to_bits(),
                 "{projection:?}"
             );
+            let bits = |v: DVec3| v.to_array().map(f64::to_bits);
             camera.generate_sampled_block_rays(3..4, 0..1, sample, |_, _, ray| {
                 let ray = ray.unwrap();
+                assert_eq!(bits(ray.origin), bits(single.origin), "{projection:?}");
                 assert_eq!(
-                    ray.origin.z.to_bits(),
-                    single.origin.z.to_bits(),
+                    bits(ray.direction),
+                    bits(single.direction),
                     "{projection:?}"
                 );
             });
