@@ -1,12 +1,12 @@
 //! The camera: a frame, a projection and an image size; pixel -> ray and point -> pixel.
 
-use std::ops::Range;
-
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
 use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Mistake, Mistakes, Plane3, Projection, TiltedFocus};
+
+mod block;
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///
@@ -272,106 +272,6 @@ impl Camera {
         self.generate_general_ray(image, p_lens)
     }
 
-    /// The viewing rays through the same point `sample` of every pixel of the block
-    /// `rows x cols`, row by row: `ray(row, col, r)` is called with exactly what
-    /// [`Camera::generate_ray`]`(row, col, sample)` returns, bit for bit.
-    ///
-    /// A renderer taking one sample per pixel (or a depth pass through the pixel
-    /// centres) asks for a block of rays at a time. For a perspective camera the
-    /// direction `u U + v V - d w` is separable: `u` depends on the column alone and `v`
-    /// on the row alone, so a block of at most 16 columns works out each column's `u U`
-    /// and each row's `v V` once, and every ray is their sum (the same operations in the
-    /// same order as one ray at a time). Other blocks and families go ray by ray.
-    #[inline]
-    pub fn generate_block_rays(
-        &self,
-        rows: Range<u32>,
-        cols: Range<u32>,
-        sample: CameraSample,
-        mut ray: impl FnMut(u32, u32, Option<DRay>),
-    ) {
-        /// The widest block whose column terms fit in the array below.
-        const MAX_COLUMNS: usize = 16;
-        if let (Projection::Perspective(p), Some(pinhole)) = (&self.projection, &self.pinhole)
-            && cols.len() <= MAX_COLUMNS
-        {
-            let size = self.size();
-            // The first term of `world_from_camera_xy` for each column, the second for
-            // each row: `direction(uv) = (u + sx, v + sy, -d)`.
-            let mut across = [DVec3::ZERO; MAX_COLUMNS];
-            for (term, col) in across.iter_mut().zip(cols.clone()) {
-                let u = image_x_to_u(f64::from(col) + sample.p_film.x, size.x, p.viewport.x);
-                *term = (u + p.shift.x) * self.frame.u();
-            }
-            for row in rows {
-                let v = image_y_to_v(f64::from(row) + sample.p_film.y, size.y, p.viewport.y);
-                let down = (v + p.shift.y) * self.frame.v();
-                for (col, term) in cols.clone().zip(&across) {
-                    let direction = *term + down + pinhole.depth;
-                    ray(row, col, Some(DRay::new(pinhole.origin, direction)));
-                }
-            }
-            return;
-        }
-        for row in rows {
-            for col in cols.clone() {
-                ray(row, col, self.generate_ray(row, col, sample));
-            }
-        }
-    }
-
-    /// The viewing rays of the block `rows x cols`, row by row, each through its own
-    /// sample: `ray(row, col, r)` is called with exactly what
-    /// [`Camera::generate_ray`]`(row, col, sample(row, col))` returns, bit for bit.
-    ///
-    /// A renderer taking several samples per pixel asks for a block of rays at a time.
-    /// For an untilted thin lens (the lecture's, without mistakes) what every ray shares
-    /// is worked out once for the block: the family's checks, the image size and
-    /// `f / d`; each ray is then its lens point, its image-plane point and the frame
-    /// transform, the same operations in the same order as one ray at a time. Other
-    /// families go ray by ray.
-    #[inline]
-    pub fn generate_sampled_block_rays(
-        &self,
-        rows: Range<u32>,
-        cols: Range<u32>,
-        mut sample: impl FnMut(u32, u32) -> CameraSample,
-        mut ray: impl FnMut(u32, u32, Option<DRay>),
-    ) {
-        if let Projection::ThinLens(lens) = &self.projection
-            && !lens.is_tilted()
-            && self.mistakes.is_empty()
-        {
-            // `camera_space_ray`'s thin-lens rule, its shared numbers taken out.
-            let (size, frame, iris) = (self.size(), &self.frame, lens.iris);
-            let pinhole = lens.pinhole();
-            let focus_over_distance = lens.focus / lens.distance;
-            for row in rows {
-                for col in cols.clone() {
-                    let CameraSample { p_film, p_lens } = sample(row, col);
-                    let image = DVec2::new(f64::from(col), f64::from(row)) + p_film;
-                    let uv = image_to_image_plane(image, size, pinhole.viewport);
-                    let lens_offset = (lens.aperture * iris.sample(p_lens)).extend(0.0);
-                    let direction = focus_over_distance * pinhole.direction(uv) - lens_offset;
-                    ray(
-                        row,
-                        col,
-                        Some(DRay::new(
-                            frame.world_from_camera_point(lens_offset),
-                            frame.world_from_camera_vector(direction),
-                        )),
-                    );
-                }
-            }
-            return;
-        }
-        for row in rows {
-            for col in cols.clone() {
-                ray(row, col, self.generate_ray(row, col, sample(row, col)));
-            }
-        }
-    }
-
     /// [`Camera::generate_ray_through`] for every family: the camera-space rule, then the
     /// frame transform.
     fn generate_general_ray(&self, image: DVec2, p_lens: DVec2) -> Option<DRay> {
@@ -610,27 +510,7 @@ mod tests {
     use crate::Perspective;
 
     /// A coordinate, now and then a signed zero (where `e + 0` and `e` can differ).
-    /// A block's rays, `(row, col, ray)`, are `expected`'s bit for bit, in order.
-    fn same_rays(
-        got: Vec<(u32, u32, Option<DRay>)>,
-        expected: Vec<(u32, u32, Option<DRay>)>,
-    ) -> Result<(), TestCaseError> {
-        let bits = |r: Option<DRay>| {
-            r.map(|r| {
-                (
-                    r.origin.to_array().map(f64::to_bits),
-                    r.direction.to_array().map(f64::to_bits),
-                )
-            })
-        };
-        prop_assert_eq!(got.len(), expected.len());
-        for (g, e) in got.into_iter().zip(expected) {
-            prop_assert_eq!((g.0, g.1, bits(g.2)), (e.0, e.1, bits(e.2)));
-        }
-        Ok(())
-    }
-
-    fn coordinate() -> impl Strategy<Value = f64> {
+    pub(super) fn coordinate() -> impl Strategy<Value = f64> {
         prop_oneof![Just(0.0), Just(-0.0), -10.0..10.0f64]
     }
 
@@ -667,129 +547,6 @@ mod tests {
                 bits(ray.direction),
                 bits(frame.world_from_camera_vector(general.direction))
             );
-        }
-
-        /// A block's rays through a sample per pixel are the rays of its pixels one at a
-        /// time, bit for bit: thin lenses round and with blades (the shortcut), tilted,
-        /// mistaken (the general rule), and a perspective camera.
-        #[test]
-        fn sampled_block_rays_are_the_single_rays_bit_for_bit(
-            eye in (coordinate(), coordinate(), coordinate()),
-            view in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
-            family in 0usize..5,
-            viewport in (0.1..10.0f64, 0.1..10.0f64),
-            shift in (-1.0..1.0f64, -1.0..1.0f64),
-            lens in (0.001..1.0f64, 0.5..20.0f64, 0.2..3.0f64),
-            size in (1u32..2000, 1u32..2000),
-            start in (0u32..2000, 0u32..2000),
-            len in (0u32..10, 0u32..10),
-            seed in any::<u64>(),
-        ) {
-            let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y);
-            prop_assume!(frame.is_ok());
-            let (aperture, focus, distance) = lens;
-            let pinhole = Perspective { distance, viewport: viewport.into(), shift: shift.into() };
-            let thin = crate::ThinLens::new(pinhole, aperture, focus);
-            let (projection, mistakes) = match family {
-                0 => (Projection::ThinLens(thin), Mistakes::NONE),
-                1 => (
-                    Projection::ThinLens(crate::ThinLens {
-                        iris: crate::Iris::new(6, 0.3).unwrap(),
-                        ..thin
-                    }),
-                    Mistakes::NONE,
-                ),
-                2 => (
-                    Projection::ThinLens(crate::ThinLens {
-                        tilt: 0.2,
-                        focus: focus.max(distance * 2.0),
-                        ..thin
-                    }),
-                    Mistakes::NONE,
-                ),
-                3 => (Projection::ThinLens(thin), Mistakes::one(Mistake::PixelCorner)),
-                _ => (Projection::Perspective(pinhole), Mistakes::NONE),
-            };
-            let camera = Camera::new(frame.unwrap(), projection, size.0, size.1);
-            prop_assume!(camera.is_ok());
-            let camera = camera.unwrap().with_mistakes(mistakes);
-            prop_assume!(camera.is_ok());
-            let camera = camera.unwrap();
-            // Each pixel's own sample, from its row and column.
-            let sample = |row: u32, col: u32| {
-                let mut z = seed ^ (u64::from(row) << 32 | u64::from(col));
-                let mut next = || {
-                    z = z.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                    (z >> 11) as f64 / (1u64 << 53) as f64
-                };
-                CameraSample {
-                    p_film: DVec2::new(next(), next()),
-                    p_lens: DVec2::new(next(), next()),
-                }
-            };
-            let (rows, cols) = (start.0..start.0 + len.0, start.1..start.1 + len.1);
-            let mut expected = Vec::new();
-            for row in rows.clone() {
-                for col in cols.clone() {
-                    expected.push((row, col, camera.generate_ray(row, col, sample(row, col))));
-                }
-            }
-            let mut got = Vec::new();
-            camera.generate_sampled_block_rays(rows, cols, sample, |row, col, ray| {
-                got.push((row, col, ray));
-            });
-            same_rays(got, expected)?;
-        }
-
-        /// A block's rays are the rays of its pixels one at a time, bit for bit, for
-        /// every family (the perspective shortcut and the rest), through any sample,
-        /// for blocks narrower and wider than the shortcut's 16 columns.
-        #[test]
-        fn block_rays_are_the_single_rays_bit_for_bit(
-            eye in (coordinate(), coordinate(), coordinate()),
-            view in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
-            family in 0usize..4,
-            viewport in (0.1..10.0f64, 0.1..10.0f64),
-            shift in (-1.0..1.0f64, -1.0..1.0f64),
-            size in (1u32..2000, 1u32..2000),
-            start in (0u32..2000, 0u32..2000),
-            len in (0u32..20, 0u32..20),
-            sample in (0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64),
-        ) {
-            let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y);
-            prop_assume!(frame.is_ok());
-            let viewport = DVec2::from(viewport);
-            let projection = match family {
-                0 => Projection::Perspective(Perspective {
-                    distance: 1.5,
-                    viewport,
-                    shift: shift.into(),
-                }),
-                1 => Projection::Orthographic(crate::Orthographic { viewport, lens: None }),
-                2 => Projection::ThinLens(crate::ThinLens::new(
-                    Perspective { distance: 1.0, viewport, shift: shift.into() },
-                    0.2,
-                    3.0,
-                )),
-                _ => Projection::Fisheye(crate::Fisheye { fov: 3.0 }),
-            };
-            let camera = Camera::new(frame.unwrap(), projection, size.0, size.1).unwrap();
-            let sample = CameraSample {
-                p_film: DVec2::new(sample.0, sample.1),
-                p_lens: DVec2::new(sample.2, sample.3),
-            };
-            let (rows, cols) = (start.0..start.0 + len.0, start.1..start.1 + len.1);
-            let mut expected = Vec::new();
-            for row in rows.clone() {
-                for col in cols.clone() {
-                    expected.push((row, col, camera.generate_ray(row, col, sample)));
-                }
-            }
-            let mut got = Vec::new();
-            camera.generate_block_rays(rows, cols, sample, |row, col, ray| {
-                got.push((row, col, ray));
-            });
-            same_rays(got, expected)?;
         }
     }
 }

@@ -315,7 +315,7 @@ impl Oblique {
 
     /// The direction of every ray, in camera coordinates: `(-L cos phi, -L sin phi, -1)`.
     #[inline]
-    fn direction(&self) -> DVec3 {
+    pub(crate) fn direction(&self) -> DVec3 {
         let (sin, cos) = self.angle.sin_cos();
         DVec3::new(-self.ratio * cos, -self.ratio * sin, -1.0)
     }

@@ -1,6 +1,7 @@
 //! The render loop: tiles in parallel, samples per pixel, statistics.
 
 use std::cell::OnceCell;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
@@ -11,7 +12,7 @@ use viewray_geometry::{DRay, ObjectHit, Ray};
 use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
-use crate::sampling::Strata;
+use crate::sampling::{PixelSeed, Strata};
 use crate::shade::{
     DepthMap, DepthRange, FilmPoint, LitScratch, NoRecorder, RayDifferentials, Recorder, Shader,
     T_MIN,
@@ -199,6 +200,11 @@ struct TileBuffers {
     hits: [Option<ObjectHit>; BLOCK_RAYS],
     /// What Lit shading reuses from block to block.
     lit: LitScratch,
+    /// Each pixel's seed for its samples, block by block in the order `render` takes
+    /// the blocks, each block's row by row (empty with one sample a pixel).
+    seeds: Vec<PixelSeed>,
+    /// A block's camera samples, row by row.
+    samples: [CameraSample; BLOCK_RAYS],
 }
 
 impl TileBuffers {
@@ -211,6 +217,8 @@ impl TileBuffers {
             ray_pixels: [0; BLOCK_RAYS],
             hits: [None; BLOCK_RAYS],
             lit: LitScratch::default(),
+            seeds: Vec::with_capacity(pixels),
+            samples: [CameraSample::CENTER; BLOCK_RAYS],
         }
     }
 
@@ -221,9 +229,10 @@ impl TileBuffers {
     /// each pixel still adds its samples in index order, so the sums are the same as
     /// pixel by pixel.
     fn render(&mut self, tile: &Tile, setup: &TileSetup<'_>, samples: u32) -> u64 {
-        self.start(tile, setup.shader);
+        self.start(tile, setup);
         let mut rays = 0;
         for index in 0..samples {
+            let mut first_seed = 0;
             for block_row in block_starts(tile.row, tile.height) {
                 for block_col in block_starts(tile.col, tile.width) {
                     let block = Block {
@@ -231,7 +240,9 @@ impl TileBuffers {
                         row: block_row,
                         col: block_col,
                         index,
+                        first_seed,
                     };
+                    first_seed += block.pixels().0.len() * block.pixels().1.len();
                     rays += self.render_block(&block, setup, &mut NoRecorder);
                 }
             }
@@ -246,10 +257,26 @@ impl TileBuffers {
         rays
     }
 
-    /// Makes the pixels of `tile` black and their ray differentials unknown.
+    /// Makes the pixels of `tile` black and their ray differentials unknown, and works
+    /// out their seeds if they take several samples.
     #[inline]
-    fn start(&mut self, tile: &Tile, shader: &Shader<'_>) {
+    fn start(&mut self, tile: &Tile, setup: &TileSetup<'_>) {
+        let shader = setup.shader;
         let pixel_count = tile.width as usize * tile.height as usize;
+        self.seeds.clear();
+        if setup.strata.shared_sample().is_none() {
+            // Block by block as `render` takes them, each block's row by row, so that
+            // a block's seeds are one slice.
+            for block_row in block_starts(tile.row, tile.height) {
+                for block_col in block_starts(tile.col, tile.width) {
+                    let (rows, cols) = Block::pixels_at(tile, block_row, block_col);
+                    for row in rows {
+                        self.seeds
+                            .extend(cols.clone().map(|col| PixelSeed::new(row, col)));
+                    }
+                }
+            }
+        }
         self.pixels.clear();
         self.pixels.resize(pixel_count, Vec3::ZERO);
         // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
@@ -276,6 +303,7 @@ impl TileBuffers {
             row: block_row,
             col: block_col,
             index,
+            first_seed,
         } = block;
         let &TileSetup {
             shader,
@@ -288,8 +316,7 @@ impl TileBuffers {
         // the count in a local (pushes kept each vector's length in memory, stored and
         // loaded again for every ray).
         let mut count = 0;
-        let rows = block_row..(block_row + BLOCK_SIZE).min(tile.row + tile.height);
-        let cols = block_col..(block_col + BLOCK_SIZE).min(tile.col + tile.width);
+        let (rows, cols) = block.pixels();
         let block_rays: &mut [Ray] = &mut self.rays;
         let ray_pixels: &mut [u32] = &mut self.ray_pixels;
         let take = |row: u32, col: u32, ray: Option<DRay>| {
@@ -306,8 +333,16 @@ impl TileBuffers {
         if let Some(sample) = strata.shared_sample() {
             camera.generate_block_rays(rows, cols, sample, take);
         } else {
-            // Each pixel's own sample: a thin lens works out what its rays share once.
-            let sample = |row, col| strata.camera_sample(row, col, index);
+            // Each pixel's own sample, drawn from its seed for the whole block first
+            // (the block's seeds are one slice, its samples row by row); then the camera
+            // works out what its rays share once, and each ray.
+            let (width, count) = (cols.len() as u32, rows.len() * cols.len());
+            let seeds = &self.seeds[first_seed..first_seed + count];
+            strata.index(index).draw(seeds, &mut self.samples[..count]);
+            let drawn = &self.samples;
+            let sample = |row: u32, col: u32| {
+                drawn[((row - block_row) * width + (col - block_col)) as usize]
+            };
             camera.generate_sampled_block_rays(rows, cols, sample, take);
         }
 
@@ -368,6 +403,23 @@ struct Block<'a> {
     row: u32,
     col: u32,
     index: u32,
+    /// Where the block's pixels' seeds start in the tile's.
+    first_seed: usize,
+}
+
+impl Block<'_> {
+    /// The rows and columns of the block.
+    fn pixels(&self) -> (Range<u32>, Range<u32>) {
+        Self::pixels_at(self.tile, self.row, self.col)
+    }
+
+    /// The rows and columns of the block of `tile` whose top-left pixel is `(row, col)`.
+    fn pixels_at(tile: &Tile, row: u32, col: u32) -> (Range<u32>, Range<u32>) {
+        (
+            row..(row + BLOCK_SIZE).min(tile.row + tile.height),
+            col..(col + BLOCK_SIZE).min(tile.col + tile.width),
+        )
+    }
 }
 
 /// A rectangle of pixels: rows `row..row + height`, columns `col..col + width`.
@@ -576,9 +628,10 @@ pub(crate) fn trace_pixel_with<R: Recorder>(
         row: start_of(tile.row, tile.height, row),
         col: start_of(tile.col, tile.width, col),
         index: 0,
+        first_seed: 0,
     };
     let mut buffers = TileBuffers::new(size);
-    buffers.start(&tile, &shader);
+    buffers.start(&tile, &setup);
     buffers.render_block(&block, &setup, recorder);
     buffers.pixels[((row - tile.row) * tile.width + (col - tile.col)) as usize]
 }

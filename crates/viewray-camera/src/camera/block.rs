@@ -1,0 +1,516 @@
+//! Viewing rays a block of pixels at a time: what a block's rays share is worked out
+//! once, and every ray is still bit for bit the one [`Camera::generate_ray`] makes.
+
+use std::ops::Range;
+
+use glam::{DVec2, DVec3};
+use viewray_geometry::DRay;
+
+use super::{Camera, CameraSample, image_to_image_plane, image_x_to_u, image_y_to_v};
+use crate::{Perspective, Projection, ThinLens};
+
+/// What every ray of a block shares, by family: [`Camera::generate_sampled_block_rays`]'s
+/// shortcuts, each the family's rule of [`Camera::generate_ray`] with its shared numbers
+/// taken out (the same operations in the same order, so the same bits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Shortcut {
+    /// A perspective camera with its shared terms ([`super::Pinhole`]): the direction
+    /// `(u + sx) U + (v + sy) V + (-d w)` from the eye.
+    Pinhole {
+        /// The camera's perspective projection (viewport and shift).
+        projection: Perspective,
+        /// The eye (or what a mistake puts in its place).
+        origin: DVec3,
+        /// `-d w`.
+        depth: DVec3,
+    },
+    /// An orthographic camera without a lens, or an oblique one, without mistakes: every
+    /// ray has the same direction and starts at `e + ((u U + v V) + 0 W)`.
+    Parallel {
+        /// The viewport `(vw, vh)`.
+        viewport: DVec2,
+        /// `0 W`: the last term of the frame transform of every origin `(u, v, 0)` (not
+        /// left out: it turns a coordinate `-0` into `+0`).
+        flat: DVec3,
+        /// The world direction every ray shares.
+        direction: DVec3,
+    },
+    /// An untilted thin lens without mistakes: its checks taken once, `f / d` divided
+    /// once.
+    ThinLens(ThinLens),
+    /// Every other camera: ray by ray.
+    General,
+}
+
+impl Camera {
+    /// The viewing rays through the same point `sample` of every pixel of the block
+    /// `rows x cols`, row by row: `ray(row, col, r)` is called with exactly what
+    /// [`Camera::generate_ray`]`(row, col, sample)` returns, bit for bit.
+    ///
+    /// A renderer taking one sample per pixel (or a depth pass through the pixel
+    /// centres) asks for a block of rays at a time. For a perspective camera the
+    /// direction `u U + v V - d w` is separable: `u` depends on the column alone and `v`
+    /// on the row alone, so a block of at most 16 columns works out each column's `u U`
+    /// and each row's `v V` once, and every ray is their sum (the same operations in the
+    /// same order as one ray at a time). Other blocks and families go ray by ray.
+    #[inline]
+    pub fn generate_block_rays(
+        &self,
+        rows: Range<u32>,
+        cols: Range<u32>,
+        sample: CameraSample,
+        mut ray: impl FnMut(u32, u32, Option<DRay>),
+    ) {
+        /// The widest block whose column terms fit in the array below.
+        const MAX_COLUMNS: usize = 16;
+        if let (Projection::Perspective(p), Some(pinhole)) = (&self.projection, &self.pinhole)
+            && cols.len() <= MAX_COLUMNS
+        {
+            let size = self.size();
+            // The first term of `world_from_camera_xy` for each column, the second for
+            // each row: `direction(uv) = (u + sx, v + sy, -d)`.
+            let mut across = [DVec3::ZERO; MAX_COLUMNS];
+            for (term, col) in across.iter_mut().zip(cols.clone()) {
+                let u = image_x_to_u(f64::from(col) + sample.p_film.x, size.x, p.viewport.x);
+                *term = (u + p.shift.x) * self.frame.u();
+            }
+            for row in rows {
+                let v = image_y_to_v(f64::from(row) + sample.p_film.y, size.y, p.viewport.y);
+                let down = (v + p.shift.y) * self.frame.v();
+                for (col, term) in cols.clone().zip(&across) {
+                    let direction = *term + down + pinhole.depth;
+                    ray(row, col, Some(DRay::new(pinhole.origin, direction)));
+                }
+            }
+            return;
+        }
+        for row in rows {
+            for col in cols.clone() {
+                ray(row, col, self.generate_ray(row, col, sample));
+            }
+        }
+    }
+
+    /// The viewing rays of the block `rows x cols`, row by row, each through its own
+    /// sample: `ray(row, col, r)` is called with exactly what
+    /// [`Camera::generate_ray`]`(row, col, sample(row, col))` returns, bit for bit.
+    ///
+    /// A renderer taking several samples per pixel asks for a block of rays at a time.
+    /// What every ray of the block shares is worked out once: the family's match and
+    /// checks, the image size, the frame's axes and, by family, the eye and `-d w` of a
+    /// perspective camera, the one direction of a parallel camera (orthographic without
+    /// a lens, oblique) and `f / d` of an untilted thin lens. Each ray is then its
+    /// image-plane point and the frame transform, the same operations in the same order
+    /// as one ray at a time. Other cameras (fisheyes, tilted or mistaken lenses,
+    /// mistaken parallel cameras) go ray by ray.
+    #[inline]
+    pub fn generate_sampled_block_rays(
+        &self,
+        rows: Range<u32>,
+        cols: Range<u32>,
+        mut sample: impl FnMut(u32, u32) -> CameraSample,
+        mut ray: impl FnMut(u32, u32, Option<DRay>),
+    ) {
+        let (size, frame) = (self.size(), &self.frame);
+        let (u_axis, v_axis) = (frame.u(), frame.v());
+        match self.shortcut() {
+            Shortcut::Pinhole {
+                projection: p,
+                origin,
+                depth,
+            } => {
+                // `generate_ray_through`'s perspective rule.
+                for row in rows {
+                    let y = f64::from(row);
+                    for col in cols.clone() {
+                        let p_film = sample(row, col).p_film;
+                        let u = image_x_to_u(f64::from(col) + p_film.x, size.x, p.viewport.x);
+                        let v = image_y_to_v(y + p_film.y, size.y, p.viewport.y);
+                        let direction = (u + p.shift.x) * u_axis + (v + p.shift.y) * v_axis + depth;
+                        ray(row, col, Some(DRay::new(origin, direction)));
+                    }
+                }
+            }
+            Shortcut::Parallel {
+                viewport,
+                flat,
+                direction,
+            } => {
+                // `camera_space_ray`'s orthographic and oblique origin `(u, v, 0)`, then
+                // `world_from_camera_point`.
+                let eye = frame.e();
+                for row in rows {
+                    let y = f64::from(row);
+                    for col in cols.clone() {
+                        let p_film = sample(row, col).p_film;
+                        let u = image_x_to_u(f64::from(col) + p_film.x, size.x, viewport.x);
+                        let v = image_y_to_v(y + p_film.y, size.y, viewport.y);
+                        let origin = eye + (u * u_axis + v * v_axis + flat);
+                        ray(row, col, Some(DRay::new(origin, direction)));
+                    }
+                }
+            }
+            Shortcut::ThinLens(lens) => {
+                // `camera_space_ray`'s thin-lens rule.
+                let (iris, pinhole) = (lens.iris, lens.pinhole());
+                let focus_over_distance = lens.focus / lens.distance;
+                for row in rows {
+                    for col in cols.clone() {
+                        let CameraSample { p_film, p_lens } = sample(row, col);
+                        let image = DVec2::new(f64::from(col), f64::from(row)) + p_film;
+                        let uv = image_to_image_plane(image, size, pinhole.viewport);
+                        let lens_offset = (lens.aperture * iris.sample(p_lens)).extend(0.0);
+                        let direction = focus_over_distance * pinhole.direction(uv) - lens_offset;
+                        ray(
+                            row,
+                            col,
+                            Some(DRay::new(
+                                frame.world_from_camera_point(lens_offset),
+                                frame.world_from_camera_vector(direction),
+                            )),
+                        );
+                    }
+                }
+            }
+            Shortcut::General => {
+                for row in rows {
+                    for col in cols.clone() {
+                        ray(row, col, self.generate_ray(row, col, sample(row, col)));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The shortcut this camera's sampled blocks take.
+    fn shortcut(&self) -> Shortcut {
+        let frame = &self.frame;
+        let plain = self.mistakes.is_empty();
+        match (&self.projection, &self.pinhole) {
+            (Projection::Perspective(p), Some(pinhole)) => Shortcut::Pinhole {
+                projection: *p,
+                origin: pinhole.origin,
+                depth: pinhole.depth,
+            },
+            (Projection::Orthographic(o), _) if plain && o.lens.is_none() => Shortcut::Parallel {
+                viewport: o.viewport,
+                flat: 0.0 * frame.w(),
+                direction: frame.world_from_camera_vector(DVec3::NEG_Z),
+            },
+            (Projection::Oblique(o), _) if plain => Shortcut::Parallel {
+                viewport: o.viewport,
+                flat: 0.0 * frame.w(),
+                direction: frame.world_from_camera_vector(o.direction()),
+            },
+            (Projection::ThinLens(lens), _) if plain && !lens.is_tilted() => {
+                Shortcut::ThinLens(*lens)
+            }
+            _ => Shortcut::General,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use proptest::prelude::*;
+
+    use super::super::tests::coordinate;
+    use super::*;
+    use crate::{Frame, Mistake, Mistakes};
+
+    /// A block's rays, `(row, col, ray)`, are `expected`'s bit for bit, in order.
+    fn same_rays(
+        got: Vec<(u32, u32, Option<DRay>)>,
+        expected: Vec<(u32, u32, Option<DRay>)>,
+    ) -> Result<(), TestCaseError> {
+        let bits = |r: Option<DRay>| {
+            r.map(|r| {
+                (
+                    r.origin.to_array().map(f64::to_bits),
+                    r.direction.to_array().map(f64::to_bits),
+                )
+            })
+        };
+        prop_assert_eq!(got.len(), expected.len());
+        for (g, e) in got.into_iter().zip(expected) {
+            prop_assert_eq!((g.0, g.1, bits(g.2)), (e.0, e.1, bits(e.2)));
+        }
+        Ok(())
+    }
+
+    proptest! {
+        /// A block's rays through a sample per pixel are the rays of its pixels one at a
+        /// time, bit for bit, for every shortcut and the general rule: thin lenses round
+        /// and with blades, tilted and mistaken; perspective cameras right and mistaken
+        /// (with and without the pinhole's terms); orthographic cameras with and without
+        /// a lens, right and mistaken; oblique cameras right and mistaken; a fisheye.
+        #[test]
+        fn sampled_block_rays_are_the_single_rays_bit_for_bit(
+            eye in (coordinate(), coordinate(), coordinate()),
+            view in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+            family in 0usize..13,
+            viewport in (0.1..10.0f64, 0.1..10.0f64),
+            shift in (-1.0..1.0f64, -1.0..1.0f64),
+            lens in (0.001..1.0f64, 0.5..20.0f64, 0.2..3.0f64),
+            slant in (0.0..2.0f64, -4.0..4.0f64),
+            size in (1u32..2000, 1u32..2000),
+            start in (0u32..2000, 0u32..2000),
+            len in (0u32..10, 0u32..10),
+            seed in any::<u64>(),
+        ) {
+            let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y);
+            prop_assume!(frame.is_ok());
+            let (aperture, focus, distance) = lens;
+            let pinhole = Perspective { distance, viewport: viewport.into(), shift: shift.into() };
+            let thin = crate::ThinLens::new(pinhole, aperture, focus);
+            let orthographic = crate::Orthographic { viewport: viewport.into(), lens: None };
+            let oblique = crate::Oblique {
+                viewport: viewport.into(),
+                ratio: slant.0,
+                angle: slant.1,
+            };
+            let (projection, mistakes) = match family {
+                0 => (Projection::ThinLens(thin), Mistakes::NONE),
+                1 => (
+                    Projection::ThinLens(crate::ThinLens {
+                        iris: crate::Iris::new(6, 0.3).unwrap(),
+                        ..thin
+                    }),
+                    Mistakes::NONE,
+                ),
+                2 => (
+                    Projection::ThinLens(crate::ThinLens {
+                        tilt: 0.2,
+                        focus: focus.max(distance * 2.0),
+                        ..thin
+                    }),
+                    Mistakes::NONE,
+                ),
+                3 => (Projection::ThinLens(thin), Mistakes::one(Mistake::PixelCorner)),
+                4 => (Projection::Perspective(pinhole), Mistakes::NONE),
+                5 => (Projection::Perspective(pinhole), Mistakes::one(Mistake::PixelCorner)),
+                6 => (Projection::Perspective(pinhole), Mistakes::one(Mistake::EyeMissing)),
+                7 => (Projection::Orthographic(orthographic), Mistakes::NONE),
+                8 => (
+                    Projection::Orthographic(crate::Orthographic {
+                        lens: Some(crate::Lens { aperture, focus }),
+                        ..orthographic
+                    }),
+                    Mistakes::NONE,
+                ),
+                9 => (Projection::Orthographic(orthographic), Mistakes::one(Mistake::EyeMissing)),
+                10 => (Projection::Oblique(oblique), Mistakes::NONE),
+                11 => (Projection::Oblique(oblique), Mistakes::one(Mistake::EyeMissing)),
+                _ => (Projection::Fisheye(crate::Fisheye { fov: 3.0 }), Mistakes::NONE),
+            };
+            let camera = Camera::new(frame.unwrap(), projection, size.0, size.1);
+            prop_assume!(camera.is_ok());
+            let camera = camera.unwrap().with_mistakes(mistakes);
+            prop_assume!(camera.is_ok());
+            let camera = camera.unwrap();
+            // Each pixel's own sample, from its row and column.
+            let sample = |row: u32, col: u32| {
+                let mut z = seed ^ (u64::from(row) << 32 | u64::from(col));
+                let mut next = || {
+                    z = z.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    (z >> 11) as f64 / (1u64 << 53) as f64
+                };
+                CameraSample {
+                    p_film: DVec2::new(next(), next()),
+                    p_lens: DVec2::new(next(), next()),
+                }
+            };
+            let (rows, cols) = (start.0..start.0 + len.0, start.1..start.1 + len.1);
+            let mut expected = Vec::new();
+            for row in rows.clone() {
+                for col in cols.clone() {
+                    expected.push((row, col, camera.generate_ray(row, col, sample(row, col))));
+                }
+            }
+            let mut got = Vec::new();
+            camera.generate_sampled_block_rays(rows, cols, sample, |row, col, ray| {
+                got.push((row, col, ray));
+            });
+            same_rays(got, expected)?;
+        }
+
+        /// A block's rays are the rays of its pixels one at a time, bit for bit, for
+        /// every family (the perspective shortcut and the rest), through any sample,
+        /// for blocks narrower and wider than the shortcut's 16 columns.
+        #[test]
+        fn block_rays_are_the_single_rays_bit_for_bit(
+            eye in (coordinate(), coordinate(), coordinate()),
+            view in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+            family in 0usize..4,
+            viewport in (0.1..10.0f64, 0.1..10.0f64),
+            shift in (-1.0..1.0f64, -1.0..1.0f64),
+            size in (1u32..2000, 1u32..2000),
+            start in (0u32..2000, 0u32..2000),
+            len in (0u32..20, 0u32..20),
+            sample in (0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64),
+        ) {
+            let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y);
+            prop_assume!(frame.is_ok());
+            let viewport = DVec2::from(viewport);
+            let projection = match family {
+                0 => Projection::Perspective(Perspective {
+                    distance: 1.5,
+                    viewport,
+                    shift: shift.into(),
+                }),
+                1 => Projection::Orthographic(crate::Orthographic { viewport, lens: None }),
+                2 => Projection::ThinLens(crate::ThinLens::new(
+                    Perspective { distance: 1.0, viewport, shift: shift.into() },
+                    0.2,
+                    3.0,
+                )),
+                _ => Projection::Fisheye(crate::Fisheye { fov: 3.0 }),
+            };
+            let camera = Camera::new(frame.unwrap(), projection, size.0, size.1).unwrap();
+            let sample = CameraSample {
+                p_film: DVec2::new(sample.0, sample.1),
+                p_lens: DVec2::new(sample.2, sample.3),
+            };
+            let (rows, cols) = (start.0..start.0 + len.0, start.1..start.1 + len.1);
+            let mut expected = Vec::new();
+            for row in rows.clone() {
+                for col in cols.clone() {
+                    expected.push((row, col, camera.generate_ray(row, col, sample)));
+                }
+            }
+            let mut got = Vec::new();
+            camera.generate_block_rays(rows, cols, sample, |row, col, ray| {
+                got.push((row, col, ray));
+            });
+            same_rays(got, expected)?;
+        }
+    }
+    /// Which shortcut each camera's sampled blocks take: every family that has one takes
+    /// it (or its rays would be right but slow), every camera that does not goes ray by
+    /// ray (or its rays would be wrong).
+    #[test]
+    fn each_camera_takes_its_shortcut() {
+        let frame = Frame::from_eye_view_up(DVec3::ONE, DVec3::NEG_Z, DVec3::Y).unwrap();
+        let viewport = DVec2::new(2.0, 1.5);
+        let pinhole = Perspective {
+            distance: 1.0,
+            viewport,
+            shift: DVec2::ZERO,
+        };
+        let thin = ThinLens::new(pinhole, 0.1, 4.0);
+        let orthographic = crate::Orthographic {
+            viewport,
+            lens: None,
+        };
+        let lens = Some(crate::Lens {
+            aperture: 0.1,
+            focus: 4.0,
+        });
+        let oblique = crate::Oblique {
+            viewport,
+            ratio: 0.5,
+            angle: 0.7,
+        };
+        let shortcut = |projection, mistakes: &[Mistake]| {
+            let mistakes = mistakes.iter().fold(Mistakes::NONE, |set, &m| set.with(m));
+            let camera = Camera::new(frame, projection, 64, 48).unwrap();
+            match camera.with_mistakes(mistakes).unwrap().shortcut() {
+                Shortcut::Pinhole { .. } => "pinhole",
+                Shortcut::Parallel { .. } => "parallel",
+                Shortcut::ThinLens(_) => "thin lens",
+                Shortcut::General => "general",
+            }
+        };
+        let tilted = ThinLens { tilt: 0.1, ..thin };
+        for (projection, mistakes, expected) in [
+            (Projection::Perspective(pinhole), &[][..], "pinhole"),
+            (
+                Projection::Perspective(pinhole),
+                &[Mistake::EyeMissing],
+                "pinhole",
+            ),
+            (
+                Projection::Perspective(pinhole),
+                &[Mistake::PixelCorner],
+                "general",
+            ),
+            (Projection::Orthographic(orthographic), &[], "parallel"),
+            (
+                Projection::Orthographic(orthographic),
+                &[Mistake::EyeMissing],
+                "general",
+            ),
+            (
+                Projection::Orthographic(crate::Orthographic {
+                    lens,
+                    ..orthographic
+                }),
+                &[],
+                "general",
+            ),
+            (Projection::Oblique(oblique), &[], "parallel"),
+            (
+                Projection::Oblique(oblique),
+                &[Mistake::EyeMissing],
+                "general",
+            ),
+            (Projection::ThinLens(thin), &[], "thin lens"),
+            (
+                Projection::ThinLens(thin),
+                &[Mistake::PixelCorner],
+                "general",
+            ),
+            (Projection::ThinLens(tilted), &[], "general"),
+            (Projection::Equirectangular, &[], "general"),
+        ] {
+            assert_eq!(
+                shortcut(projection, mistakes),
+                expected,
+                "{projection:?} {mistakes:?}"
+            );
+        }
+    }
+
+    /// A parallel camera's origin keeps the frame transform's last term `0 W`: with an
+    /// axis-aligned frame and an eye at `-0`, `e + ((u U + v V) + 0 W)` has a `+0` where
+    /// leaving the term out (or subtracting it) leaves a `-0`; and the axes' zeros make
+    /// any other term (`0 / W`) a NaN.
+    #[test]
+    fn parallel_origins_keep_the_signed_zero() {
+        let eye = DVec3::splat(-0.0);
+        let frame = Frame::from_eye_view_up(eye, DVec3::NEG_Z, DVec3::Y).unwrap();
+        let viewport = DVec2::new(2.0, 1.5);
+        for projection in [
+            Projection::Orthographic(crate::Orthographic {
+                viewport,
+                lens: None,
+            }),
+            Projection::Oblique(crate::Oblique {
+                viewport,
+                ratio: 0.5,
+                angle: 0.7,
+            }),
+        ] {
+            let camera = Camera::new(frame, projection, 4, 4).unwrap();
+            let sample = |_, _| CameraSample::CENTER;
+            // The bottom-left pixel: u < 0 and v < 0, so `u U + v V` is `-0` along W.
+            let single = camera.generate_ray(3, 0, CameraSample::CENTER).unwrap();
+            assert_eq!(
+                single.origin.z.to_bits(),
+                0.0f64.to_bits(),
+                "{projection:?}"
+            );
+            let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+            camera.generate_sampled_block_rays(3..4, 0..1, sample, |_, _, ray| {
+                let ray = ray.unwrap();
+                assert_eq!(bits(ray.origin), bits(single.origin), "{projection:?}");
+                assert_eq!(
+                    bits(ray.direction),
+                    bits(single.direction),
+                    "{projection:?}"
+                );
+            });
+        }
+    }
+}
