@@ -250,12 +250,16 @@ impl IndexSamples<'_> {
     #[inline]
     pub(crate) fn draw(&self, seeds: &[PixelSeed], samples: &mut [CameraSample]) {
         #[cfg(target_arch = "x86_64")]
-        if self.strata.avx2 && !self.strata.lens && self.strata.cells.len() > 1 {
+        if self.strata.avx2 && self.strata.cells.len() > 1 && seeds.len() <= MAX_DRAWN {
             // SAFETY: `avx2` is true only where the processor runs AVX2 (`Strata::new`
-            // asks it), which is all `draw_films_avx2` needs.
+            // asks it), which is all `draw_films_avx2` and `draw_lenses_avx2` need.
             #[allow(unsafe_code)]
             unsafe {
-                self.draw_films_avx2(seeds, samples);
+                if self.strata.lens {
+                    self.draw_lenses_avx2(seeds, samples);
+                } else {
+                    self.draw_films_avx2(seeds, samples);
+                }
             }
             return;
         }
@@ -281,7 +285,35 @@ impl IndexSamples<'_> {
             };
         }
     }
+
+    /// [`IndexSamples::draw`] with a lens, compiled for AVX2: first each pixel's four
+    /// random numbers (the film point's two, the lens point's two), four pixels at a
+    /// time as in [`IndexSamples::draw_films_avx2`]; then pixel by pixel its lens stratum
+    /// (whose shuffle may walk a cycle, which keeps that loop from running in lanes) and
+    /// both points. The numbers are drawn in the same order from the same generator, so
+    /// the samples are [`IndexSamples::camera_sample`]'s to the bit.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn draw_lenses_avx2(&self, seeds: &[PixelSeed], samples: &mut [CameraSample]) {
+        let mut drawn = [[0u64; 4]; MAX_DRAWN];
+        for (&seed, bits) in seeds.iter().zip(&mut drawn) {
+            let mut rng = SampleRng::of_pixel(seed, self.salt);
+            *bits = [0; 4].map(|_| rng.next_u64() >> 11);
+        }
+        let count = self.strata.cells.len() as u32;
+        for ((&seed, bits), sample) in seeds.iter().zip(&drawn).zip(samples) {
+            let unit = bits.map(exact_f64);
+            let (corner, size) = self.strata.cell(permute(self.index, count, seed.lens));
+            *sample = CameraSample {
+                p_film: self.corner + self.size * (DVec2::new(unit[0], unit[1]) * UNIT),
+                p_lens: corner + size * (DVec2::new(unit[2], unit[3]) * UNIT),
+            };
+        }
+    }
 }
+
+/// The most pixels [`IndexSamples::draw`] takes four at a time with a lens: a block's.
+const MAX_DRAWN: usize = 64;
 
 /// `2^-53`: a number's top 53 bits as a fraction of 1.
 const UNIT: f64 = 1.0 / (1u64 << 53) as f64;
@@ -435,7 +467,8 @@ mod tests {
     }
 
     /// A block's samples drawn together (four at a time with AVX2, where the processor
-    /// has it, and one at a time) are each pixel's own, bit for bit.
+    /// has it, with and without a lens, and one at a time) are each pixel's own, bit for
+    /// bit.
     #[test]
     fn drawn_samples_are_each_pixels_own() {
         let bits = |s: &CameraSample| [s.p_film, s.p_lens].map(|p| p.to_array().map(f64::to_bits));
@@ -444,16 +477,19 @@ mod tests {
                 for avx2 in [false, avx2_detected()] {
                     let mut strata = Strata::new(count).with_lens(lens);
                     strata.avx2 = avx2;
-                    let seeds: Vec<_> = (0..7)
-                        .map(|col| PixelSeed::new(3 + count, 1000 * count + col))
-                        .collect();
-                    for index in 0..count {
-                        let samples = strata.index(index);
-                        let mut drawn = [CameraSample::CENTER; 7];
-                        samples.draw(&seeds, &mut drawn);
-                        for (seed, sample) in seeds.iter().zip(&drawn) {
-                            let own = samples.camera_sample(*seed);
-                            assert_eq!(bits(sample), bits(&own), "{count} {lens} {avx2}");
+                    // A few pixels, a whole block's, and more than a block's.
+                    for pixels in [7, MAX_DRAWN, MAX_DRAWN + 1] {
+                        let seeds: Vec<_> = (0..pixels as u32)
+                            .map(|col| PixelSeed::new(3 + count, 1000 * count + col))
+                            .collect();
+                        for index in 0..count {
+                            let samples = strata.index(index);
+                            let mut drawn = vec![CameraSample::CENTER; pixels];
+                            samples.draw(&seeds, &mut drawn);
+                            for (seed, sample) in seeds.iter().zip(&drawn) {
+                                let own = samples.camera_sample(*seed);
+                                assert_eq!(bits(sample), bits(&own), "{count} {lens} {avx2}");
+                            }
                         }
                     }
                 }
