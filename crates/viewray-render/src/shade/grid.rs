@@ -1,5 +1,7 @@
 //! A material's colour with its grid lines: lines of constant world coordinate,
 //! box-filtered over the sample's footprint so that they stay smooth to the horizon.
+//! [`surface_color`] is the rule for one sample; Lit batches use [`surface_colors`], the
+//! same operations four samples at a time in lanes.
 
 use glam::{BVec4A, Vec3, Vec4};
 use viewray_geometry::Hit;

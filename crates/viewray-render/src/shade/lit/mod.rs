@@ -1,5 +1,5 @@
 //! Lit shading of a batch of hits, four samples at a time: each group's surface
-//! details, then its [`lights`] (each light's shadow rays traced together), then its
+//! colours and details, then its [`lights`] (each light's shadow rays traced together), then its
 //! [`mirrors`] (the reflected rays traced together and shaded one bounce deeper).
 
 mod lights;
