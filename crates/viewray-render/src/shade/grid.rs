@@ -119,22 +119,22 @@ pub(super) fn surface_colors(
     normal: Vec3x4,
     widths: impl FnOnce(u32) -> Vec3x4,
 ) -> Vec3x4 {
-    let color = Vec3x4::gather(materials.map(|m| &m.color));
     let grid_lanes = (0..4)
         .filter(|&j| materials[j].grid.is_some())
         .fold(0, |lanes, j| lanes | 1 << j);
     if grid_lanes == 0 {
-        return color;
+        return Vec3x4::gather(materials.map(|m| &m.color));
     }
-    // Lanes without lines compute with a placeholder grid and keep their colour. Most
-    // groups lie on one material.
-    let (spacing, half, line_color) = if grid_lanes == 0b1111
+    // Most groups lie on one material with lines. Lanes without lines compute with a
+    // placeholder grid and keep their colour.
+    let one_material = grid_lanes == 0b1111
         && materials[1..]
             .iter()
-            .all(|m| std::ptr::eq(*m, materials[0]))
-    {
-        let grid = materials[0].grid.unwrap_or(NO_GRID);
+            .all(|m| std::ptr::eq(*m, materials[0]));
+    let (color, spacing, half, line_color) = if one_material {
+        let (material, grid) = (materials[0], materials[0].grid.unwrap_or(NO_GRID));
         (
+            Vec3x4::splat(material.color),
             Vec4::splat(grid.spacing),
             Vec4::splat(0.5 * grid.line_width.min(grid.spacing)),
             Vec3x4::splat(grid.color),
@@ -142,6 +142,7 @@ pub(super) fn surface_colors(
     } else {
         let grids = materials.map(|m| m.grid.unwrap_or(NO_GRID));
         (
+            Vec3x4::gather(materials.map(|m| &m.color)),
             Vec4::from_array(grids.map(|g| g.spacing)),
             Vec4::from_array(grids.map(|g| 0.5 * g.line_width.min(g.spacing))),
             Vec3x4::gather(grids.each_ref().map(|g| &g.color)),
@@ -164,7 +165,11 @@ pub(super) fn surface_colors(
     let coverage = Vec4::ONE - (Vec4::ONE - coverage_a) * (Vec4::ONE - coverage_b);
     // `Vec3::lerp`: `color (1 - s) + line_color s`.
     let lined = color * (Vec4::ONE - coverage) + line_color * coverage;
-    Vec3x4::select(crate::lanes::mask(grid_lanes), lined, color)
+    if grid_lanes == 0b1111 {
+        lined
+    } else {
+        Vec3x4::select(crate::lanes::mask(grid_lanes), lined, color)
+    }
 }
 
 /// What lanes without grid lines compute with.
@@ -733,8 +738,12 @@ mod tests {
         };
         let mut tried = [0; 3];
         for _ in 0..200_000 {
-            let material: [&Material; 4] =
+            // A quarter of the groups on one material, the others on four random ones.
+            let mut material: [&Material; 4] =
                 std::array::from_fn(|_| &materials[numbers.pick(materials.len() as u32) as usize]);
+            if numbers.pick(4) == 0 {
+                material = [material[0]; 4];
+            }
             let lanes: [(Hit, Footprint); 4] = std::array::from_fn(|j| {
                 let grid = material[j].grid.unwrap_or(NO_GRID);
                 let normal = unit(&mut numbers);
