@@ -11,7 +11,7 @@
 //! into tiles and traces each tile block by block; `sampling` says where each sample
 //! falls; `shade` is what a ray sees (its module doc is the map: the block driver, Lit
 //! batches with their lights and mirrors, grid lines, depth); `lanes` holds four
-//! samples' vectors side by side for the lighting; `image` is the [`Image`] and its
+//! samples' vectors side by side for Lit shading (surface colours, lighting); `image` is the [`Image`] and its
 //! encoders; `trace` is [`trace_pixel`], one pixel's trace with every number the
 //! shading computed (for `viewray trace`), read through hooks in the shading code.
 //!

@@ -1,12 +1,15 @@
 //! A material's colour with its grid lines: lines of constant world coordinate,
 //! box-filtered over the sample's footprint so that they stay smooth to the horizon.
+//! [`surface_color`] is the rule for one sample; Lit batches use [`surface_colors`], the
+//! same operations four samples at a time in lanes.
 
-use glam::Vec3;
+use glam::{BVec4A, Vec3, Vec4};
 use viewray_geometry::Hit;
 use viewray_scene::{Grid, Material};
 
 use super::footprint::Footprint;
 use super::record::Recorder;
+use crate::lanes::Vec3x4;
 use crate::trace::GridLines;
 
 /// The surface colour of `material` at `hit`: its colour, with grid lines over it; for
@@ -36,11 +39,7 @@ pub(super) fn surface_color<R: Recorder>(
     } else {
         (0, 1)
     };
-    let widths = match footprint() {
-        Footprint::Point => Vec3::ZERO,
-        Footprint::Area(dx, dy) => dx.abs() + dy.abs(),
-        Footprint::Unbounded => Vec3::INFINITY,
-    };
+    let widths = footprint().widths();
     let coverage_a = line_coverage(hit.point[a], widths[a], &grid);
     let coverage_b = line_coverage(hit.point[b], widths[b], &grid);
     let coverage = 1.0 - (1.0 - coverage_a) * (1.0 - coverage_b);
@@ -103,6 +102,163 @@ fn line_coverage(x: f32, width: f32, grid: &Grid) -> f32 {
     (((k1 - k0) * 2.0 * half + m1 - m0) / width).clamp(0.0, 1.0)
 }
 
+/// [`surface_color`] of four samples at once: lane `j` is sample `j`, of material
+/// `materials[j]`, hit at lane `j` of `point` where the geometric normal is lane `j` of
+/// `normal`. The widths of the footprints ([`Footprint::widths`]) are asked of `widths`
+/// only if a material has grid lines, for the lanes whose bit is set in its argument
+/// (its other lanes may hold anything).
+///
+/// Every lane does the scalar code's operations in the same order (its branches become
+/// selects: each lane takes the value its branch would have returned), so it holds the
+/// bits [`surface_color`] gives its sample, as the tests check; recorders take the
+/// scalar path.
+#[inline]
+pub(super) fn surface_colors(
+    materials: [&Material; 4],
+    point: Vec3x4,
+    normal: Vec3x4,
+    widths: impl FnOnce(u32) -> Vec3x4,
+) -> Vec3x4 {
+    let grid_lanes = (0..4)
+        .filter(|&j| materials[j].grid.is_some())
+        .fold(0, |lanes, j| lanes | 1 << j);
+    if grid_lanes == 0 {
+        return Vec3x4::gather(materials.map(|m| &m.color));
+    }
+    // Most groups lie on one material with lines. Lanes without lines compute with a
+    // placeholder grid and keep their colour.
+    let one_material = grid_lanes == 0b1111
+        && materials[1..]
+            .iter()
+            .all(|m| std::ptr::eq(*m, materials[0]));
+    let (color, spacing, half, line_color) = if one_material {
+        let (material, grid) = (materials[0], materials[0].grid.unwrap_or(NO_GRID));
+        (
+            Vec3x4::splat(material.color),
+            Vec4::splat(grid.spacing),
+            Vec4::splat(0.5 * grid.line_width.min(grid.spacing)),
+            Vec3x4::splat(grid.color),
+        )
+    } else {
+        let grids = materials.map(|m| m.grid.unwrap_or(NO_GRID));
+        (
+            Vec3x4::gather(materials.map(|m| &m.color)),
+            Vec4::from_array(grids.map(|g| g.spacing)),
+            Vec4::from_array(grids.map(|g| 0.5 * g.line_width.min(g.spacing))),
+            Vec3x4::gather(grids.each_ref().map(|g| &g.color)),
+        )
+    };
+    // The two axes closest to the surface's plane: (y, z) where x is nearest the normal,
+    // (x, z) where y is, else (x, y).
+    let n = Vec3x4 {
+        x: normal.x.abs(),
+        y: normal.y.abs(),
+        z: normal.z.abs(),
+    };
+    let along_x = n.x.cmpge(n.y) & n.x.cmpge(n.z);
+    let second_is_z = along_x | n.y.cmpge(n.z);
+    let first = |v: Vec3x4| Vec4::select(along_x, v.y, v.x);
+    let second = |v: Vec3x4| Vec4::select(second_is_z, v.z, v.y);
+    let widths = widths(grid_lanes);
+    let coverage_a = line_coverage_x4(first(point), first(widths), spacing, half);
+    let coverage_b = line_coverage_x4(second(point), second(widths), spacing, half);
+    let coverage = Vec4::ONE - (Vec4::ONE - coverage_a) * (Vec4::ONE - coverage_b);
+    // `Vec3::lerp`: `color (1 - s) + line_color s`.
+    let lined = color * (Vec4::ONE - coverage) + line_color * coverage;
+    if grid_lanes == 0b1111 {
+        lined
+    } else {
+        Vec3x4::select(crate::lanes::mask(grid_lanes), lined, color)
+    }
+}
+
+/// What lanes without grid lines compute with.
+const NO_GRID: Grid = Grid {
+    spacing: 1.0,
+    line_width: 0.0,
+    color: Vec3::ZERO,
+};
+
+/// [`line_coverage`] of four positions `x` and widths `width` on grids of `spacing`
+/// with lines `2 half` wide, lane by lane, bit for bit. The cases of the scalar code
+/// are masks; the overlaps with the three nearest lines and the integral over wide
+/// windows are worked out only if a lane needs them.
+#[inline(always)]
+fn line_coverage_x4(x: Vec4, width: Vec4, spacing: Vec4, half: Vec4) -> Vec4 {
+    let d = x - round_x4(x / spacing) * spacing;
+    let point = width.cmple(Vec4::splat(1e-6) * spacing);
+    let huge = width.cmpge(Vec4::splat(64.0) * spacing);
+    let (a, b) = (d - Vec4::splat(0.5) * width, d + Vec4::splat(0.5) * width);
+    let narrow = width.cmplt(spacing);
+    let inside = a.cmpge(-half) & b.cmple(half);
+    let between =
+        (a.cmpge(half) & b.cmple(spacing - half)) | (a.cmpge(-spacing + half) & b.cmple(-half));
+    let decided = point | huge;
+    // Narrow windows inside a line cover it all, those between lines nothing.
+    let mut coverage = Vec4::select(inside, Vec4::ONE, Vec4::ZERO);
+    let overlapping = narrow & !inside & !between & !decided;
+    if overlapping.any() {
+        let overlap = |centre: Vec4| (b.min(centre + half) - a.max(centre - half)).max(Vec4::ZERO);
+        let sum = overlap(-spacing) + overlap(Vec4::ZERO) + overlap(spacing);
+        coverage = Vec4::select(overlapping, clamp(sum / width, Vec4::ONE), coverage);
+    }
+    let wide = !narrow & !decided;
+    if wide.any() {
+        let two_half = Vec4::splat(2.0) * half;
+        let integral = |y: Vec4| {
+            let k = floor_x4(y / spacing);
+            (k, clamp(y - k * spacing, spacing).min(two_half))
+        };
+        let (k0, m0) = integral(a + half);
+        let (k1, m1) = integral(b + half);
+        let covered = (k1 - k0) * Vec4::splat(2.0) * half + m1 - m0;
+        coverage = Vec4::select(wide, clamp(covered / width, Vec4::ONE), coverage);
+    }
+    let average = Vec4::splat(2.0) * half / spacing;
+    let on_line = Vec4::select(d.abs().cmplt(half), Vec4::ONE, Vec4::ZERO);
+    Vec4::select(point, on_line, Vec4::select(huge, average, coverage))
+}
+
+/// Lane by lane, `x.clamp(0.0, max)` as `f32::clamp` does it: `0` below, `max` above,
+/// a NaN as it is.
+#[inline(always)]
+fn clamp(x: Vec4, max: Vec4) -> Vec4 {
+    let x = Vec4::select(x.cmplt(Vec4::ZERO), Vec4::ZERO, x);
+    Vec4::select(x.cmpgt(max), max, x)
+}
+
+/// Lane by lane, [`round`] and [`floor`]'s truncation toward zero: `(x as i32) as f32`
+/// with the sign of `x`, for `|x|` below [`ALL_INTEGERS`] (other lanes hold anything),
+/// and the mask of those lanes. Adding and taking away 2^23 rounds `|x|` to the nearest
+/// integer exactly; one less where that is above `|x|` is its truncation.
+#[inline(always)]
+fn truncate_x4(x: Vec4) -> (Vec4, BVec4A) {
+    let magnitude = x.abs();
+    let all_integers = Vec4::splat(ALL_INTEGERS);
+    let nearest = (magnitude + all_integers) - all_integers;
+    let above = Vec4::select(nearest.cmpgt(magnitude), Vec4::ONE, Vec4::ZERO);
+    ((nearest - above).copysign(x), magnitude.cmplt(all_integers))
+}
+
+/// Lane by lane, [`round`], bit for bit.
+#[inline(always)]
+fn round_x4(x: Vec4) -> Vec4 {
+    let (t, small) = truncate_x4(x);
+    let rounded = Vec4::select(
+        (x - t).abs().cmpge(Vec4::splat(0.5)),
+        t + Vec4::ONE.copysign(x),
+        t,
+    );
+    Vec4::select(small, rounded, x)
+}
+
+/// Lane by lane, [`floor`], bit for bit.
+#[inline(always)]
+fn floor_x4(x: Vec4) -> Vec4 {
+    let (t, small) = truncate_x4(x);
+    Vec4::select(small, Vec4::select(t.cmpgt(x), t - Vec4::ONE, t), x)
+}
+
 /// Floats from 2^23 up in magnitude are all integers (and NaN and the infinities round
 /// to themselves), so [`round`] and [`floor`] return them as they are.
 const ALL_INTEGERS: f32 = 8_388_608.0;
@@ -139,6 +295,7 @@ fn floor(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shade::NoRecorder;
 
     #[track_caller]
     fn check_rounding(x: f32) {
@@ -348,5 +505,316 @@ mod tests {
             }
         }
         assert!(beyond_half > 0, "no offset past half a spacing was tried");
+    }
+
+    /// Random numbers from a fixed seed.
+    struct Numbers(u32);
+
+    impl Numbers {
+        fn bits(&mut self) -> u32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            self.0
+        }
+
+        /// Uniform in `[0, 1)`.
+        fn uniform(&mut self) -> f32 {
+            (self.bits() >> 8) as f32 / (1 << 24) as f32
+        }
+
+        /// One of `n` choices.
+        fn pick(&mut self, n: u32) -> u32 {
+            self.bits() % n
+        }
+
+        /// `x` moved by up to four ulps either way in magnitude (zero to the smallest
+        /// subnormals), the infinities kept.
+        fn nudge(&mut self, x: f32) -> f32 {
+            let ulps = self.pick(9);
+            if x.is_infinite() {
+                return x;
+            }
+            let magnitude = x.abs().to_bits().saturating_add(ulps).saturating_sub(4);
+            f32::from_bits(magnitude).copysign(x)
+        }
+    }
+
+    /// Grids of every kind: powers of two and not, lines wider than their spacing (a
+    /// solid colour), lines of no width.
+    fn grids() -> Vec<Grid> {
+        [
+            (1.0, 0.1),
+            (2.0, 0.2),
+            (0.25, 0.0),
+            (0.1, 0.006),
+            (3.0, 0.4),
+            (0.7, 0.05),
+            (1.0, 1.5),
+            (1e-3, 2e-4),
+            (250.0, 1.0),
+        ]
+        .into_iter()
+        .enumerate()
+        .map(|(k, (spacing, line_width))| Grid {
+            spacing,
+            line_width,
+            color: Vec3::new(0.1 * k as f32, 0.9 - 0.1 * k as f32, 0.5),
+        })
+        .collect()
+    }
+
+    /// A position on `grid` near what decides its coverage: on a line's centre or edge,
+    /// half-way between lines, or anywhere, nudged by a few ulps, up to a million
+    /// spacings from the origin (where the offset from the nearest line rounds past half
+    /// a spacing).
+    fn position(numbers: &mut Numbers, grid: &Grid) -> f32 {
+        let (spacing, half) = (grid.spacing, 0.5 * grid.line_width.min(grid.spacing));
+        let reach = [10.0, 2000.0, 1e6][numbers.pick(3) as usize];
+        let line = ((2.0 * numbers.uniform() - 1.0) * reach).floor();
+        let x = match numbers.pick(6) {
+            0 => line * spacing,
+            1 => line * spacing + half,
+            2 => line * spacing - half,
+            3 => (line + 0.5) * spacing,
+            4 => -0.0,
+            _ => (line + numbers.uniform()) * spacing,
+        };
+        numbers.nudge(x)
+    }
+
+    /// A window width at `x` on `grid` near what decides its coverage: none, about the
+    /// point-sample limit, one spacing or 64, infinite, huge, or with an edge on a line's
+    /// edge (the nearest line or its neighbours), nudged by a few ulps; or anywhere.
+    fn width(numbers: &mut Numbers, grid: &Grid, x: f32) -> f32 {
+        let (spacing, half) = (grid.spacing, 0.5 * grid.line_width.min(grid.spacing));
+        let d = x - round(x / spacing) * spacing;
+        let width = match numbers.pick(12) {
+            0 => 0.0,
+            1 => 1e-6 * spacing,
+            2 => spacing,
+            3 => 64.0 * spacing,
+            4 => f32::INFINITY,
+            5 => 1e30,
+            6 => 2.0 * (d - half),
+            7 => 2.0 * (d + spacing - half),
+            8 => 2.0 * (-half - d),
+            9 => 2.0 * (spacing - half - d),
+            10 => spacing * 100.0 * numbers.uniform(),
+            _ => spacing * numbers.uniform(),
+        };
+        numbers.nudge(width).abs()
+    }
+
+    /// Which case of [`line_coverage`] decides a window, for counting that every one was
+    /// tried.
+    fn case(x: f32, width: f32, grid: &Grid) -> usize {
+        let (spacing, half) = (grid.spacing, 0.5 * grid.line_width.min(grid.spacing));
+        let d = x - round(x / spacing) * spacing;
+        let (a, b) = (d - 0.5 * width, d + 0.5 * width);
+        if width <= 1e-6 * spacing {
+            0
+        } else if width >= 64.0 * spacing {
+            1
+        } else if width < spacing {
+            if a >= -half && b <= half {
+                2
+            } else if (a >= half && b <= spacing - half) || (a >= -spacing + half && b <= -half) {
+                3
+            } else {
+                4
+            }
+        } else {
+            5
+        }
+    }
+
+    #[test]
+    fn round_and_floor_in_lanes_are_round_and_floor_bit_for_bit() {
+        let mut numbers = Numbers(0x0dd_ba11);
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            0.499_999_97,
+            8_388_607.5,
+            8_388_608.0,
+            -8_388_609.0,
+            1e30,
+            1e-45,
+            f32::MIN_POSITIVE,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        for _ in 0..200_000 {
+            let bits = numbers.bits();
+            values.push(f32::from_bits(bits));
+            // Ordinary numbers up to 2^25, and halves.
+            let x = (numbers.uniform() - 0.5) * (1 << (bits % 26)) as f32;
+            values.push(x);
+            values.push((2.0 * x).round() * 0.5);
+        }
+        for chunk in values.chunks_exact(4) {
+            let x = Vec4::from_slice(chunk);
+            let (rounded, floored) = (round_x4(x).to_array(), floor_x4(x).to_array());
+            for (j, &x) in chunk.iter().enumerate() {
+                assert_eq!(rounded[j].to_bits(), round(x).to_bits(), "round({x:e})");
+                assert_eq!(floored[j].to_bits(), floor(x).to_bits(), "floor({x:e})");
+            }
+        }
+        // A NaN stays a NaN.
+        let nan = Vec4::new(f32::NAN, -f32::NAN, 1.0, 2.0);
+        assert!(round_x4(nan).x.is_nan() && round_x4(nan).y.is_nan());
+        assert!(floor_x4(nan).x.is_nan() && floor_x4(nan).y.is_nan());
+    }
+
+    /// Four different windows on four different grids at once: each lane's coverage has
+    /// the bits [`line_coverage`] gives it, in every case of the scalar code, the edges
+    /// between cases within ulps.
+    #[test]
+    fn line_coverage_in_lanes_is_line_coverage_bit_for_bit() {
+        let grids = grids();
+        let mut numbers = Numbers(0x1ce_b00da);
+        let mut cases = [0; 6];
+        for _ in 0..400_000 {
+            let grid: [&Grid; 4] =
+                std::array::from_fn(|_| &grids[numbers.pick(grids.len() as u32) as usize]);
+            let x = grid.map(|grid| position(&mut numbers, grid));
+            let width = std::array::from_fn(|j| width(&mut numbers, grid[j], x[j]));
+            let spacing = Vec4::from_array(grid.map(|g| g.spacing));
+            let half = Vec4::from_array(grid.map(|g| 0.5 * g.line_width.min(g.spacing)));
+            let got = line_coverage_x4(Vec4::from_array(x), Vec4::from_array(width), spacing, half);
+            for j in 0..4 {
+                let expected = line_coverage(x[j], width[j], grid[j]);
+                assert_eq!(
+                    got[j].to_bits(),
+                    expected.to_bits(),
+                    "lane {j}: x {x:e} width {width:e} on {grid:?}: {got}, expected {expected}",
+                    x = x[j],
+                    width = width[j],
+                    grid = grid[j],
+                    got = got[j],
+                );
+                cases[case(x[j], width[j], grid[j])] += 1;
+            }
+        }
+        // Point samples, huge windows, narrow windows inside a line, between lines and
+        // overlapping them, and wide windows: every case often.
+        assert!(cases.iter().all(|&n| n > 1000), "cases tried: {cases:?}");
+    }
+
+    /// Four samples at once, of grid and plain materials, on surfaces facing every way
+    /// (ties between the normal's coordinates included), with footprints of every kind:
+    /// each lane holds the bits of [`surface_color`] for its sample.
+    #[test]
+    fn surface_colours_in_lanes_are_surface_color_bit_for_bit() {
+        let plain = Material {
+            color: Vec3::new(0.8, 0.3, 0.2),
+            ..Material::default()
+        };
+        let materials: Vec<Material> = grids()
+            .into_iter()
+            .map(|grid| Material {
+                color: Vec3::new(0.2, 0.4, 0.9),
+                grid: Some(grid),
+                ..Material::default()
+            })
+            .chain([plain])
+            .collect();
+        let mut numbers = Numbers(0x5eed_c0de);
+        let unit = |numbers: &mut Numbers| {
+            let v = Vec3::new(numbers.uniform(), numbers.uniform(), numbers.uniform()) * 2.0 - 1.0;
+            match numbers.pick(4) {
+                // Two or three coordinates of the same size, signs either way.
+                0 => Vec3::new(1.0, -1.0, 0.0).normalize(),
+                1 => Vec3::new(-0.0, 1.0, 1.0).normalize() * v.signum(),
+                2 => Vec3::splat(1.0).normalize() * v.signum(),
+                _ => v.normalize_or(Vec3::Y),
+            }
+        };
+        let mut tried = [0; 3];
+        for _ in 0..200_000 {
+            // A quarter of the groups on one material, the others on four random ones.
+            let mut material: [&Material; 4] =
+                std::array::from_fn(|_| &materials[numbers.pick(materials.len() as u32) as usize]);
+            if numbers.pick(4) == 0 {
+                material = [material[0]; 4];
+            }
+            let lanes: [(Hit, Footprint); 4] = std::array::from_fn(|j| {
+                let grid = material[j].grid.unwrap_or(NO_GRID);
+                let normal = unit(&mut numbers);
+                let point = Vec3::new(
+                    position(&mut numbers, &grid),
+                    position(&mut numbers, &grid),
+                    position(&mut numbers, &grid),
+                );
+                // An area whose widths along the axes (|dx| + |dy|) are near what decides
+                // the coverage, a point, or unbounded.
+                let footprint = match numbers.pick(8) {
+                    0 => Footprint::Point,
+                    1 => Footprint::Unbounded,
+                    _ => {
+                        let w = Vec3::new(
+                            width(&mut numbers, &grid, point.x),
+                            width(&mut numbers, &grid, point.y),
+                            width(&mut numbers, &grid, point.z),
+                        )
+                        .min(Vec3::splat(1e30));
+                        let share = numbers.uniform();
+                        let sign = unit(&mut numbers).signum();
+                        Footprint::Area(w * share * sign, w * (1.0 - share))
+                    }
+                };
+                let hit = Hit {
+                    point,
+                    normal,
+                    ..Hit::default()
+                };
+                (hit, footprint)
+            });
+            let point = Vec3x4::gather(lanes.each_ref().map(|(hit, _)| &hit.point));
+            let normal = Vec3x4::gather(lanes.each_ref().map(|(hit, _)| &hit.normal));
+            let widths = lanes.map(|(_, footprint)| footprint.widths());
+            let got = surface_colors(material, point, normal, |_| {
+                Vec3x4::gather(widths.each_ref())
+            });
+            for (j, (hit, footprint)) in lanes.iter().enumerate() {
+                let mut lines = None;
+                let expected =
+                    surface_color::<NoRecorder>(material[j], hit, || *footprint, &mut lines);
+                assert_eq!(
+                    got.lane(j).to_array().map(f32::to_bits),
+                    expected.to_array().map(f32::to_bits),
+                    "lane {j}: {hit:?} with {footprint:?} on {material:?}",
+                    material = material[j],
+                );
+                tried[usize::from(material[j].grid.is_some())
+                    + usize::from(matches!(footprint, Footprint::Area(..)))] += 1;
+            }
+        }
+        assert!(tried.iter().all(|&n| n > 1000), "{tried:?}");
+    }
+
+    /// The widths are asked for only where a material has lines, and only for its lanes.
+    #[test]
+    fn surface_colours_ask_for_the_widths_of_grid_lanes_only() {
+        let grid = Material {
+            grid: Some(GRID),
+            ..Material::default()
+        };
+        let plain = Material::default();
+        let (point, normal) = (Vec3x4::ZERO, Vec3x4::splat(Vec3::Y));
+        let mut asked = None;
+        surface_colors([&plain, &grid, &plain, &grid], point, normal, |lanes| {
+            asked = Some(lanes);
+            Vec3x4::ZERO
+        });
+        assert_eq!(asked, Some(0b1010));
+        let colors = surface_colors([&plain; 4], point, normal, |_| unreachable!());
+        assert_eq!(colors, Vec3x4::splat(plain.color));
     }
 }

@@ -12,7 +12,8 @@
 //!   `lit::mirrors` (the reflected rays traced together and shaded as a batch one
 //!   bounce deeper).
 //! - [`grid`]: a material's colour with its grid lines, box-filtered over the sample's
-//!   [`footprint`] on the surface, which the pixel's ray differentials give.
+//!   [`footprint`] on the surface, which the pixel's ray differentials give; for Lit
+//!   batches four samples at a time, bit for bit as one alone.
 //! - [`depth`]: the rule that turns hit points into Depth values, and the pre-pass that
 //!   finds its range.
 //! - [`record`]: the hooks through which each step tells a [`Recorder`] the numbers of

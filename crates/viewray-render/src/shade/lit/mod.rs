@@ -1,5 +1,5 @@
 //! Lit shading of a batch of hits, four samples at a time: each group's surface
-//! details, then its [`lights`] (each light's shadow rays traced together), then its
+//! colours and details, then its [`lights`] (each light's shadow rays traced together), then its
 //! [`mirrors`] (the reflected rays traced together and shaded one bounce deeper).
 
 mod lights;
@@ -11,8 +11,8 @@ use viewray_geometry::{Hit, ObjectHit, Ray, World};
 use self::lights::ShadowBuffers;
 use self::mirrors::MirrorBuffers;
 use super::Shader;
-use super::footprint::{FilmPoint, Footprint};
-use super::grid::surface_color;
+use super::footprint::{FilmPoint, Footprint, RaysX4};
+use super::grid::{surface_color, surface_colors};
 use super::record::Recorder;
 use crate::lanes::Vec3x4;
 use crate::trace::{LitSurface, StepKind, material_index};
@@ -59,8 +59,6 @@ pub(crate) struct LitScratch {
 /// depth's made when a mirror is first met.
 #[derive(Default)]
 pub(super) struct LitBuffers {
-    /// Each sample's surface colour (with grid lines).
-    bases: Vec<Vec3>,
     groups: Vec<LitGroup>,
     /// Each sample's mirror reflectance.
     mirror: Vec<f32>,
@@ -143,10 +141,10 @@ impl Shader<'_> {
         self.follow_mirrors(&batch, buffers, colors, recorder, count);
     }
 
-    /// Fills `buffers` with each sample's surface colour and mirror reflectance, and its
-    /// groups of four with their surface details, where their secondary rays start, the
-    /// view direction, and no colour yet; tells `recorder` the surface of the sample it
-    /// follows.
+    /// Fills `buffers` with each sample's mirror reflectance, and its groups of four
+    /// with their surface colours (with grid lines, see [`surface_colors`]) and details,
+    /// where their secondary rays start, the view direction, and no colour yet; tells
+    /// `recorder` the surface of the sample it follows.
     #[inline]
     fn gather_groups<'f, F: Fn(usize) -> FilmPoint<'f>, R: Recorder>(
         &self,
@@ -165,38 +163,16 @@ impl Shader<'_> {
         } else {
             None
         };
-        let mut followed_grid = None;
         let n = rays.len();
-        let LitBuffers {
-            bases,
-            groups,
-            mirror,
-            ..
-        } = buffers;
+        let LitBuffers { groups, mirror, .. } = buffers;
 
-        // Each sample's surface colour, one by one (grid lines branch).
-        mirror.clear();
-        bases.clear();
-        for (i, (ray, hit)) in rays.iter().zip(hits).enumerate() {
-            let material = self.scene.material(hit);
-            let mut grid = None;
-            bases.push(surface_color::<R>(
-                material,
-                hit,
-                || film.map_or(Footprint::Point, |f| self.footprint(&f(i), ray, hit)),
-                &mut grid,
-            ));
-            mirror.push(material.mirror);
-            if R::ACTIVE && followed == Some(i) {
-                followed_grid = grid;
-            }
-        }
-        // Then, four at a time, where its secondary rays start and the view direction.
-        // Every vector is gathered from where it lies (see `Vec3x4::gather`), and the
-        // surface colours long after they were written: through small arrays filled
-        // just before, the gathering took about a tenth of the render's time.
+        // Four at a time, each sample's surface colour (with grid lines), where its
+        // secondary rays start and the view direction. Every vector is gathered from
+        // where it lies (see `Vec3x4::gather`): through small arrays filled just before,
+        // the gathering took about a tenth of the render's time.
         // Each group is written in its slot: pushed, it was built on the stack and copied
         // (a call to memmove that read back stores still on their way).
+        mirror.clear();
         groups.resize(n.div_ceil(4), LitGroup::EMPTY);
         for (g, group) in groups.iter_mut().enumerate() {
             // Spare lanes repeat the last sample; no light adds to them.
@@ -204,16 +180,31 @@ impl Shader<'_> {
             let i = [0, 1, 2, 3].map(|j| 4 * g + j.min(len - 1));
             let hit = i.map(|i| &hits[i]);
             let material = hit.map(|hit| self.scene.material(hit));
+            mirror.extend(material[..len].iter().map(|m| m.mirror));
             let direction = Vec3x4::gather(i.map(|i| &rays[i].direction));
             let point = Vec3x4::gather(hit.map(|hit| &hit.point));
             let normal = Vec3x4::gather(hit.map(|hit| &hit.normal));
+            // Grid lines are filtered over the footprints of viewing rays, point-sampled
+            // for reflected rays.
+            let base = surface_colors(material, point, normal, |lanes| match film {
+                Some(film) => {
+                    let rays = RaysX4 {
+                        origin: Vec3x4::gather(i.map(|i| &rays[i].origin)),
+                        direction,
+                        point,
+                        normal,
+                    };
+                    self.footprint_widths(|j| film(i[j]), lanes, &rays)
+                }
+                None => Vec3x4::ZERO,
+            });
             let t = Vec4::new(hit[0].t, hit[1].t, hit[2].t, hit[3].t);
             let specular_lanes = (0..len)
                 .filter(|&j| material[j].specular != Vec3::ZERO)
                 .fold(0, |lanes, j| lanes | 1 << j);
             *group = LitGroup {
                 lanes: (1 << len) - 1,
-                base: Vec3x4::gather(i.map(|i| &bases[i])),
+                base,
                 specular: Vec3x4::gather(material.map(|m| &m.specular)),
                 shininess: material.map(|m| m.shininess),
                 specular_lanes,
@@ -228,12 +219,22 @@ impl Shader<'_> {
             && let Some(i) = followed
         {
             let (group, j) = (&groups[i / 4], i % 4);
-            let material = self.scene.material(&hits[i]);
-            recorder.closest(depth, &hits[i]);
+            let (ray, hit) = (&rays[i], &hits[i]);
+            let material = self.scene.material(hit);
+            recorder.closest(depth, hit);
+            // How the lines were mixed in, from the scalar rule the lanes follow bit for
+            // bit; the colour is the lanes' own.
+            let mut grid = None;
+            surface_color::<R>(
+                material,
+                hit,
+                || film.map_or(Footprint::Point, |f| self.footprint(&f(i), ray, hit)),
+                &mut grid,
+            );
             let surface = LitSurface {
-                material: material_index(self.scene, &hits[i]),
-                color: bases[i],
-                grid: followed_grid,
+                material: material_index(self.scene, hit),
+                color: group.base.lane(j),
+                grid,
                 specular: material.specular,
                 shininess: material.shininess,
                 mirror: material.mirror,
