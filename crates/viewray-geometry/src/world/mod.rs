@@ -242,7 +242,33 @@ impl World {
     /// to finish (about a twentieth of a Lit render's time).
     #[inline(never)]
     pub fn shading_surface_into(&self, ray: &Ray, hit: &ObjectHit, out: &mut Hit) {
-        self.write_surface(ray, &hit.raw, false, out);
+        // The ground plane is most hits' surface: its frame is found without a search.
+        if let Object::Plane(plane) = &self.objects[hit.raw.object as usize]
+            && let Some(slot) = self.plane_slot(hit.raw.object)
+        {
+            *out = plane.surface_in(ray, hit.raw.t, &self.plane_frames[slot], false);
+            out.object = hit.raw.object;
+            return;
+        }
+        self.write_surface_cold(ray, &hit.raw, out);
+    }
+
+    /// [`World::write_surface`] without the uv, kept out of line so that the planes' path
+    /// above needs no room for the other shapes' numbers.
+    #[inline(never)]
+    fn write_surface_cold(&self, ray: &Ray, raw: &RawHit, out: &mut Hit) {
+        self.write_surface(ray, raw, false, out);
+    }
+
+    /// The slot of plane `object` among the planes, if it is one: a world has few
+    /// planes, looked through in order, or many, searched.
+    #[inline(always)]
+    fn plane_slot(&self, object: u32) -> Option<usize> {
+        if self.planes.len() <= 8 {
+            self.planes.iter().position(|&plane| plane == object)
+        } else {
+            self.planes.binary_search(&object).ok()
+        }
     }
 
     /// The closest object hit of each ray of `rays` with `t` in `t_range`, into `hits`:
@@ -651,9 +677,9 @@ impl World {
     fn write_surface(&self, ray: &Ray, raw: &RawHit, with_uv: bool, out: &mut Hit) {
         match &self.objects[raw.object as usize] {
             Object::Sphere(s) => *out = s.surface_with(ray, raw.t, with_uv),
-            Object::Plane(p) => match self.planes.binary_search(&raw.object) {
-                Ok(slot) => *out = p.surface_in(ray, raw.t, &self.plane_frames[slot], with_uv),
-                Err(_) => *out = p.surface_in(ray, raw.t, &p.frame(), with_uv),
+            Object::Plane(p) => match self.plane_slot(raw.object) {
+                Some(slot) => *out = p.surface_in(ray, raw.t, &self.plane_frames[slot], with_uv),
+                None => *out = p.surface_in(ray, raw.t, &p.frame(), with_uv),
             },
             Object::Triangle(tri) => *out = tri.surface(ray, raw),
             Object::Box(b) => {
