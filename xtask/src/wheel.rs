@@ -20,7 +20,7 @@
 //! environment (`python/test-venv`, with pytest and Pillow) and runs
 //! `crates/viewray-python/tests/` there. `--in-diff` (what CI runs) does all of this
 //! only when the wheel's inputs changed since the merge base with `main` (see
-//! [`wheel_inputs`]).
+//! `wheel_inputs`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -18,7 +18,7 @@ use glam::DVec2;
 /// The square's centre `(0.5, 0.5)` maps to the disk's centre.
 ///
 /// The second rule's point is `r (sin phi, cos phi)` with `phi = (pi/4) (a / b)`, the
-/// same point, and both angles lie in `[-pi/4, pi/4]`, where [`sin_cos_quarter`] needs no
+/// same point, and both angles lie in `[-pi/4, pi/4]`, where `sin_cos_quarter` needs no
 /// range reduction: every thin-lens sample maps one lens point, and the system's
 /// `sincos` had been a ninth of a thin-lens render's time.
 pub fn sample_unit_disk_concentric(p: DVec2) -> DVec2 {

@@ -138,6 +138,8 @@ pub(crate) enum Command {
     ///
     /// and last {"row":R,"col":C,"linear":[r,g,b],"srgb8":[r,g,b]} (with
     /// --one-based, "i" and "j" instead of "row" and "col").
+    // The help text shows JSON, whose brackets rustdoc would take for links.
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[command(verbatim_doc_comment)]
     Trace(crate::trace::TraceArgs),
     /// Check a student's numbers: frames, viewing rays and projections, answer by answer.
