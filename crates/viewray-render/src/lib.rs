@@ -125,6 +125,8 @@ mod lanes;
 mod render;
 mod sampling;
 mod shade;
+#[cfg(test)]
+mod test_numbers;
 mod trace;
 
 pub use crate::image::{Image, ImageError, ImageFormat, PixelKind};

@@ -222,6 +222,8 @@ mod tests {
     use glam::DVec3;
     use viewray_scene::Scene;
 
+    use crate::test_numbers::Numbers;
+
     use super::*;
     use crate::View;
     use crate::shade::DepthMap;
@@ -355,23 +357,6 @@ mod tests {
         let (got, expected) = footprints(&turned, DVec2::new(19.5, 20.5), 0.5);
         assert!(expected.is_none());
         assert!(matches!(got, Footprint::Unbounded), "{got:?}");
-    }
-
-    /// Random numbers from a fixed seed.
-    struct Numbers(u32);
-
-    impl Numbers {
-        fn uniform(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            (self.0 >> 8) as f32 / (1 << 24) as f32
-        }
-
-        /// Each coordinate uniform in `[-1, 1)`.
-        fn vector(&mut self) -> Vec3 {
-            Vec3::new(self.uniform(), self.uniform(), self.uniform()) * 2.0 - 1.0
-        }
     }
 
     /// Four samples at once, with differentials small and large, neighbours that meet

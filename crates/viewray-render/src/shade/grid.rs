@@ -296,6 +296,7 @@ fn floor(x: f32) -> f32 {
 mod tests {
     use super::*;
     use crate::shade::NoRecorder;
+    use crate::test_numbers::Numbers;
 
     #[track_caller]
     fn check_rounding(x: f32) {
@@ -505,39 +506,6 @@ mod tests {
             }
         }
         assert!(beyond_half > 0, "no offset past half a spacing was tried");
-    }
-
-    /// Random numbers from a fixed seed.
-    struct Numbers(u32);
-
-    impl Numbers {
-        fn bits(&mut self) -> u32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            self.0
-        }
-
-        /// Uniform in `[0, 1)`.
-        fn uniform(&mut self) -> f32 {
-            (self.bits() >> 8) as f32 / (1 << 24) as f32
-        }
-
-        /// One of `n` choices.
-        fn pick(&mut self, n: u32) -> u32 {
-            self.bits() % n
-        }
-
-        /// `x` moved by up to four ulps either way in magnitude (zero to the smallest
-        /// subnormals), the infinities kept.
-        fn nudge(&mut self, x: f32) -> f32 {
-            let ulps = self.pick(9);
-            if x.is_infinite() {
-                return x;
-            }
-            let magnitude = x.abs().to_bits().saturating_add(ulps).saturating_sub(4);
-            f32::from_bits(magnitude).copysign(x)
-        }
     }
 
     /// Grids of every kind: powers of two and not, lines wider than their spacing (a

@@ -318,7 +318,7 @@ impl LitGroup {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shade::lit::tests::Numbers;
+    use crate::test_numbers::Numbers;
 
     /// Blinn-Phong for one sample, as the crate docs write it (the scalar code the
     /// four-lane one replaced).

@@ -283,26 +283,7 @@ fn offset_origin(point: Vec3x4, normal: Vec3x4, t: Vec4, direction: Vec3x4) -> V
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Random vectors from a fixed seed: unit vectors, or colours in `[0, 1)`.
-    pub(super) struct Numbers(pub(super) u32);
-
-    impl Numbers {
-        pub(super) fn uniform(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            (self.0 >> 8) as f32 / (1 << 24) as f32
-        }
-
-        pub(super) fn color(&mut self) -> Vec3 {
-            Vec3::new(self.uniform(), self.uniform(), self.uniform())
-        }
-
-        pub(super) fn unit(&mut self) -> Vec3 {
-            (self.color() * 2.0 - 1.0).normalize_or(Vec3::Y)
-        }
-    }
+    use crate::test_numbers::Numbers;
 
     #[test]
     fn four_lanes_of_offset_origins_are_the_formula_bit_for_bit() {
