@@ -250,7 +250,7 @@ impl IndexSamples<'_> {
     #[inline]
     pub(crate) fn draw(&self, seeds: &[PixelSeed], samples: &mut [CameraSample]) {
         #[cfg(target_arch = "x86_64")]
-        if self.strata.avx2 && self.strata.cells.len() > 1 && seeds.len() <= MAX_DRAWN {
+        if self.strata.avx2 && self.strata.cells.len() > 1 {
             // SAFETY: `avx2` is true only where the processor runs AVX2 (`Strata::new`
             // asks it), which is all `draw_films_avx2` and `draw_lenses_avx2` need.
             #[allow(unsafe_code)]
@@ -295,25 +295,28 @@ impl IndexSamples<'_> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn draw_lenses_avx2(&self, seeds: &[PixelSeed], samples: &mut [CameraSample]) {
-        let mut drawn = [[0u64; 4]; MAX_DRAWN];
-        for (&seed, bits) in seeds.iter().zip(&mut drawn) {
-            let mut rng = SampleRng::of_pixel(seed, self.salt);
-            *bits = [0; 4].map(|_| rng.next_u64() >> 11);
-        }
         let count = self.strata.cells.len() as u32;
-        for ((&seed, bits), sample) in seeds.iter().zip(&drawn).zip(samples) {
-            let unit = bits.map(exact_f64);
-            let (corner, size) = self.strata.cell(permute(self.index, count, seed.lens));
-            *sample = CameraSample {
-                p_film: self.corner + self.size * (DVec2::new(unit[0], unit[1]) * UNIT),
-                p_lens: corner + size * (DVec2::new(unit[2], unit[3]) * UNIT),
-            };
+        let mut drawn = [[0u64; 4]; DRAWN];
+        for (seeds, samples) in seeds.chunks(DRAWN).zip(samples.chunks_mut(DRAWN)) {
+            for (&seed, bits) in seeds.iter().zip(&mut drawn) {
+                let mut rng = SampleRng::of_pixel(seed, self.salt);
+                *bits = [0; 4].map(|_| rng.next_u64() >> 11);
+            }
+            for ((&seed, bits), sample) in seeds.iter().zip(&drawn).zip(samples) {
+                let unit = bits.map(exact_f64);
+                let (corner, size) = self.strata.cell(permute(self.index, count, seed.lens));
+                *sample = CameraSample {
+                    p_film: self.corner + self.size * (DVec2::new(unit[0], unit[1]) * UNIT),
+                    p_lens: corner + size * (DVec2::new(unit[2], unit[3]) * UNIT),
+                };
+            }
         }
     }
 }
 
-/// The most pixels [`IndexSamples::draw`] takes four at a time with a lens: a block's.
-const MAX_DRAWN: usize = 64;
+/// How many pixels' random numbers [`IndexSamples::draw_lenses_avx2`] draws before it
+/// makes their samples (a block of 8 x 8 pixels in one pass).
+const DRAWN: usize = 64;
 
 /// `2^-53`: a number's top 53 bits as a fraction of 1.
 const UNIT: f64 = 1.0 / (1u64 << 53) as f64;
@@ -478,7 +481,7 @@ mod tests {
                     let mut strata = Strata::new(count).with_lens(lens);
                     strata.avx2 = avx2;
                     // A few pixels, a whole block's, and more than a block's.
-                    for pixels in [7, MAX_DRAWN, MAX_DRAWN + 1] {
+                    for pixels in [7, DRAWN, DRAWN + 1] {
                         let seeds: Vec<_> = (0..pixels as u32)
                             .map(|col| PixelSeed::new(3 + count, 1000 * count + col))
                             .collect();

@@ -39,6 +39,6 @@ mod tests;
 pub(crate) use boxes::PacketBoxes;
 pub(crate) use closest::{PacketQuery, PacketVisitor};
 pub(crate) use lanes::{
-    Lanes, PACKET_GROUPS, PACKET_SIZE, at, lane, lane_mask, lanes_of, set_lane,
+    Lanes, PACKET_GROUPS, PACKET_SIZE, at, at_mut, lane, lane_mask, lanes_of, set_lane,
 };
 pub(crate) use rays::{BoxPacket, for_each_packet, for_each_packet_unless_scattered};

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec4};
 
 use super::{Object, World};
 use crate::hit::RawHit;
-use crate::packet::{BoxPacket, PacketQuery, lane_mask, lanes_of};
+use crate::packet::{BoxPacket, PacketQuery, at, at_mut, lane_mask, lanes_of};
 use crate::shapes::WatertightLanes;
 use crate::{Sphere, Triangle};
 
@@ -76,35 +76,39 @@ impl World {
     /// [`World::intersect_object`] of object `object`, the loose shape `shape`, for
     /// each lane of `query`, four lanes at a time.
     pub(super) fn closest_loose(&self, shape: Loose<'_>, object: u32, query: PacketQuery<'_>) {
-        let t_min = Vec4::splat(query.t_min);
-        for (group, t_max) in query.t_max.iter_mut().enumerate() {
-            let lanes = ((query.lanes >> (4 * group)) & 0xf) as u32;
-            if lanes == 0 {
+        let PacketQuery {
+            packet,
+            rays,
+            lanes,
+            t_min,
+            t_max,
+            best,
+        } = query;
+        let t_min_lanes = Vec4::splat(t_min);
+        for (group, t_max) in t_max.iter_mut().enumerate() {
+            let group_lanes = ((lanes >> (4 * group)) & 0xf) as u32;
+            if group_lanes == 0 {
                 continue;
             }
-            let hits = shape.group_hits(query.packet, group, lanes, (t_min, *t_max));
-            if hits.hit != 0 {
-                let ts = hits.t.to_array();
-                let [b1, b2] = hits.barycentric.map(|b| b.to_array());
-                for j in lanes_of(u64::from(hits.hit)) {
-                    query.best[4 * group + j] = Some(RawHit {
-                        t: ts[j],
-                        object,
-                        primitive: 0,
-                        barycentric: Vec2::new(b1[j], b2[j]),
-                    });
-                }
-                *t_max = Vec4::select(lane_mask(hits.hit), hits.t, *t_max);
+            let hits = shape.group_hits(packet, group, group_lanes, (t_min_lanes, *t_max));
+            for j in lanes_of(u64::from(hits.hit)) {
+                best[4 * group + j] = Some(RawHit {
+                    t: at(&hits.t, j),
+                    object,
+                    primitive: 0,
+                    barycentric: Vec2::new(
+                        at(&hits.barycentric[0], j),
+                        at(&hits.barycentric[1], j),
+                    ),
+                });
             }
+            *t_max = Vec4::select(lane_mask(hits.hit), hits.t, *t_max);
             for j in lanes_of(u64::from(hits.undecided)) {
                 let lane = 4 * group + j;
-                let ray = &query.rays[usize::from(query.packet.rays()[lane])];
-                let bound = t_max.to_array()[j];
-                if let Some(hit) = self.intersect_object(object, ray, query.t_min, bound) {
-                    let mut values = t_max.to_array();
-                    values[j] = hit.t;
-                    *t_max = Vec4::from_array(values);
-                    query.best[lane] = Some(hit);
+                let ray = &rays[usize::from(packet.rays()[lane])];
+                if let Some(hit) = self.intersect_object(object, ray, t_min, at(t_max, j)) {
+                    *at_mut(t_max, j) = hit.t;
+                    best[lane] = Some(hit);
                 }
             }
         }
