@@ -1,4 +1,5 @@
-//! A movie's frames rendered in order and handed to viewray-output's encoders, timed.
+//! A movie's frames rendered in order and handed to viewray-output's encoders, timed;
+//! each frame is encoded while the next one renders.
 
 use std::collections::HashMap;
 use std::io::{self, Write};
@@ -11,7 +12,8 @@ use viewray_render::{RenderError, RenderSettings};
 use crate::Movie;
 
 /// How long a movie took: rendering (and laying out) its frames, and encoding and
-/// writing them.
+/// writing them. The two overlap (a frame is encoded while the next one renders), so
+/// together they may add up to more than the time the movie took.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Timings {
     /// Rendering the pictures, drawing the side views and laying out the frames.
@@ -58,6 +60,40 @@ impl<F: FnMut()> Frames<'_, F> {
         }
     }
 
+    /// Runs `encode` on this thread while frame `next` (if any, and not kept) renders on
+    /// the thread pool, and returns what `encode` gives and frame `next`.
+    ///
+    /// A frame's render leaves threads idle at its end (its last tiles, then laying out
+    /// the frame on one thread) and encoding ran on one thread between renders; side by
+    /// side, each fills the other's gaps. The frames are the same: a frame's pixels
+    /// depend on the scene and its number alone, and they are encoded in order.
+    fn encode_while_rendering<T>(
+        &mut self,
+        next: Option<u32>,
+        encode: impl FnOnce() -> io::Result<T>,
+    ) -> Result<(T, Option<RgbImage>), EncodeError> {
+        let Some(k) = next.filter(|k| !self.kept.contains_key(k)) else {
+            let encoded = self.encoding(encode)?;
+            return Ok((encoded, next.map(|k| self.take(k)).transpose()?));
+        };
+        let (movie, settings) = (self.movie, self.settings);
+        let mut rendered = None;
+        let (encoded, encode_time) = rayon::in_place_scope(|scope| {
+            scope.spawn(|_| {
+                let started = Instant::now();
+                rendered = Some((movie.render_frame(k, settings), started.elapsed()));
+            });
+            let started = Instant::now();
+            (encode(), started.elapsed())
+        });
+        self.timings.encode += encode_time;
+        let (frame, render_time) = rendered.expect("the scope waits for its render");
+        self.timings.render += render_time;
+        let (encoded, frame) = (encoded?, frame?);
+        (self.on_frame)();
+        Ok((encoded, Some(frame)))
+    }
+
     /// Runs `encode`, adding its time to the encoding's.
     fn encoding<T>(&mut self, encode: impl FnOnce() -> io::Result<T>) -> io::Result<T> {
         let started = Instant::now();
@@ -65,6 +101,24 @@ impl<F: FnMut()> Frames<'_, F> {
         self.timings.encode += started.elapsed();
         result
     }
+}
+
+/// Hands the frames of `movie` to `write` in order, frame `k` while frame `k + 1`
+/// renders ([`Frames::encode_while_rendering`]).
+fn write_in_order<F: FnMut()>(
+    frames: &mut Frames<'_, F>,
+    mut write: impl FnMut(u32, &RgbImage) -> io::Result<()>,
+) -> Result<(), EncodeError> {
+    let n = frames.movie.frames();
+    let mut frame = frames.take(0)?;
+    for k in 0..n {
+        let next = (k + 1 < n).then_some(k + 1);
+        let ((), rendered) = frames.encode_while_rendering(next, || write(k, &frame))?;
+        if let Some(rendered) = rendered {
+            frame = rendered;
+        }
+    }
+    Ok(())
 }
 
 /// Writes `movie` to `out` as a looping GIF (viewray-output's [`GifWriter`]), its one
@@ -102,10 +156,7 @@ pub fn write_gif<W: Write>(
         GifWriter::new(out, width, height, movie.fps(), palette)
     })?;
     frames.kept = kept;
-    for k in 0..n {
-        let frame = frames.take(k)?;
-        frames.encoding(|| writer.write_frame(&frame))?;
-    }
+    write_in_order(&mut frames, |_, frame| writer.write_frame(frame))?;
     let out = frames.encoding(|| {
         let mut out = writer.finish()?;
         out.flush()?;
@@ -135,10 +186,7 @@ pub fn write_apng<W: Write>(
     let (width, height) = movie.frame_size();
     let mut writer =
         frames.encoding(|| ApngWriter::new(out, width, height, movie.frames(), movie.fps()))?;
-    for k in 0..movie.frames() {
-        let frame = frames.take(k)?;
-        frames.encoding(|| writer.write_frame(&frame))?;
-    }
+    write_in_order(&mut frames, |_, frame| writer.write_frame(frame))?;
     frames.encoding(|| writer.finish())?;
     Ok(frames.timings)
 }
@@ -153,7 +201,7 @@ pub fn write_frames(
     movie: &Movie,
     settings: &RenderSettings,
     on_frame: impl FnMut(),
-    mut write: impl FnMut(u32, &RgbImage) -> io::Result<()>,
+    write: impl FnMut(u32, &RgbImage) -> io::Result<()>,
 ) -> Result<Timings, EncodeError> {
     let mut frames = Frames {
         movie,
@@ -162,9 +210,6 @@ pub fn write_frames(
         timings: Timings::default(),
         on_frame,
     };
-    for k in 0..movie.frames() {
-        let frame = frames.take(k)?;
-        frames.encoding(|| write(k, &frame))?;
-    }
+    write_in_order(&mut frames, write)?;
     Ok(frames.timings)
 }

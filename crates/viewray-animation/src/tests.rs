@@ -171,6 +171,50 @@ fn a_frame_depends_only_on_the_scene_and_its_number() {
 }
 
 #[test]
+fn frames_are_written_in_order_each_one_its_own() {
+    // Each frame is written while the next one renders: the writer still gets frame k
+    // as k, every frame once, and `on_frame` counts every render.
+    let movie = Movie::from_demo(
+        &demo_by_name("focus-pull").unwrap(),
+        LoadOptions {
+            size: Some((40, 24)),
+            samples: Some(2),
+        },
+        MovieSettings {
+            frames: Some(5),
+            ..MovieSettings::default()
+        },
+    )
+    .unwrap();
+    let settings = RenderSettings::default();
+    let (mut written, mut rendered) = (Vec::new(), 0);
+    let timings = crate::write_frames(
+        &movie,
+        &settings,
+        || rendered += 1,
+        |k, frame| {
+            written.push((k, frame.clone()));
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert_eq!(rendered, 5);
+    assert_eq!(
+        written.iter().map(|(k, _)| *k).collect::<Vec<_>>(),
+        [0, 1, 2, 3, 4]
+    );
+    for (k, frame) in &written {
+        assert_eq!(
+            *frame,
+            movie.render_frame(*k, &settings).unwrap(),
+            "frame {k}"
+        );
+    }
+    assert_ne!(written[0].1, written[4].1, "the frames do move");
+    assert!(timings.render > std::time::Duration::ZERO);
+}
+
+#[test]
 fn frames_that_would_not_fit_in_memory_are_refused() {
     let demo = demo_by_name("dolly-zoom").unwrap();
     let huge = LoadOptions {

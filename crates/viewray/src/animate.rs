@@ -62,7 +62,8 @@ pub(crate) struct AnimateArgs {
     /// Print one JSON line of statistics on stdout:
     /// {"frames":N,"width":W,"height":H,"render_s":..,"encode_s":..}. render_s is
     /// rendering and laying out the frames; encode_s is choosing the palette, encoding
-    /// and writing them.
+    /// and writing them (a frame is encoded while the next one renders, so the two can
+    /// add up to more than the time taken).
     #[arg(long)]
     pub(crate) stats: bool,
 }
