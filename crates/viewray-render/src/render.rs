@@ -1,6 +1,5 @@
 //! The render loop: tiles in parallel, samples per pixel, statistics.
 
-use std::cell::OnceCell;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
@@ -14,7 +13,7 @@ use viewray_scene::{Scene, Shading};
 use crate::image::{Image, PixelKind};
 use crate::sampling::{PixelSeed, Strata};
 use crate::shade::{
-    DepthMap, DepthRange, FilmPoint, LitScratch, NoRecorder, RayDifferentials, Recorder, Shader,
+    DepthMap, DepthRange, FilmPixel, FilmPoint, LitScratch, NoRecorder, Recorder, Shader,
     T_MIN,
 };
 
@@ -187,9 +186,9 @@ const BLOCK_RAYS: usize = (BLOCK_SIZE * BLOCK_SIZE) as usize;
 struct TileBuffers {
     /// The tile's pixels, row by row.
     pixels: Vec<Vec3>,
-    /// Each pixel's ray differentials, worked out by the first sample that needs them
-    /// (empty when the shading asks for no film points).
-    differentials: Vec<OnceCell<Option<RayDifferentials>>>,
+    /// Each pixel's centre and ray differentials, worked out by the first sample that
+    /// needs them (empty when the shading asks for no film points).
+    film: Vec<FilmPixel>,
     /// Room for a block's rays, and for each the pixel it belongs to, as its index in
     /// `pixels` (its row and column follow from the tile, where a film point asks for
     /// them), and their hits: one slot per pixel of a block, filled from the front.
@@ -212,7 +211,7 @@ impl TileBuffers {
         let pixels = tile_size as usize * tile_size as usize;
         Self {
             pixels: Vec::with_capacity(pixels),
-            differentials: Vec::with_capacity(pixels),
+            film: Vec::with_capacity(pixels),
             rays: [Ray::new(Vec3::ZERO, Vec3::ZERO); BLOCK_RAYS],
             ray_pixels: [0; BLOCK_RAYS],
             hits: [None; BLOCK_RAYS],
@@ -281,9 +280,15 @@ impl TileBuffers {
         self.pixels.resize(pixel_count, Vec3::ZERO);
         // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
         // shading that may ask for film points.
-        self.differentials.clear();
+        self.film.clear();
         if shader.uses_film_points() {
-            self.differentials.resize_with(pixel_count, OnceCell::new);
+            for row in tile.row..tile.row + tile.height {
+                let y = f64::from(row);
+                self.film.extend(
+                    (tile.col..tile.col + tile.width)
+                        .map(|col| FilmPixel::new(DVec2::new(f64::from(col), y) + 0.5)),
+                );
+            }
         }
     }
 
@@ -365,20 +370,15 @@ impl TileBuffers {
         {
             recorder.ray(0, &block_rays[i], T_MIN);
         }
-        let (ray_pixels, differentials) = (&self.ray_pixels, &self.differentials);
+        let (ray_pixels, film) = (&self.ray_pixels, &self.film);
         let pixels = &mut self.pixels;
         let mut rays = 0;
         shader.shade_primaries(
             block_rays,
             hits,
-            |i| {
-                let pixel = ray_pixels[i];
-                let (row, col) = (tile.row + pixel / tile.width, tile.col + pixel % tile.width);
-                FilmPoint {
-                    pixel_center: DVec2::new(f64::from(col), f64::from(row)) + 0.5,
-                    spacing,
-                    differentials: &differentials[pixel as usize],
-                }
+            |i| FilmPoint {
+                pixel: &film[ray_pixels[i] as usize],
+                spacing,
             },
             (&mut self.lit, recorder),
             |i, color| pixels[ray_pixels[i] as usize] += color,

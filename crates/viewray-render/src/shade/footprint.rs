@@ -10,17 +10,37 @@ use viewray_geometry::{Hit, Ray};
 use super::Shader;
 use crate::lanes::{self, Vec3x4};
 
-/// A point on the film: the continuous image point of a primary ray, kept so grid lines
-/// can be filtered over the sample's footprint.
+/// A point on the film: the pixel of a primary ray's sample, kept so grid lines can be
+/// filtered over the sample's footprint.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FilmPoint<'a> {
-    /// The pixel's centre `(col + 1/2, row + 1/2)`.
-    pub(crate) pixel_center: DVec2,
+    /// The sample's pixel.
+    pub(crate) pixel: &'a FilmPixel,
     /// The side of the square of film this sample stands for, in pixels
     /// (`1 / sqrt(samples)`).
     pub(crate) spacing: f64,
-    /// The pixel's ray differentials, worked out by the first sample that needs them.
-    pub(crate) differentials: &'a OnceCell<Option<RayDifferentials>>,
+}
+
+/// A pixel as its samples' footprints see it: its centre, set when its tile starts (a
+/// sample's film point was worked out from its place in the tile, an integer division
+/// for every sample with grid lines, though only the pixel's first one needs it), and
+/// its ray differentials, worked out by the first sample that needs them.
+#[derive(Debug)]
+pub(crate) struct FilmPixel {
+    /// The pixel's centre `(col + 1/2, row + 1/2)`.
+    pub(crate) center: DVec2,
+    /// The pixel's ray differentials, once asked for.
+    pub(crate) differentials: OnceCell<Option<RayDifferentials>>,
+}
+
+impl FilmPixel {
+    /// The pixel whose centre is `center`, its differentials not yet worked out.
+    pub(crate) fn new(center: DVec2) -> Self {
+        Self {
+            center,
+            differentials: OnceCell::new(),
+        }
+    }
 }
 
 /// How a viewing ray changes when its film point moves by one sample spacing along the
@@ -188,17 +208,12 @@ impl Shader<'_> {
     }
 
     /// The differentials of `film`'s pixel, worked out by the first sample that asks.
-    ///
-    /// The film point is taken apart by value so that the compiler can move the work of
-    /// its pixel's centre (used only here, on the first call) onto that path.
     #[inline(always)]
     fn film_differentials<'f>(&self, film: FilmPoint<'f>) -> &'f Option<RayDifferentials> {
-        let FilmPoint {
-            pixel_center,
-            spacing,
-            differentials,
-        } = film;
-        differentials.get_or_init(move || self.differentials(pixel_center, spacing))
+        let FilmPoint { pixel, spacing } = film;
+        pixel
+            .differentials
+            .get_or_init(|| self.differentials(pixel.center, spacing))
     }
 
     /// The ray differentials at the image point `center` for a step of `spacing` pixels,
@@ -258,11 +273,10 @@ mod tests {
             &ray,
             &world.closest_object(&ray, T_MIN..f32::INFINITY).unwrap(),
         );
-        let differentials = OnceCell::new();
+        let film_pixel = FilmPixel::new(pixel);
         let film = FilmPoint {
-            pixel_center: pixel,
+            pixel: &film_pixel,
             spacing,
-            differentials: &differentials,
         };
         let got = shader.footprint(&film, &ray, &hit);
         let (p, n) = (hit.point.as_dvec3(), hit.normal.as_dvec3());
@@ -436,12 +450,12 @@ mod tests {
         let camera = &view.camera;
         let shader = Shader::new(&scene, &view, 4, DepthMap::new(camera));
         let world = scene.world();
-        let cells: Vec<OnceCell<Option<RayDifferentials>>> =
-            (0..40 * 30).map(|_| OnceCell::new()).collect();
+        let pixels: Vec<FilmPixel> = (0..40 * 30)
+            .map(|i| FilmPixel::new(DVec2::new(f64::from(i % 40), f64::from(i / 40)) + 0.5))
+            .collect();
         let film = |pixel: (u32, u32), spacing: f64| FilmPoint {
-            pixel_center: DVec2::new(f64::from(pixel.0), f64::from(pixel.1)) + 0.5,
+            pixel: &pixels[(pixel.1 * 40 + pixel.0) as usize],
             spacing,
-            differentials: &cells[(pixel.1 * 40 + pixel.0) as usize],
         };
         // Samples from the bottom row to half a pixel below the horizon (whose
         // neighbour a pixel up misses the ground), two in one pixel.
@@ -473,7 +487,7 @@ mod tests {
         };
         // Lane 0 left out: its pixel's differentials stay unknown.
         let got = shader.footprint_widths(|j| film(lanes[j].0, 1.0), 0b1110, &rays);
-        assert!(cells[20].get().is_none());
+        assert!(pixels[20].differentials.get().is_none());
         let mut unbounded = 0;
         for (j, (pixel, ray, hit)) in lanes.iter().enumerate().skip(1) {
             let expected = shader.footprint(&film(*pixel, 1.0), ray, hit).widths();

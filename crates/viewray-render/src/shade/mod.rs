@@ -38,7 +38,7 @@ use viewray_scene::{Scene, Shading};
 use crate::View;
 
 pub(crate) use self::depth::{DepthMap, DepthRange};
-pub(crate) use self::footprint::{FilmPoint, RayDifferentials};
+pub(crate) use self::footprint::{FilmPixel, FilmPoint};
 pub(crate) use self::lit::LitScratch;
 pub(crate) use self::primary::T_MIN;
 pub(crate) use self::record::{NoRecorder, Recorder};
