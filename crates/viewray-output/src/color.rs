@@ -63,8 +63,96 @@ pub fn srgb_to_linear(s: f32) -> f32 {
 /// A linear channel value as an 8-bit sRGB code: clamped to `[0, 1]` (NaN to 0),
 /// encoded by [`linear_to_srgb`] and stored by [`unit_to_u8`]. Linear 0.5 is 188,
 /// linear 0.2140 is 128.
+///
+/// Looked up rather than computed: the code never decreases as `x` grows, so it is the
+/// number of codes whose least value `x` reaches, and those 255 least values are found
+/// once, by bisection with the formula itself ([`SrgbCodes`]). The result is the
+/// formula's, to the bit, on every machine (the least values come from its `powf`);
+/// an image's worth of `powf` had been a frame's PNG encoding's largest part.
+#[inline]
 pub fn linear_to_srgb8(x: f32) -> u8 {
+    SrgbCodes::get().code(x)
+}
+
+/// [`linear_to_srgb8`] by the formula, value by value.
+fn linear_to_srgb8_by_formula(x: f32) -> u8 {
     unit_to_u8(linear_to_srgb(clamp_unit(x)))
+}
+
+/// The 8-bit sRGB codes of linear values as a table: the least value of each code, and
+/// a first guess for each bucket of values by their bits (the exponent and the top
+/// [`SrgbCodes::MANTISSA_BITS`] of the mantissa), which holds at most a code or two.
+struct SrgbCodes {
+    /// `least[k]`: the least value whose code is `k`, for `k` in `1..=255` (`least[0]`
+    /// is 0 and never read).
+    least: [f32; 256],
+    /// The bits of the first bucket's first value (`least[1]`'s bucket).
+    first: u32,
+    /// The code of each bucket's first value, from `first` to `least[255]`'s bucket.
+    start: Vec<u8>,
+}
+
+impl SrgbCodes {
+    /// How many of the mantissa's top bits a bucket shares: buckets 2^-8 of their
+    /// values wide, where the codes near 1 are 2^-6.8 apart.
+    const MANTISSA_BITS: u32 = 8;
+    const SHIFT: u32 = f32::MANTISSA_DIGITS - 1 - Self::MANTISSA_BITS;
+
+    /// The table, made on first use (255 bisections and a few thousand buckets, some
+    /// ten thousand evaluations of the formula).
+    fn get() -> &'static SrgbCodes {
+        static CODES: std::sync::OnceLock<SrgbCodes> = std::sync::OnceLock::new();
+        CODES.get_or_init(SrgbCodes::new)
+    }
+
+    fn new() -> Self {
+        let mut least = [0.0_f32; 256];
+        for (k, least) in least.iter_mut().enumerate().skip(1) {
+            // The least bits of `[0, 1]` (ordered as their values) whose code reaches `k`.
+            let (mut low, mut high) = (0_u32, 1.0_f32.to_bits());
+            while low < high {
+                let middle = low + (high - low) / 2;
+                if usize::from(linear_to_srgb8_by_formula(f32::from_bits(middle))) >= k {
+                    high = middle;
+                } else {
+                    low = middle + 1;
+                }
+            }
+            *least = f32::from_bits(low);
+        }
+        let first = least[1].to_bits() >> Self::SHIFT << Self::SHIFT;
+        let buckets = ((least[255].to_bits() - first) >> Self::SHIFT) as usize + 1;
+        let start = (0..buckets)
+            .map(|bucket| {
+                let value = f32::from_bits(first + ((bucket as u32) << Self::SHIFT));
+                // The number of codes whose least value it reaches.
+                least[1..].partition_point(|&l| l <= value) as u8
+            })
+            .collect();
+        Self {
+            least,
+            first,
+            start,
+        }
+    }
+
+    /// The code of `x`.
+    #[inline]
+    fn code(&self, x: f32) -> u8 {
+        // Below the first code's least value: negative, tiny or NaN, code 0.
+        if x < self.least[1] || x.is_nan() {
+            return 0;
+        }
+        if x >= self.least[255] {
+            return 255;
+        }
+        let bucket = ((x.to_bits() - self.first) >> Self::SHIFT) as usize;
+        let mut code = self.start[bucket];
+        while x >= self.least[usize::from(code) + 1] {
+            code += 1;
+        }
+        code
+    }
 }
 
 /// A value in `[0, 1]` as the 8-bit code `round(255 x)`, as an 8-bit image stores an
@@ -86,6 +174,34 @@ fn clamp_unit(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn looked_up_codes_are_the_formulas() {
+        let codes = SrgbCodes::get();
+        let check = |bits: u32| {
+            let x = f32::from_bits(bits);
+            assert_eq!(
+                linear_to_srgb8(x),
+                linear_to_srgb8_by_formula(x),
+                "linear {x:e} (bits {bits:#x})"
+            );
+        };
+        // Every value within 4096 ulps of each code's least value, where a code changes.
+        for &least in &codes.least[1..] {
+            let bits = least.to_bits();
+            (bits - 4096..=bits + 4096).for_each(check);
+        }
+        // And values all over: zero to beyond 1, negatives, infinities and NaN.
+        (0..=1.5_f32.to_bits()).step_by(1009).for_each(check);
+        (0..=1.5_f32.to_bits()).step_by(1009).for_each(|bits| check(bits | 1 << 31));
+        [f32::INFINITY, f32::NEG_INFINITY, f32::NAN, f32::MIN_POSITIVE, 1.0, 0.0, -0.0]
+            .map(f32::to_bits)
+            .into_iter()
+            .for_each(check);
+        // Each code has a least value, above the one before, inside `[0, 1]`.
+        assert!(codes.least[1] > 0.0 && codes.least[255] <= 1.0);
+        assert!(codes.least[1..].windows(2).all(|pair| pair[0] < pair[1]));
+    }
 
     #[test]
     fn srgb_codes_of_known_values() {
