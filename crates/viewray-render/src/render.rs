@@ -343,7 +343,7 @@ impl TileBuffers {
             let sample = |row: u32, col: u32| {
                 drawn[((row - block_row) * width + (col - block_col)) as usize]
             };
-            camera.generate_sampled_block_rays(rows, cols, sample, take);
+            strata.sampled_block_rays(camera, (rows, cols), sample, take);
         }
 
         if R::ACTIVE
