@@ -165,7 +165,8 @@ pub(crate) struct Strata {
 }
 
 impl Strata {
-    /// The camera's rays of the block `rows x cols` through each pixel's sample:
+    /// The camera's rays of the block `rows x cols` through each pixel's sample, the
+    /// block's samples `drawn` row by row:
     /// [`Camera::generate_sampled_block_rays`], or where lens samples are drawn and the
     /// processor runs AVX2, its AVX2 build
     /// ([`Camera::generate_sampled_block_rays_avx2`]), the same rays.
@@ -174,7 +175,7 @@ impl Strata {
         &self,
         camera: &Camera,
         (rows, cols): (Range<u32>, Range<u32>),
-        sample: impl FnMut(u32, u32) -> CameraSample,
+        drawn: &[CameraSample],
         ray: impl FnMut(u32, u32, Option<DRay>),
     ) {
         #[cfg(target_arch = "x86_64")]
@@ -183,10 +184,12 @@ impl Strata {
             // asks it), which is all `generate_sampled_block_rays_avx2` needs.
             #[allow(unsafe_code)]
             unsafe {
-                camera.generate_sampled_block_rays_avx2(rows, cols, sample, ray);
+                camera.generate_sampled_block_rays_avx2(rows, cols, drawn, ray);
             }
             return;
         }
+        let (top, left, width) = (rows.start, cols.start, cols.len() as u32);
+        let sample = |row: u32, col: u32| drawn[((row - top) * width + (col - left)) as usize];
         camera.generate_sampled_block_rays(rows, cols, sample, ray);
     }
 

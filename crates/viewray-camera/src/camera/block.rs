@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
 #[cfg(target_arch = "x86_64")]
-use super::lanes::{LANES, Quad, RoundLens};
+use super::lanes::{LANES, RoundLens};
 use super::{Camera, CameraSample, image_to_image_plane, image_x_to_u, image_y_to_v};
 use crate::{Perspective, Projection, ThinLens};
 
@@ -188,16 +188,21 @@ impl Camera {
         }
     }
 
-    /// [`Camera::generate_sampled_block_rays`] compiled for AVX2, the same rays in the
-    /// same order: a round, untilted thin lens without mistakes takes the block's pixels
-    /// four at a time in the lanes of AVX2 registers (its image-plane points, iris
-    /// points and frame transforms, the same operations in the same order in every
-    /// lane); every other camera as [`Camera::generate_sampled_block_rays`].
+    /// [`Camera::generate_sampled_block_rays`] compiled for AVX2, with the block's
+    /// samples given row by row (pixel `(row, col)`'s at
+    /// `(row - rows.start) * cols.len() + (col - cols.start)`): the same rays in the same
+    /// order. A round, untilted thin lens without mistakes takes each row's pixels four
+    /// at a time in the lanes of AVX2 registers (their image-plane points, iris points
+    /// and frame transforms, the same operations in the same order in every lane); every
+    /// other camera goes as [`Camera::generate_sampled_block_rays`].
     ///
     /// # Safety
     ///
     /// The processor must run AVX2 (which is why code not compiled for AVX2 calls this
     /// in `unsafe`): a renderer asks `is_x86_feature_detected!("avx2")` once.
+    ///
+    /// # Panics
+    /// If `samples` holds fewer than the block's pixels.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     #[inline]
@@ -205,30 +210,38 @@ impl Camera {
         &self,
         rows: Range<u32>,
         cols: Range<u32>,
-        mut sample: impl FnMut(u32, u32) -> CameraSample,
+        samples: &[CameraSample],
         mut ray: impl FnMut(u32, u32, Option<DRay>),
     ) {
+        let width = cols.len();
         let Shortcut::RoundLens(lens) = self.shortcut() else {
+            let (top, left) = (rows.start, cols.start);
+            let sample =
+                |row: u32, col: u32| samples[(row - top) as usize * width + (col - left) as usize];
             self.generate_sampled_block_rays(rows, cols, sample, ray);
             return;
         };
-        // The pixels in row order, four at a time; a short last group's other lanes
-        // keep the group before (or zeros), whose rays are not handed on.
-        let round = RoundLens::new(&lens, self.size(), &self.frame);
-        let mut quad = Quad::default();
-        let mut filled = 0;
-        for row in rows {
-            for col in cols.clone() {
-                quad.set(filled, row, col, sample(row, col));
-                filled += 1;
-                if filled == LANES {
-                    round.rays_avx2(&quad, LANES, &mut ray);
-                    filled = 0;
-                }
-            }
+        assert!(samples.len() >= rows.len() * width, "a sample per pixel");
+        if width == 0 {
+            return;
         }
-        if filled != 0 {
-            round.rays_avx2(&quad, filled, &mut ray);
+        let round = RoundLens::new(&lens, self.size(), &self.frame);
+        // Row by row, four pixels at a time; a short last group of a row padded with lens
+        // centres, whose rays are not handed on.
+        for (row, line) in rows.zip(samples.chunks(width)) {
+            let mut quads = line.chunks_exact(LANES);
+            let mut col = cols.start;
+            for quad in &mut quads {
+                let quad = quad.try_into().expect("chunks of LANES");
+                round.rays_avx2((row, col), quad, LANES, &mut ray);
+                col += LANES as u32;
+            }
+            let rest = quads.remainder();
+            if !rest.is_empty() {
+                let mut padded = [CameraSample::CENTER; LANES];
+                padded[..rest.len()].copy_from_slice(rest);
+                round.rays_avx2((row, col), &padded, rest.len(), &mut ray);
+            }
         }
     }
 
@@ -396,10 +409,14 @@ mod tests {
             if std::arch::is_x86_feature_detected!("avx2") {
                 let mut lanes = Vec::new();
                 let take = |row, col, ray| lanes.push((row, col, ray));
+                let samples: Vec<_> = rows
+                    .clone()
+                    .flat_map(|row| cols.clone().map(move |col| sample(row, col)))
+                    .collect();
                 // SAFETY: the processor runs AVX2 (asked above), all the call needs.
                 #[allow(unsafe_code)]
                 unsafe {
-                    camera.generate_sampled_block_rays_avx2(rows, cols, sample, take);
+                    camera.generate_sampled_block_rays_avx2(rows, cols, &samples, take);
                 }
                 same_rays(lanes, expected)?;
             }
@@ -593,12 +610,16 @@ mod tests {
             assert_eq!(bits(ray.direction), bits(single.direction), "{row} {col}");
             rays += 1;
         };
+        // Three rows of six pixels: a group of four and a short group each.
+        let samples: Vec<_> = (0..3)
+            .flat_map(|row| (0..6).map(move |col| sample(row, col)))
+            .collect();
         // SAFETY: the processor runs AVX2 (asked above), all the call needs.
         #[allow(unsafe_code)]
         unsafe {
-            camera.generate_sampled_block_rays_avx2(0..3, 0..3, sample, check);
+            camera.generate_sampled_block_rays_avx2(0..3, 0..6, &samples, check);
         }
-        assert_eq!(rays, 9);
+        assert_eq!(rays, 18);
     }
 
     /// A parallel camera's origin keeps the frame transform's last term `0 W`: with an

@@ -5,47 +5,19 @@
 //! and two frame transforms had been about 120 instructions.
 
 use std::arch::x86_64::{
-    _mm256_add_pd, _mm256_div_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_sub_pd, _mm256_xor_pd,
+    _mm256_add_pd, _mm256_div_pd, _mm256_mul_pd, _mm256_set_pd, _mm256_set1_pd, _mm256_sub_pd,
+    _mm256_xor_pd,
 };
 
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
 use super::CameraSample;
-use crate::sampling::{F64x4, Lanes, load, sample_unit_disk_concentric_avx2, store};
+use crate::sampling::{F64x4, load, sample_unit_disk_concentric_avx2, store};
 use crate::{Frame, ThinLens};
 
 /// How many pixels' rays go through the lanes together.
 pub(super) const LANES: usize = 4;
-
-/// Up to four pixels' samples, gathered for [`RoundLens::rays_avx2`].
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Quad {
-    /// The image points' `x`: each pixel's column plus its film sample's `x`.
-    x: Lanes,
-    /// The image points' `y`: each pixel's row plus its film sample's `y`.
-    y: Lanes,
-    /// The lens samples' first coordinates.
-    lens_x: Lanes,
-    /// The lens samples' second coordinates.
-    lens_y: Lanes,
-    /// Each lane's pixel `(row, col)`.
-    pixels: [(u32, u32); LANES],
-}
-
-impl Quad {
-    /// Puts pixel `(row, col)` and its sample in lane `lane` (`lane < LANES`).
-    #[inline(always)]
-    pub(super) fn set(&mut self, lane: usize, row: u32, col: u32, sample: CameraSample) {
-        // The image point as `image_to_image_plane`'s callers make it.
-        let image = DVec2::new(f64::from(col), f64::from(row)) + sample.p_film;
-        self.x[lane] = image.x;
-        self.y[lane] = image.y;
-        self.lens_x[lane] = sample.p_lens.x;
-        self.lens_y[lane] = sample.p_lens.y;
-        self.pixels[lane] = (row, col);
-    }
-}
 
 /// What the rays of a round, untilted thin lens share: the camera's numbers and the
 /// terms of its rule that are the same for every ray.
@@ -96,24 +68,30 @@ impl RoundLens {
         }
     }
 
-    /// The rays of the first `filled` lanes of `quad`, handed to `ray` lane by lane.
+    /// The rays of the first `filled` of the four pixels `(row, col + k)` through their
+    /// samples `samples[k]`, handed to `ray` pixel by pixel.
     ///
-    /// Per lane, `camera_space_ray`'s thin-lens rule: the image-plane point
-    /// `u = (x / W - 1/2) vw`, `v = -(y / H - 1/2) vh` (`image_to_image_plane`), the lens
-    /// point `a = aperture * disk(p_lens)`, the direction
+    /// Per lane, `camera_space_ray`'s thin-lens rule: the image point
+    /// `(col + k + film x, row + film y)` (`col + k` exact in `f64`), the image-plane
+    /// point `u = (x / W - 1/2) vw`, `v = -(y / H - 1/2) vh` (`image_to_image_plane`), the
+    /// lens point `a = aperture * disk(p_lens)`, the direction
     /// `c = f / d (u + sx, v + sy, -d) - (ax, ay, 0)`; then `Frame`'s transforms, the
     /// origin `e + ((ax U + ay V) + 0 W)` and the direction `(cx U + cy V) + cz W`.
     #[target_feature(enable = "avx2")]
     #[inline]
     pub(super) fn rays_avx2(
         &self,
-        quad: &Quad,
+        (row, col): (u32, u32),
+        samples: &[CameraSample; LANES],
         filled: usize,
         ray: &mut impl FnMut(u32, u32, Option<DRay>),
     ) {
-        let (add, mul, sub, splat) = (_mm256_add_pd, _mm256_mul_pd, _mm256_sub_pd, _mm256_set1_pd);
+        let (add, mul, sub) = (_mm256_add_pd, _mm256_mul_pd, _mm256_sub_pd);
+        let splat = |value| _mm256_set1_pd(value);
+        let columns = add(splat(f64::from(col)), _mm256_set_pd(3.0, 2.0, 1.0, 0.0));
+        let x = add(columns, gather(samples, |s| s.p_film.x));
+        let y = add(splat(f64::from(row)), gather(samples, |s| s.p_film.y));
         let half = splat(0.5);
-        let (x, y) = (load(&quad.x), load(&quad.y));
         let u = mul(
             sub(_mm256_div_pd(x, splat(self.size.x)), half),
             splat(self.viewport.x),
@@ -121,8 +99,10 @@ impl RoundLens {
         let v_up = sub(_mm256_div_pd(y, splat(self.size.y)), half);
         // `-(y / H - 1/2)`: the sign bit flipped, as `f64`'s negation.
         let v = mul(_mm256_xor_pd(v_up, splat(-0.0)), splat(self.viewport.y));
-        let (disk_x, disk_y) =
-            sample_unit_disk_concentric_avx2(load(&quad.lens_x), load(&quad.lens_y));
+        let (disk_x, disk_y) = sample_unit_disk_concentric_avx2(
+            gather(samples, |s| s.p_lens.x),
+            gather(samples, |s| s.p_lens.y),
+        );
         let aperture = splat(self.aperture);
         let (lens_x, lens_y) = (mul(aperture, disk_x), mul(aperture, disk_y));
         let fd = splat(self.focus_over_distance);
@@ -139,10 +119,17 @@ impl RoundLens {
         });
         let direction =
             [0, 1, 2].map(|axis| store(transform(camera_x, camera_y, self.direction_w, axis)));
-        for (lane, &(row, col)) in quad.pixels.iter().enumerate().take(filled) {
+        for (lane, col) in (col..).take(filled).enumerate() {
             let origin = DVec3::new(origin[0][lane], origin[1][lane], origin[2][lane]);
             let direction = DVec3::new(direction[0][lane], direction[1][lane], direction[2][lane]);
             ray(row, col, Some(DRay::new(origin, direction)));
         }
     }
+}
+
+/// One coordinate of four samples in the lanes of a register.
+#[target_feature(enable = "avx2")]
+#[inline]
+fn gather(samples: &[CameraSample; LANES], coordinate: impl Fn(&CameraSample) -> f64) -> F64x4 {
+    load(&samples.each_ref().map(coordinate))
 }
