@@ -622,6 +622,39 @@ mod tests {
         assert_eq!(rays, 18);
     }
 
+    /// A round lens's block in lanes asks for a sample per pixel: a slice one short
+    /// panics before any ray (its last row would otherwise go one pixel short).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn round_lens_lanes_want_a_sample_per_pixel() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let frame = Frame::from_eye_view_up(DVec3::ZERO, DVec3::NEG_Z, DVec3::Y).unwrap();
+        let pinhole = Perspective {
+            distance: 1.0,
+            viewport: DVec2::new(2.0, 1.5),
+            shift: DVec2::ZERO,
+        };
+        let lens = Projection::ThinLens(ThinLens::new(pinhole, 0.5, 3.0));
+        let camera = Camera::new(frame, lens, 8, 8).unwrap();
+        for (len, panics) in [(8, false), (7, true)] {
+            let samples = vec![CameraSample::CENTER; len];
+            let mut rays = 0;
+            let block = std::panic::AssertUnwindSafe(|| {
+                // SAFETY: the processor runs AVX2 (asked above), all the call needs.
+                #[allow(unsafe_code)]
+                unsafe {
+                    camera.generate_sampled_block_rays_avx2(0..2, 0..4, &samples, |_, _, _| {
+                        rays += 1;
+                    });
+                }
+            });
+            assert_eq!(std::panic::catch_unwind(block).is_err(), panics, "{len}");
+            assert_eq!(rays, if panics { 0 } else { 8 }, "{len}");
+        }
+    }
+
     /// A parallel camera's origin keeps the frame transform's last term `0 W`: with an
     /// axis-aligned frame and an eye at `-0`, `e + ((u U + v V) + 0 W)` has a `+0` where
     /// leaving the term out (or subtracting it) leaves a `-0`; and the axes' zeros make
