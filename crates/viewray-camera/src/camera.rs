@@ -7,6 +7,8 @@ use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Mistake, Mistakes, Plane3, Projection, TiltedFocus};
 
 mod block;
+#[cfg(target_arch = "x86_64")]
+mod lanes;
 
 /// Where in a pixel, and where on the lens, a viewing ray is taken.
 ///

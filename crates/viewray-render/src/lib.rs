@@ -65,7 +65,7 @@
 //! an image is byte-identical on any number of threads. Pixels average their samples (a
 //! box filter). A tile hashes each pixel's part of the seed once; a block's samples are
 //! drawn together before its rays (four pixels at a time where the processor has AVX2,
-//! the same bits as one at a time).
+//! the same bits as one at a time; a round thin lens's rays too, four at a time).
 //!
 //! Tiles of 16 x 16 pixels are rendered in parallel. Within a tile, each sample index
 //! is traced block by block: the viewing rays of 8 x 8 neighbouring pixels go to
@@ -87,9 +87,12 @@
 //!
 //! # Unsafe code
 //!
-//! The workspace denies `unsafe_code`; this crate opts in at one site, with a `SAFETY`
-//! comment: `sampling.rs` calls its AVX2 build of the block's sample drawing where the
-//! processor was found to run AVX2 (the function itself holds no unsafe operation).
+//! The workspace denies `unsafe_code`; this crate opts in at two sites, each with a
+//! `SAFETY` comment, both in `sampling.rs` and both where the processor was found to run
+//! AVX2: the call of its AVX2 build of the block's sample drawing, and, for a camera with
+//! a lens, the call of the camera's AVX2 build of a block's rays
+//! (`Camera::generate_sampled_block_rays_avx2`). Neither function holds an unsafe
+//! operation.
 //!
 //! # Output
 //!

@@ -305,10 +305,9 @@ impl TileBuffers {
     ) -> u64 {
         let &Block {
             tile,
-            row: block_row,
-            col: block_col,
             index,
             first_seed,
+            ..
         } = block;
         let &TileSetup {
             shader,
@@ -341,14 +340,10 @@ impl TileBuffers {
             // Each pixel's own sample, drawn from its seed for the whole block first
             // (the block's seeds are one slice, its samples row by row); then the camera
             // works out what its rays share once, and each ray.
-            let (width, count) = (cols.len() as u32, rows.len() * cols.len());
+            let count = rows.len() * cols.len();
             let seeds = &self.seeds[first_seed..first_seed + count];
             strata.index(index).draw(seeds, &mut self.samples[..count]);
-            let drawn = &self.samples;
-            let sample = |row: u32, col: u32| {
-                drawn[((row - block_row) * width + (col - block_col)) as usize]
-            };
-            camera.generate_sampled_block_rays(rows, cols, sample, take);
+            strata.sampled_block_rays(camera, (rows, cols), &self.samples[..count], take);
         }
 
         if R::ACTIVE

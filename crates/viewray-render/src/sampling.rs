@@ -1,8 +1,11 @@
 //! Where in a pixel (and on the lens) each sample goes: stratified jitter from a hash of
 //! (row, col, sample index), so an image never depends on thread scheduling.
 
+use std::ops::Range;
+
 use glam::DVec2;
-use viewray_camera::CameraSample;
+use viewray_camera::{Camera, CameraSample};
+use viewray_geometry::DRay;
 
 /// SplitMix64's output function: a fast, well-mixing bijection on `u64`.
 #[inline]
@@ -94,30 +97,52 @@ pub(crate) fn permute(mut index: u32, len: u32, seed: u32) -> u32 {
     mask |= mask >> 8;
     mask |= mask >> 16;
     loop {
-        index ^= seed;
-        index = index.wrapping_mul(0xe170_893d);
-        index ^= seed >> 16;
-        index ^= (index & mask) >> 4;
-        index ^= seed >> 8;
-        index = index.wrapping_mul(0x0929_eb3f);
-        index ^= seed >> 23;
-        index ^= (index & mask) >> 1;
-        index = index.wrapping_mul(1 | seed >> 27);
-        index = index.wrapping_mul(0x6935_fa69);
-        index ^= (index & mask) >> 11;
-        index = index.wrapping_mul(0x74dc_b303);
-        index ^= (index & mask) >> 2;
-        index = index.wrapping_mul(0x9e50_1cc3);
-        index ^= (index & mask) >> 2;
-        index = index.wrapping_mul(0xc860_a3df);
-        index &= mask;
-        index ^= index >> 5;
+        index = permute_hash(index, mask, seed);
         if index < len {
             // `(index + seed) % len`, reduced first: a seed within `len` of `u32::MAX`
             // neither overflows nor (wrapping) breaks the permutation.
             return (index + seed % len) % len;
         }
     }
+}
+
+/// One step of [`permute`]'s cycle walk: Kensler's hash of `index`, within `0..=mask`.
+#[inline(always)]
+fn permute_hash(mut index: u32, mask: u32, seed: u32) -> u32 {
+    index ^= seed;
+    index = index.wrapping_mul(0xe170_893d);
+    index ^= seed >> 16;
+    index ^= (index & mask) >> 4;
+    index ^= seed >> 8;
+    index = index.wrapping_mul(0x0929_eb3f);
+    index ^= seed >> 23;
+    index ^= (index & mask) >> 1;
+    index = index.wrapping_mul(1 | seed >> 27);
+    index = index.wrapping_mul(0x6935_fa69);
+    index ^= (index & mask) >> 11;
+    index = index.wrapping_mul(0x74dc_b303);
+    index ^= (index & mask) >> 2;
+    index = index.wrapping_mul(0x9e50_1cc3);
+    index ^= (index & mask) >> 2;
+    index = index.wrapping_mul(0xc860_a3df);
+    index &= mask;
+    index ^ index >> 5
+}
+
+/// How many seeds [`permute_lanes`] shuffles at once: eight `u32` lanes, one AVX2
+/// register.
+const PERMUTE_LANES: usize = 8;
+
+/// [`permute`]`(index, len, seed)` of each of `seeds` where `len`, the number of
+/// strata, is a power of two: then `mask` is `len - 1`, so the hash lands in `0..len`
+/// at the first step (its last two steps keep it within the mask) and the walk never
+/// loops, and `% len` is `& mask`. With no loop and no division, eight seeds go through
+/// the same integer operations side by side.
+#[inline(always)]
+fn permute_lanes(index: u32, len: u32, seeds: [u32; PERMUTE_LANES]) -> [u32; PERMUTE_LANES] {
+    debug_assert!(len.is_power_of_two() && index < len);
+    let mask = len - 1;
+    seeds.map(|seed| (permute_hash(index, mask, seed) + (seed & mask)) & mask)
 }
 
 /// The strata of one pixel: the unit square split into `count` cells of equal area,
@@ -140,6 +165,34 @@ pub(crate) struct Strata {
 }
 
 impl Strata {
+    /// The camera's rays of the block `rows x cols` through each pixel's sample, the
+    /// block's samples `drawn` row by row:
+    /// [`Camera::generate_sampled_block_rays`], or where lens samples are drawn and the
+    /// processor runs AVX2, its AVX2 build
+    /// ([`Camera::generate_sampled_block_rays_avx2`]), the same rays.
+    #[inline]
+    pub(crate) fn sampled_block_rays(
+        &self,
+        camera: &Camera,
+        (rows, cols): (Range<u32>, Range<u32>),
+        drawn: &[CameraSample],
+        ray: impl FnMut(u32, u32, Option<DRay>),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 && self.lens {
+            // SAFETY: `avx2` is true only where the processor runs AVX2 (`Strata::new`
+            // asks it), which is all `generate_sampled_block_rays_avx2` needs.
+            #[allow(unsafe_code)]
+            unsafe {
+                camera.generate_sampled_block_rays_avx2(rows, cols, drawn, ray);
+            }
+            return;
+        }
+        let (top, left, width) = (rows.start, cols.start, cols.len() as u32);
+        let sample = |row: u32, col: u32| drawn[((row - top) * width + (col - left)) as usize];
+        camera.generate_sampled_block_rays(rows, cols, sample, ray);
+    }
+
     /// The strata of `count` samples (at least 1).
     pub(crate) fn new(count: u32) -> Self {
         let count = count.max(1);
@@ -297,14 +350,31 @@ impl IndexSamples<'_> {
     fn draw_lenses_avx2(&self, seeds: &[PixelSeed], samples: &mut [CameraSample]) {
         let count = self.strata.cells.len() as u32;
         let mut drawn = [[0u64; 4]; DRAWN];
+        let mut lens_cells = [0u32; DRAWN];
         for (seeds, samples) in seeds.chunks(DRAWN).zip(samples.chunks_mut(DRAWN)) {
             for (&seed, bits) in seeds.iter().zip(&mut drawn) {
                 let mut rng = SampleRng::of_pixel(seed, self.salt);
                 *bits = [0; 4].map(|_| rng.next_u64() >> 11);
             }
-            for ((&seed, bits), sample) in seeds.iter().zip(&drawn).zip(samples) {
+            if count.is_power_of_two() {
+                let lanes = seeds.chunks(PERMUTE_LANES);
+                for (seeds, cells) in lanes.zip(lens_cells.chunks_mut(PERMUTE_LANES)) {
+                    // A short last group's missing lanes shuffle seed 0, unused.
+                    let mut lens = [0; PERMUTE_LANES];
+                    for (lane, seed) in lens.iter_mut().zip(seeds) {
+                        *lane = seed.lens;
+                    }
+                    let shuffled = permute_lanes(self.index, count, lens);
+                    cells.copy_from_slice(&shuffled[..cells.len()]);
+                }
+            } else {
+                for (&seed, cell) in seeds.iter().zip(&mut lens_cells) {
+                    *cell = permute(self.index, count, seed.lens);
+                }
+            }
+            for ((bits, &lens_cell), sample) in drawn.iter().zip(&lens_cells).zip(samples) {
                 let unit = bits.map(exact_f64);
-                let (corner, size) = self.strata.cell(permute(self.index, count, seed.lens));
+                let (corner, size) = self.strata.cell(lens_cell);
                 *sample = CameraSample {
                     p_film: self.corner + self.size * (DVec2::new(unit[0], unit[1]) * UNIT),
                     p_lens: corner + size * (DVec2::new(unit[2], unit[3]) * UNIT),
@@ -430,6 +500,43 @@ mod tests {
         }
     }
 
+    /// The shuffle in lanes is [`permute`]'s walk, lane by lane, for every power of two
+    /// up to 64 strata (and a few far larger), every index, the edge seeds and many
+    /// others, in every lane.
+    #[test]
+    fn permute_lanes_are_the_walk() {
+        let mut numbers = crate::test_numbers::Numbers(0x5eed_1e25);
+        let lens = (0..7)
+            .map(|power| 1u32 << power)
+            .chain([1 << 12, 1 << 20, 1 << 31]);
+        for len in lens {
+            for index in (0..len.min(64)).chain([len - 1]) {
+                for round in 0..40 {
+                    let seeds: [u32; PERMUTE_LANES] = if round == 0 {
+                        [
+                            0,
+                            1,
+                            len - 1,
+                            len,
+                            0xdead_beef,
+                            u32::MAX - len,
+                            u32::MAX - 1,
+                            u32::MAX,
+                        ]
+                    } else {
+                        std::array::from_fn(|_| numbers.bits())
+                    };
+                    let walked = seeds.map(|seed| permute(index, len, seed));
+                    assert_eq!(
+                        permute_lanes(index, len, seeds),
+                        walked,
+                        "{len} {index} {seeds:?}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn samples_stay_in_their_strata_and_depend_only_on_the_pixel_and_index() {
         let strata = Strata::new(9);
@@ -475,7 +582,9 @@ mod tests {
     #[test]
     fn drawn_samples_are_each_pixels_own() {
         let bits = |s: &CameraSample| [s.p_film, s.p_lens].map(|p| p.to_array().map(f64::to_bits));
-        for count in [1, 2, 3, 9, 16] {
+        // Every count a render's strata could take up to 64: powers of two shuffle their
+        // lens strata in lanes, the others walk.
+        for count in 1..=64 {
             for lens in [false, true] {
                 for avx2 in [false, avx2_detected()] {
                     let mut strata = Strata::new(count).with_lens(lens);

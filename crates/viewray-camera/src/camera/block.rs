@@ -6,6 +6,8 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 use viewray_geometry::DRay;
 
+#[cfg(target_arch = "x86_64")]
+use super::lanes::{LANES, RoundLens};
 use super::{Camera, CameraSample, image_to_image_plane, image_x_to_u, image_y_to_v};
 use crate::{Perspective, Projection, ThinLens};
 
@@ -35,8 +37,12 @@ enum Shortcut {
         /// The world direction every ray shares.
         direction: DVec3,
     },
-    /// An untilted thin lens without mistakes: its checks taken once, `f / d` divided
-    /// once.
+    /// An untilted thin lens with a round aperture, without mistakes: as
+    /// [`Shortcut::ThinLens`], and four rays at a time in AVX2 lanes
+    /// ([`Camera::generate_sampled_block_rays_avx2`]).
+    RoundLens(ThinLens),
+    /// An untilted thin lens with blades, without mistakes: its checks taken once,
+    /// `f / d` divided once.
     ThinLens(ThinLens),
     /// Every other camera: ray by ray.
     General,
@@ -150,7 +156,7 @@ impl Camera {
                     }
                 }
             }
-            Shortcut::ThinLens(lens) => {
+            Shortcut::RoundLens(lens) | Shortcut::ThinLens(lens) => {
                 // `camera_space_ray`'s thin-lens rule.
                 let (iris, pinhole) = (lens.iris, lens.pinhole());
                 let focus_over_distance = lens.focus / lens.distance;
@@ -182,6 +188,63 @@ impl Camera {
         }
     }
 
+    /// [`Camera::generate_sampled_block_rays`] compiled for AVX2, with the block's
+    /// samples given row by row (pixel `(row, col)`'s at
+    /// `(row - rows.start) * cols.len() + (col - cols.start)`): the same rays in the same
+    /// order. A round, untilted thin lens without mistakes takes each row's pixels four
+    /// at a time in the lanes of AVX2 registers (their image-plane points, iris points
+    /// and frame transforms, the same operations in the same order in every lane); every
+    /// other camera goes as [`Camera::generate_sampled_block_rays`].
+    ///
+    /// # Safety
+    ///
+    /// The processor must run AVX2 (which is why code not compiled for AVX2 calls this
+    /// in `unsafe`): a renderer asks `is_x86_feature_detected!("avx2")` once.
+    ///
+    /// # Panics
+    /// If `samples` holds fewer than the block's pixels.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub fn generate_sampled_block_rays_avx2(
+        &self,
+        rows: Range<u32>,
+        cols: Range<u32>,
+        samples: &[CameraSample],
+        mut ray: impl FnMut(u32, u32, Option<DRay>),
+    ) {
+        let width = cols.len();
+        let Shortcut::RoundLens(lens) = self.shortcut() else {
+            let (top, left) = (rows.start, cols.start);
+            let sample =
+                |row: u32, col: u32| samples[(row - top) as usize * width + (col - left) as usize];
+            self.generate_sampled_block_rays(rows, cols, sample, ray);
+            return;
+        };
+        assert!(samples.len() >= rows.len() * width, "a sample per pixel");
+        if width == 0 {
+            return;
+        }
+        let round = RoundLens::new(&lens, self.size(), &self.frame);
+        // Row by row, four pixels at a time; a short last group of a row padded with lens
+        // centres, whose rays are not handed on.
+        for (row, line) in rows.zip(samples.chunks(width)) {
+            let mut quads = line.chunks_exact(LANES);
+            let mut col = cols.start;
+            for quad in &mut quads {
+                let quad = quad.try_into().expect("chunks of LANES");
+                round.rays_avx2((row, col), quad, LANES, &mut ray);
+                col += LANES as u32;
+            }
+            let rest = quads.remainder();
+            if !rest.is_empty() {
+                let mut padded = [CameraSample::CENTER; LANES];
+                padded[..rest.len()].copy_from_slice(rest);
+                round.rays_avx2((row, col), &padded, rest.len(), &mut ray);
+            }
+        }
+    }
+
     /// The shortcut this camera's sampled blocks take.
     fn shortcut(&self) -> Shortcut {
         let frame = &self.frame;
@@ -203,7 +266,11 @@ impl Camera {
                 direction: frame.world_from_camera_vector(o.direction()),
             },
             (Projection::ThinLens(lens), _) if plain && !lens.is_tilted() => {
-                Shortcut::ThinLens(*lens)
+                if lens.iris.is_round() {
+                    Shortcut::RoundLens(*lens)
+                } else {
+                    Shortcut::ThinLens(*lens)
+                }
             }
             _ => Shortcut::General,
         }
@@ -316,10 +383,15 @@ mod tests {
                     z = z.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
                     (z >> 11) as f64 / (1u64 << 53) as f64
                 };
-                CameraSample {
-                    p_film: DVec2::new(next(), next()),
-                    p_lens: DVec2::new(next(), next()),
-                }
+                let (p_film, t) = (DVec2::new(next(), next()), next());
+                // Some lens points at the lens centre, on a diagonal and on an axis.
+                let p_lens = match (row + col) % 5 {
+                    0 => DVec2::splat(0.5),
+                    1 => DVec2::splat(t),
+                    2 => DVec2::new(0.5, t),
+                    _ => DVec2::new(t, next()),
+                };
+                CameraSample { p_film, p_lens }
             };
             let (rows, cols) = (start.0..start.0 + len.0, start.1..start.1 + len.1);
             let mut expected = Vec::new();
@@ -329,10 +401,25 @@ mod tests {
                 }
             }
             let mut got = Vec::new();
-            camera.generate_sampled_block_rays(rows, cols, sample, |row, col, ray| {
+            camera.generate_sampled_block_rays(rows.clone(), cols.clone(), sample, |row, col, ray| {
                 got.push((row, col, ray));
             });
-            same_rays(got, expected)?;
+            same_rays(got, expected.clone())?;
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                let mut lanes = Vec::new();
+                let take = |row, col, ray| lanes.push((row, col, ray));
+                let samples: Vec<_> = rows
+                    .clone()
+                    .flat_map(|row| cols.clone().map(move |col| sample(row, col)))
+                    .collect();
+                // SAFETY: the processor runs AVX2 (asked above), all the call needs.
+                #[allow(unsafe_code)]
+                unsafe {
+                    camera.generate_sampled_block_rays_avx2(rows, cols, &samples, take);
+                }
+                same_rays(lanes, expected)?;
+            }
         }
 
         /// A block's rays are the rays of its pixels one at a time, bit for bit, for
@@ -418,11 +505,16 @@ mod tests {
             match camera.with_mistakes(mistakes).unwrap().shortcut() {
                 Shortcut::Pinhole { .. } => "pinhole",
                 Shortcut::Parallel { .. } => "parallel",
+                Shortcut::RoundLens(_) => "round lens",
                 Shortcut::ThinLens(_) => "thin lens",
                 Shortcut::General => "general",
             }
         };
         let tilted = ThinLens { tilt: 0.1, ..thin };
+        let bladed = ThinLens {
+            iris: crate::Iris::new(5, 0.2).unwrap(),
+            ..thin
+        };
         for (projection, mistakes, expected) in [
             (Projection::Perspective(pinhole), &[][..], "pinhole"),
             (
@@ -455,7 +547,8 @@ mod tests {
                 &[Mistake::EyeMissing],
                 "general",
             ),
-            (Projection::ThinLens(thin), &[], "thin lens"),
+            (Projection::ThinLens(thin), &[], "round lens"),
+            (Projection::ThinLens(bladed), &[], "thin lens"),
             (
                 Projection::ThinLens(thin),
                 &[Mistake::PixelCorner],
@@ -469,6 +562,96 @@ mod tests {
                 expected,
                 "{projection:?} {mistakes:?}"
             );
+        }
+    }
+
+    /// A round lens's rays in lanes keep the frame transforms' last terms: with an
+    /// axis-aligned frame, whose axes hold zeros, and an eye at `-0`, each ray (through
+    /// the lens centre and off it, in every lane and a short last group) is the single
+    /// ray to the bit, signed zeros included; a term left out, or divided instead of
+    /// multiplied (`0 / 0`), would not be.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn round_lens_lanes_keep_the_signed_zero() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let eye = DVec3::splat(-0.0);
+        let frame = Frame::from_eye_view_up(eye, DVec3::NEG_Z, DVec3::Y).unwrap();
+        let pinhole = Perspective {
+            distance: 1.0,
+            viewport: DVec2::new(2.0, 1.5),
+            shift: DVec2::ZERO,
+        };
+        let camera = Camera::new(
+            frame,
+            Projection::ThinLens(ThinLens::new(pinhole, 0.5, 3.0)),
+            4,
+            4,
+        )
+        .unwrap();
+        let sample = |row: u32, col: u32| CameraSample {
+            p_film: DVec2::splat(0.5),
+            p_lens: if (row + col).is_multiple_of(2) {
+                DVec2::splat(0.5)
+            } else {
+                DVec2::new(0.25, 0.5)
+            },
+        };
+        let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+        let mut rays = 0;
+        let check = |row, col, ray: Option<DRay>| {
+            let (ray, single) = (
+                ray.unwrap(),
+                camera.generate_ray(row, col, sample(row, col)),
+            );
+            let single = single.unwrap();
+            assert_eq!(bits(ray.origin), bits(single.origin), "{row} {col}");
+            assert_eq!(bits(ray.direction), bits(single.direction), "{row} {col}");
+            rays += 1;
+        };
+        // Three rows of six pixels: a group of four and a short group each.
+        let samples: Vec<_> = (0..3)
+            .flat_map(|row| (0..6).map(move |col| sample(row, col)))
+            .collect();
+        // SAFETY: the processor runs AVX2 (asked above), all the call needs.
+        #[allow(unsafe_code)]
+        unsafe {
+            camera.generate_sampled_block_rays_avx2(0..3, 0..6, &samples, check);
+        }
+        assert_eq!(rays, 18);
+    }
+
+    /// A round lens's block in lanes asks for a sample per pixel: a slice one short
+    /// panics before any ray (its last row would otherwise go one pixel short).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn round_lens_lanes_want_a_sample_per_pixel() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let frame = Frame::from_eye_view_up(DVec3::ZERO, DVec3::NEG_Z, DVec3::Y).unwrap();
+        let pinhole = Perspective {
+            distance: 1.0,
+            viewport: DVec2::new(2.0, 1.5),
+            shift: DVec2::ZERO,
+        };
+        let lens = Projection::ThinLens(ThinLens::new(pinhole, 0.5, 3.0));
+        let camera = Camera::new(frame, lens, 8, 8).unwrap();
+        for (len, panics) in [(8, false), (7, true)] {
+            let samples = vec![CameraSample::CENTER; len];
+            let mut rays = 0;
+            let block = std::panic::AssertUnwindSafe(|| {
+                // SAFETY: the processor runs AVX2 (asked above), all the call needs.
+                #[allow(unsafe_code)]
+                unsafe {
+                    camera.generate_sampled_block_rays_avx2(0..2, 0..4, &samples, |_, _, _| {
+                        rays += 1;
+                    });
+                }
+            });
+            assert_eq!(std::panic::catch_unwind(block).is_err(), panics, "{len}");
+            assert_eq!(rays, if panics { 0 } else { 8 }, "{len}");
         }
     }
 
