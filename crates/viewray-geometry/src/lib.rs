@@ -58,7 +58,9 @@
 //! - `instance`: meshes placed by transforms, rays carried into object space.
 //! - `world`: the objects of a scene under a top-level hierarchy, with the packet
 //!   queries a renderer uses for primary, mirror and shadow rays (`world/loose.rs`: a
-//!   packet's lanes against loose spheres and triangles, four at a time).
+//!   packet's lanes against loose spheres and triangles, four at a time; `world/flat.rs`:
+//!   a world of one object, or of one leaf, takes its rays four at a time without
+//!   packets).
 //! - `packet`: up to 64 rays of one octant traced together, and incoherent rays walked
 //!   side by side.
 //! - `avx`: the box tests in AVX registers, chosen at run time.

@@ -2,7 +2,6 @@
 //! planes, the refs that name a child node or a leaf's run of items, and the [`Bvh`]
 //! that holds the nodes and the order of the items.
 
-#[cfg(test)]
 use glam::Vec3;
 
 use crate::Aabb;
@@ -58,7 +57,7 @@ impl Node {
         self.children[slot] = child;
     }
 
-    #[cfg(test)]
+    /// The box of child `slot`, as stored.
     fn child_bounds(&self, slot: usize) -> Aabb {
         let p = &self.planes;
         Aabb::new(
@@ -143,6 +142,22 @@ impl Bvh {
     /// The nodes, root first.
     pub(crate) fn nodes(&self) -> &[Node] {
         &self.nodes
+    }
+
+    /// The box of the only leaf, as the root stores it, when the hierarchy is a root
+    /// whose one child is a leaf of every item (a few items whose boxes no split
+    /// separates, such as copies of one shape).
+    pub(crate) fn one_leaf_box(&self) -> Option<Aabb> {
+        let [root] = self.nodes.as_slice() else {
+            return None;
+        };
+        let mut used = (0..WIDTH).filter(|&slot| root.children[slot] != EMPTY_REF);
+        let (Some(slot), None) = (used.next(), used.next()) else {
+            return None;
+        };
+        let child = root.children[slot];
+        let every_item = decode_leaf(child) == (0, self.item_order.len() as u32);
+        (child & LEAF != 0 && every_item).then(|| root.child_bounds(slot))
     }
 
     /// Checks the structure: every child box holds its subtree, leaves tile the items.

@@ -4,7 +4,7 @@ use std::ops::Range;
 
 use glam::{Vec2, Vec4};
 
-use crate::bvh::{BoxRay, BuildParams, Bvh, slab_numbers, slab_test};
+use crate::bvh::{BoxRay, BuildParams, Bvh};
 use crate::hit::{Hit, RawHit};
 use crate::packet::{
     BoxPacket, Lanes, PACKET_GROUPS, PACKET_SIZE, PacketQuery, PacketVisitor, at, for_each_packet,
@@ -13,13 +13,27 @@ use crate::packet::{
 use crate::shapes::{PlaneFrame, WatertightRay};
 use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
+mod flat;
 mod loose;
 
+use self::flat::{BoxLanes, Flat, SlabLanes};
 use self::loose::Loose;
 
 /// How much larger than the box around a world's bounded objects the box of
-/// [`World::surely_clear`] is, per unit of the largest coordinate (plus one).
+/// [`World::surely_clear`] is, per unit of the largest coordinate (plus one); a small
+/// world's objects are each tested behind their own box enlarged so (see `flat.rs`).
 const CLEAR_MARGIN: f32 = 1e-3;
+
+/// `bounds` enlarged by [`CLEAR_MARGIN`] per unit of its largest coordinate (plus one):
+/// a margin far above the rounding of any test of a shape or box inside.
+fn enlarged(bounds: Aabb) -> BoxLanes {
+    let size = bounds.min.abs().max(bounds.max.abs()).max_element();
+    let margin = CLEAR_MARGIN * (1.0 + size);
+    BoxLanes::new(
+        (bounds.min - margin).to_array(),
+        (bounds.max + margin).to_array(),
+    )
+}
 
 /// One object of a [`World`]: an analytic shape or a placed mesh.
 #[derive(Clone, Debug)]
@@ -98,6 +112,10 @@ pub struct World {
     single: Option<u32>,
     /// The object index at each leaf position of the BVH.
     leaf_objects: Vec<u32>,
+    /// How batches of rays meet the bounded objects of a world of one of them or of one
+    /// leaf of them, four rays at a time (see `flat.rs`); `None` where they walk the
+    /// BVH as packets.
+    flat: Option<Flat>,
     /// The planes' object indices, in increasing order, and each one's frame (worked
     /// out once: the normal's length and the uv axes cost a hit more than the rest of
     /// its surface details).
@@ -117,7 +135,7 @@ enum ClearBox {
     /// to miss it.
     Unknown,
     /// The box around every bounded object, enlarged by [`CLEAR_MARGIN`].
-    Around { low: [f32; 3], high: [f32; 3] },
+    Around(BoxLanes),
 }
 
 impl ClearBox {
@@ -128,15 +146,9 @@ impl ClearBox {
         if bvh.nodes().is_empty() {
             return ClearBox::Nothing;
         }
-        let bounds = bvh.bounds();
         // A margin far above the rounding of any box test inside, so that no test
         // the traversal makes is looser than this one.
-        let size = bounds.min.abs().max(bounds.max.abs()).max_element();
-        let margin = CLEAR_MARGIN * (1.0 + size);
-        ClearBox::Around {
-            low: (bounds.min - margin).to_array(),
-            high: (bounds.max + margin).to_array(),
-        }
+        ClearBox::Around(enlarged(bvh.bounds()))
     }
 }
 
@@ -170,11 +182,12 @@ impl World {
             }
         }
         let bvh = Bvh::build(&bounds, BuildParams::default());
-        let leaf_objects = bvh
+        let leaf_objects: Vec<u32> = bvh
             .item_order()
             .iter()
             .map(|&i| bounded[i as usize])
             .collect();
+        let flat = Flat::of(&objects, &bvh, &leaf_objects);
         let triangle_count = objects
             .iter()
             .map(|o| match o {
@@ -191,6 +204,7 @@ impl World {
             bvh,
             single,
             leaf_objects,
+            flat,
             planes,
             plane_frames,
             triangle_count,
@@ -288,6 +302,14 @@ impl World {
         hits: &mut [Option<ObjectHit>],
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit per ray");
+        match &self.flat {
+            Some(flat) => self.closest_flat(flat, rays, t_range, hits),
+            None => self.closest_packets(rays, t_range, hits),
+        }
+    }
+
+    /// [`World::closest_objects`] in packets, through the BVH.
+    fn closest_packets(&self, rays: &[Ray], t_range: Range<f32>, hits: &mut [Option<ObjectHit>]) {
         let t_min = t_range.start;
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(None);
@@ -428,6 +450,14 @@ impl World {
     /// When `rays` and `hits` differ in length.
     pub fn any_hits(&self, rays: &[Ray], t_range: Range<f32>, hits: &mut [bool]) {
         assert_eq!(rays.len(), hits.len(), "one answer per ray");
+        match &self.flat {
+            Some(flat) => self.any_flat(flat, rays, t_range, hits),
+            None => self.any_packets(rays, t_range, hits),
+        }
+    }
+
+    /// [`World::any_hits`] in packets, through the BVH.
+    fn any_packets(&self, rays: &[Ray], t_range: Range<f32>, hits: &mut [bool]) {
         let (t_min, t_max) = (t_range.start, t_range.end);
         for (rays, hits) in rays.chunks(PACKET_SIZE).zip(hits.chunks_mut(PACKET_SIZE)) {
             hits.fill(false);
@@ -566,19 +596,8 @@ impl World {
         let mut clear = match &self.clear_box {
             ClearBox::Nothing => 0b1111,
             ClearBox::Unknown => return 0,
-            ClearBox::Around { low, high } => {
-                let mut near = [Vec4::ZERO; 3];
-                let mut far = [Vec4::ZERO; 3];
-                for axis in 0..3 {
-                    let (origin_near, origin_far, inverse) =
-                        slab_numbers(origin[axis], direction[axis]);
-                    // Toward `-axis` the near plane is the box's high side.
-                    let negative = lane_mask(direction[axis].is_negative_bitmask());
-                    let (low, high) = (Vec4::splat(low[axis]), Vec4::splat(high[axis]));
-                    near[axis] = (Vec4::select(negative, high, low) - origin_near) * inverse;
-                    far[axis] = (Vec4::select(negative, low, high) - origin_far) * inverse;
-                }
-                !slab_test(near, far, t_min, t_max).0 & 0b1111
+            ClearBox::Around(around) => {
+                !around.rays_hitting(&SlabLanes::new(origin, direction), t_min, t_max) & 0b1111
             }
         };
         for (_, plane) in self.plane_objects() {
