@@ -66,7 +66,7 @@ pub fn srgb_to_linear(s: f32) -> f32 {
 ///
 /// Looked up rather than computed: the code never decreases as `x` grows, so it is the
 /// number of codes whose least value `x` reaches, and those 255 least values are found
-/// once, by bisection with the formula itself ([`SrgbCodes`]). The result is the
+/// once, by bisection with the formula itself. The result is the
 /// formula's, to the bit, on every machine (the least values come from its `powf`);
 /// an image's worth of `powf` had been a frame's PNG encoding's largest part.
 #[inline]
@@ -193,11 +193,21 @@ mod tests {
         }
         // And values all over: zero to beyond 1, negatives, infinities and NaN.
         (0..=1.5_f32.to_bits()).step_by(1009).for_each(check);
-        (0..=1.5_f32.to_bits()).step_by(1009).for_each(|bits| check(bits | 1 << 31));
-        [f32::INFINITY, f32::NEG_INFINITY, f32::NAN, f32::MIN_POSITIVE, 1.0, 0.0, -0.0]
-            .map(f32::to_bits)
-            .into_iter()
-            .for_each(check);
+        (0..=1.5_f32.to_bits())
+            .step_by(1009)
+            .for_each(|bits| check(bits | 1 << 31));
+        [
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MIN_POSITIVE,
+            1.0,
+            0.0,
+            -0.0,
+        ]
+        .map(f32::to_bits)
+        .into_iter()
+        .for_each(check);
         // Each code has a least value, above the one before, inside `[0, 1]`.
         assert!(codes.least[1] > 0.0 && codes.least[255] <= 1.0);
         assert!(codes.least[1..].windows(2).all(|pair| pair[0] < pair[1]));

@@ -13,8 +13,7 @@ use viewray_scene::{Scene, Shading};
 use crate::image::{Image, PixelKind};
 use crate::sampling::{PixelSeed, Strata};
 use crate::shade::{
-    DepthMap, DepthRange, FilmPixel, FilmPoint, LitScratch, NoRecorder, Recorder, Shader,
-    T_MIN,
+    DepthMap, DepthRange, FilmPixel, FilmPoint, LitScratch, NoRecorder, Recorder, Shader, T_MIN,
 };
 
 /// The default number of mirror bounces a ray follows.
