@@ -41,4 +41,4 @@ pub(crate) use closest::{PacketQuery, PacketVisitor};
 pub(crate) use lanes::{
     Lanes, PACKET_GROUPS, PACKET_SIZE, at, at_mut, lane, lane_mask, lanes_of, set_lane,
 };
-pub(crate) use rays::{BoxPacket, for_each_packet, for_each_packet_unless_scattered};
+pub(crate) use rays::{BoxPacket, for_each_packet, for_each_packet_unless_scattered, ray_lanes};

@@ -228,6 +228,33 @@ impl<'a> BoxPacket<'a> {
     }
 }
 
+/// The rays `rays[first..first + 4]` side by side, per axis (lanes past the last ray
+/// repeat `rays[0]`), and the lanes whose ray can hit anything: a finite origin and
+/// direction and a nonzero direction, the rays packets take.
+#[inline(always)]
+pub(crate) fn ray_lanes(rays: &[Ray], first: usize) -> ([Vec4; 3], [Vec4; 3], BVec4A) {
+    debug_assert!(first < rays.len());
+    let ray = |i: usize| rays.get(first + i).unwrap_or(&rays[0]);
+    let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
+    let lanes = |v: [&glam::Vec3; 4], axis: usize| {
+        Vec4::new(v[0][axis], v[1][axis], v[2][axis], v[3][axis])
+    };
+    let origins = [&r0.origin, &r1.origin, &r2.origin, &r3.origin];
+    let directions = [&r0.direction, &r1.direction, &r2.direction, &r3.direction];
+    let origin = [0, 1, 2].map(|axis| lanes(origins, axis));
+    let direction = [0, 1, 2].map(|axis| lanes(directions, axis));
+    let finite =
+        |v: [Vec4; 3]| v[0].is_finite_mask() & v[1].is_finite_mask() & v[2].is_finite_mask();
+    let nonzero = direction[0].cmpne(Vec4::ZERO)
+        | direction[1].cmpne(Vec4::ZERO)
+        | direction[2].cmpne(Vec4::ZERO);
+    (
+        origin,
+        direction,
+        finite(origin) & finite(direction) & nonzero,
+    )
+}
+
 /// The slab numbers (see [`slab_numbers`]) of up to [`PACKET_SIZE`] rays, four rays per
 /// vector, before they are sorted into packets by octant.
 pub(super) struct ChunkNumbers {
@@ -260,25 +287,9 @@ impl ChunkNumbers {
         // octants' masks come from these at the end, a few operations for the chunk.
         let (mut valid_lanes, mut negative_lanes) = (0u64, [0u64; 3]);
         for group in 0..rays.len().div_ceil(4) {
-            let ray = |i: usize| rays.get(4 * group + i).unwrap_or(&rays[0]);
-            let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
-            let mut valid = BVec4A::splat(true);
-            let mut nonzero = BVec4A::splat(false);
+            let (origin, direction, traceable) = ray_lanes(rays, 4 * group);
             for (axis, negative) in negative_lanes.iter_mut().enumerate() {
-                let o = Vec4::new(
-                    r0.origin[axis],
-                    r1.origin[axis],
-                    r2.origin[axis],
-                    r3.origin[axis],
-                );
-                let d = Vec4::new(
-                    r0.direction[axis],
-                    r1.direction[axis],
-                    r2.direction[axis],
-                    r3.direction[axis],
-                );
-                valid &= o.is_finite_mask() & d.is_finite_mask();
-                nonzero |= d.cmpne(Vec4::ZERO);
+                let (o, d) = (origin[axis], direction[axis]);
                 *negative |= u64::from(d.is_negative_bitmask()) << (4 * group);
                 let (near, far, inverse) = slab_numbers(o, d);
                 chunk.numbers.origin_near[axis][group] = near;
@@ -287,7 +298,7 @@ impl ChunkNumbers {
                 chunk.numbers.origin[axis][group] = o;
                 chunk.numbers.direction[axis][group] = d;
             }
-            valid_lanes |= u64::from((valid & nonzero).bitmask()) << (4 * group);
+            valid_lanes |= u64::from(traceable.bitmask()) << (4 * group);
         }
         // A lane's octant has bit `axis` set where its direction is negative on `axis`.
         let valid_lanes = valid_lanes & chunk.all;

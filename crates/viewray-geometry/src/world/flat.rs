@@ -130,40 +130,17 @@ impl BoxLanes {
     }
 }
 
-/// Up to four rays in lanes (lanes past the last repeat the first ray), and the mask of
-/// the lanes whose ray can hit anything: a finite origin and direction and a nonzero
-/// direction, the rays packets take.
+/// Up to four rays in lanes (see [`ray_lanes`](crate::packet::ray_lanes)) and the mask of
+/// the lanes that hold a ray that can hit anything.
 #[inline(always)]
 fn ray_lanes(rays: &[Ray]) -> (RayLanes, u32) {
-    debug_assert!((1..=4).contains(&rays.len()));
-    let ray = |i: usize| rays.get(i).unwrap_or(&rays[0]);
-    let (r0, r1, r2, r3) = (ray(0), ray(1), ray(2), ray(3));
-    let mut lanes = RayLanes {
-        origin: [Vec4::ZERO; 3],
-        direction: [Vec4::ZERO; 3],
-    };
-    let mut valid = BVec4A::splat(true);
-    let mut nonzero = BVec4A::splat(false);
-    for axis in 0..3 {
-        let o = Vec4::new(
-            r0.origin[axis],
-            r1.origin[axis],
-            r2.origin[axis],
-            r3.origin[axis],
-        );
-        let d = Vec4::new(
-            r0.direction[axis],
-            r1.direction[axis],
-            r2.direction[axis],
-            r3.direction[axis],
-        );
-        valid &= o.is_finite_mask() & d.is_finite_mask();
-        nonzero |= d.cmpne(Vec4::ZERO);
-        lanes.origin[axis] = o;
-        lanes.direction[axis] = d;
-    }
+    debug_assert!(rays.len() <= 4);
+    let (origin, direction, traceable) = crate::packet::ray_lanes(rays, 0);
     let present = (1 << rays.len()) - 1;
-    (lanes, (valid & nonzero).bitmask() & present)
+    (
+        RayLanes { origin, direction },
+        traceable.bitmask() & present,
+    )
 }
 
 impl World {
