@@ -61,20 +61,20 @@ impl<F: FnMut()> Frames<'_, F> {
     }
 
     /// Runs `encode` on this thread while frame `next` (if any, and not kept) renders on
-    /// the thread pool, and returns what `encode` gives and frame `next`.
+    /// the thread pool, and returns frame `next`.
     ///
     /// A frame's render leaves threads idle at its end (its last tiles, then laying out
     /// the frame on one thread) and encoding ran on one thread between renders; side by
     /// side, each fills the other's gaps. The frames are the same: a frame's pixels
     /// depend on the scene and its number alone, and they are encoded in order.
-    fn encode_while_rendering<T>(
+    fn encode_while_rendering(
         &mut self,
         next: Option<u32>,
-        encode: impl FnOnce() -> io::Result<T>,
-    ) -> Result<(T, Option<RgbImage>), EncodeError> {
+        encode: impl FnOnce() -> io::Result<()>,
+    ) -> Result<Option<RgbImage>, EncodeError> {
         let Some(k) = next.filter(|k| !self.kept.contains_key(k)) else {
-            let encoded = self.encoding(encode)?;
-            return Ok((encoded, next.map(|k| self.take(k)).transpose()?));
+            self.encoding(encode)?;
+            return Ok(next.map(|k| self.take(k)).transpose()?);
         };
         let (movie, settings) = (self.movie, self.settings);
         let mut rendered = None;
@@ -89,9 +89,10 @@ impl<F: FnMut()> Frames<'_, F> {
         self.timings.encode += encode_time;
         let (frame, render_time) = rendered.expect("the scope waits for its render");
         self.timings.render += render_time;
-        let (encoded, frame) = (encoded?, frame?);
+        encoded?;
+        let frame = frame?;
         (self.on_frame)();
-        Ok((encoded, Some(frame)))
+        Ok(Some(frame))
     }
 
     /// Runs `encode`, adding its time to the encoding's.
@@ -113,8 +114,7 @@ fn write_in_order<F: FnMut()>(
     let mut frame = frames.take(0)?;
     for k in 0..n {
         let next = (k + 1 < n).then_some(k + 1);
-        let ((), rendered) = frames.encode_while_rendering(next, || write(k, &frame))?;
-        if let Some(rendered) = rendered {
+        if let Some(rendered) = frames.encode_while_rendering(next, || write(k, &frame))? {
             frame = rendered;
         }
     }
