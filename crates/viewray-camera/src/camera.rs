@@ -1,7 +1,7 @@
 //! The camera: a frame, a projection and an image size; pixel -> ray and point -> pixel.
 
 use glam::{DVec2, DVec3};
-use viewray_geometry::DRay;
+use viewray_geometry::{DRay, RayBounds};
 
 use crate::image_limits::check_not_empty;
 use crate::{CameraError, Frame, Mistake, Mistakes, Plane3, Projection, TiltedFocus};
@@ -357,6 +357,56 @@ impl Camera {
             rx: ray(DVec2::X)?,
             ry: ray(DVec2::Y)?,
         })
+    }
+
+    /// A box holding every viewing ray through the image region from `corners[0]` to
+    /// `corners[1]` (continuous image coordinates, as [`Camera::generate_ray_through`]
+    /// takes them), at any point of the lens: all the rays a block of pixels can take,
+    /// whatever its samples, so that a renderer can ask the world about them at once
+    /// ([`World::surely_missed_by`]).
+    ///
+    /// The planar families' rays are affine in the image point and in the lens point
+    /// (`e + r (lx U + ly V)` and `f / d (u + sx, v + sy, -d) - r (lx, ly, 0)` for a thin
+    /// lens), so the box around the rays at the region's corners, from the corners of the
+    /// square around the unit disk (which holds every iris), holds them all. `None` for
+    /// the cameras whose rays are not affine: the panoramic ones, a tilted lens, and a
+    /// camera with mistakes.
+    ///
+    /// [`World::surely_missed_by`]: viewray_geometry::World::surely_missed_by
+    pub fn ray_bounds(&self, corners: [DVec2; 2]) -> Option<RayBounds> {
+        let affine = match &self.projection {
+            Projection::Perspective(_) | Projection::Orthographic(_) | Projection::Oblique(_) => {
+                true
+            }
+            Projection::ThinLens(lens) => !lens.is_tilted(),
+            Projection::Equirectangular | Projection::Fisheye(_) => false,
+        };
+        if !affine || !self.mistakes.is_empty() {
+            return None;
+        }
+        let lens_corners: &[DVec2] = if self.projection.has_lens() {
+            &[
+                DVec2::new(-1.0, -1.0),
+                DVec2::new(1.0, -1.0),
+                DVec2::new(-1.0, 1.0),
+                DVec2::new(1.0, 1.0),
+            ]
+        } else {
+            &[DVec2::ZERO]
+        };
+        let [low, high] = corners;
+        let image_corners = [
+            low,
+            DVec2::new(high.x, low.y),
+            DVec2::new(low.x, high.y),
+            high,
+        ];
+        let rays = image_corners.iter().flat_map(|&image| {
+            lens_corners
+                .iter()
+                .filter_map(move |&lens| self.generate_ray_at_lens(image, lens))
+        });
+        RayBounds::around(rays)
     }
 
     /// Where the world point `p` appears: continuous image coordinates `(x, y)`, `x` from

@@ -23,7 +23,8 @@
 //!
 //! # Map
 //!
-//! - [`Ray`], [`DRay`]: rays in `f32` (tracing) and `f64` (camera arithmetic).
+//! - [`Ray`], [`DRay`]: rays in `f32` (tracing) and `f64` (camera arithmetic);
+//!   [`RayBounds`]: a box of rays, which [`World::surely_missed_by`] may rule out whole.
 //! - [`Sphere`], [`Plane`], [`Triangle`], [`Aabb`] (the `Box` primitive and the BVH's
 //!   bound; [`Aabb::corners`] is the one home of a box's corners): analytic shapes, each
 //!   with `closest_hit`.
@@ -136,6 +137,6 @@ pub use error::GeometryError;
 pub use hit::Hit;
 pub use instance::Instance;
 pub use mesh::{Mesh, MeshData, TriangleHit};
-pub use ray::{DRay, Ray};
+pub use ray::{DRay, Ray, RayBounds};
 pub use shapes::{Plane, Sphere, Triangle};
 pub use world::{Object, ObjectHit, World};

@@ -68,6 +68,48 @@ impl DRay {
     }
 }
 
+/// A box of rays: every ray whose origin lies in the box from `origin[0]` to
+/// `origin[1]` and whose direction lies in the box from `direction[0]` to
+/// `direction[1]`, such as all the viewing rays a block of pixels can take (any film
+/// point in its pixels, any point of the lens). [`World::surely_missed_by`] says
+/// whether every one of them misses everything.
+///
+/// [`World::surely_missed_by`]: crate::World::surely_missed_by
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayBounds {
+    /// The least and the greatest origin, coordinate by coordinate.
+    pub origin: [DVec3; 2],
+    /// The least and the greatest direction, coordinate by coordinate.
+    pub direction: [DVec3; 2],
+}
+
+impl RayBounds {
+    /// The smallest box of rays holding each of `rays`; `None` for no ray.
+    ///
+    /// A family of rays whose origin and direction are affine in some parameters (a
+    /// planar camera's rays in the image point and the lens point) takes its extremes
+    /// at the parameters' extremes: the box around the rays at the corners of a
+    /// parameter box holds every ray of it.
+    pub fn around(rays: impl IntoIterator<Item = DRay>) -> Option<Self> {
+        let mut rays = rays.into_iter();
+        let first = rays.next()?;
+        let start = Self {
+            origin: [first.origin; 2],
+            direction: [first.direction; 2],
+        };
+        Some(rays.fold(start, |bounds, ray| Self {
+            origin: [
+                bounds.origin[0].min(ray.origin),
+                bounds.origin[1].max(ray.origin),
+            ],
+            direction: [
+                bounds.direction[0].min(ray.direction),
+                bounds.direction[1].max(ray.direction),
+            ],
+        }))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,5 +120,24 @@ mod tests {
         assert_eq!(ray.at(0.0), DVec3::new(1.0, 2.0, 3.0));
         assert_eq!(ray.at(1.5), DVec3::new(1.0, 2.0, 0.0));
         assert_eq!(ray.as_ray().at(1.5), Vec3::new(1.0, 2.0, 0.0));
+    }
+
+    #[test]
+    fn bounds_hold_every_ray_and_touch_each_extreme() {
+        let rays = [
+            DRay::new(DVec3::new(1.0, -2.0, 0.0), DVec3::new(0.5, 0.0, -1.0)),
+            DRay::new(DVec3::new(-1.0, 3.0, 0.5), DVec3::new(-0.5, 0.25, -2.0)),
+            DRay::new(DVec3::new(0.0, 0.0, -4.0), DVec3::new(0.0, -0.75, -1.5)),
+        ];
+        let bounds = RayBounds::around(rays).unwrap();
+        assert_eq!(
+            bounds.origin,
+            [DVec3::new(-1.0, -2.0, -4.0), DVec3::new(1.0, 3.0, 0.5)]
+        );
+        assert_eq!(
+            bounds.direction,
+            [DVec3::new(-0.5, -0.75, -2.0), DVec3::new(0.5, 0.25, -1.0)]
+        );
+        assert_eq!(RayBounds::around([]), None);
     }
 }

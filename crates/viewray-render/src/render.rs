@@ -203,6 +203,9 @@ struct TileBuffers {
     seeds: Vec<PixelSeed>,
     /// A block's camera samples, row by row.
     samples: [CameraSample; BLOCK_RAYS],
+    /// For each block of the tile, in the order `render` takes them, whether all its
+    /// rays surely hit nothing ([`Shader::sees_only_background`]).
+    background_blocks: Vec<bool>,
 }
 
 impl TileBuffers {
@@ -217,6 +220,7 @@ impl TileBuffers {
             lit: LitScratch::default(),
             seeds: Vec::with_capacity(pixels),
             samples: [CameraSample::CENTER; BLOCK_RAYS],
+            background_blocks: Vec::new(),
         }
     }
 
@@ -231,6 +235,7 @@ impl TileBuffers {
         let mut rays = 0;
         for index in 0..samples {
             let mut first_seed = 0;
+            let mut number = 0;
             for block_row in block_starts(tile.row, tile.height) {
                 for block_col in block_starts(tile.col, tile.width) {
                     let block = Block {
@@ -241,7 +246,12 @@ impl TileBuffers {
                         first_seed,
                     };
                     first_seed += block.pixels().0.len() * block.pixels().1.len();
-                    rays += self.render_block(&block, setup, &mut NoRecorder);
+                    rays += if self.background_blocks[number] {
+                        self.add_background(&block, setup.shader)
+                    } else {
+                        self.render_block(&block, setup, &mut NoRecorder)
+                    };
+                    number += 1;
                 }
             }
         }
@@ -275,6 +285,15 @@ impl TileBuffers {
                 }
             }
         }
+        // The blocks whose rays need not be made (a few box tests per block).
+        self.background_blocks.clear();
+        for block_row in block_starts(tile.row, tile.height) {
+            for block_col in block_starts(tile.col, tile.width) {
+                let (rows, cols) = Block::pixels_at(tile, block_row, block_col);
+                let background = shader.sees_only_background(rows, cols);
+                self.background_blocks.push(background);
+            }
+        }
         self.pixels.clear();
         self.pixels.resize(pixel_count, Vec3::ZERO);
         // A fresh cell per pixel costs a few kilobytes of writes per tile: only for a
@@ -289,6 +308,24 @@ impl TileBuffers {
                 );
             }
         }
+    }
+
+    /// Adds the background to every pixel of `block`, whose rays all surely hit nothing
+    /// ([`Shader::sees_only_background`]): what tracing them would add, in the same
+    /// order, without making them; returns the number of rays they count for (the
+    /// camera has one for each pixel).
+    #[inline]
+    fn add_background(&mut self, block: &Block<'_>, shader: &Shader<'_>) -> u64 {
+        let (rows, cols) = block.pixels();
+        let tile = block.tile;
+        let background = shader.background();
+        for row in rows.clone() {
+            let start = ((row - tile.row) * tile.width + (cols.start - tile.col)) as usize;
+            for pixel in &mut self.pixels[start..start + cols.len()] {
+                *pixel += background;
+            }
+        }
+        (rows.len() * cols.len()) as u64
     }
 
     /// Traces sample `block.index` of the block of pixels at `(block.row, block.col)`

@@ -306,6 +306,97 @@ mod tests {
         Ok(())
     }
 
+    /// A camera of family `family` (0 to 12): thin lenses round and with blades, tilted
+    /// and mistaken; perspective cameras right and mistaken (with and without the
+    /// pinhole's terms); orthographic cameras with and without a lens, right and
+    /// mistaken; oblique cameras right and mistaken; a fisheye. `None` where the numbers
+    /// make no camera.
+    #[allow(clippy::too_many_arguments)]
+    fn family_camera(
+        family: usize,
+        eye: (f64, f64, f64),
+        view: (f64, f64, f64),
+        viewport: (f64, f64),
+        shift: (f64, f64),
+        lens: (f64, f64, f64),
+        slant: (f64, f64),
+        size: (u32, u32),
+    ) -> Option<Camera> {
+        let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y).ok()?;
+        let (aperture, focus, distance) = lens;
+        let pinhole = Perspective {
+            distance,
+            viewport: viewport.into(),
+            shift: shift.into(),
+        };
+        let thin = crate::ThinLens::new(pinhole, aperture, focus);
+        let orthographic = crate::Orthographic {
+            viewport: viewport.into(),
+            lens: None,
+        };
+        let oblique = crate::Oblique {
+            viewport: viewport.into(),
+            ratio: slant.0,
+            angle: slant.1,
+        };
+        let (projection, mistakes) = match family {
+            0 => (Projection::ThinLens(thin), Mistakes::NONE),
+            1 => (
+                Projection::ThinLens(crate::ThinLens {
+                    iris: crate::Iris::new(6, 0.3).unwrap(),
+                    ..thin
+                }),
+                Mistakes::NONE,
+            ),
+            2 => (
+                Projection::ThinLens(crate::ThinLens {
+                    tilt: 0.2,
+                    focus: focus.max(distance * 2.0),
+                    ..thin
+                }),
+                Mistakes::NONE,
+            ),
+            3 => (
+                Projection::ThinLens(thin),
+                Mistakes::one(Mistake::PixelCorner),
+            ),
+            4 => (Projection::Perspective(pinhole), Mistakes::NONE),
+            5 => (
+                Projection::Perspective(pinhole),
+                Mistakes::one(Mistake::PixelCorner),
+            ),
+            6 => (
+                Projection::Perspective(pinhole),
+                Mistakes::one(Mistake::EyeMissing),
+            ),
+            7 => (Projection::Orthographic(orthographic), Mistakes::NONE),
+            8 => (
+                Projection::Orthographic(crate::Orthographic {
+                    lens: Some(crate::Lens { aperture, focus }),
+                    ..orthographic
+                }),
+                Mistakes::NONE,
+            ),
+            9 => (
+                Projection::Orthographic(orthographic),
+                Mistakes::one(Mistake::EyeMissing),
+            ),
+            10 => (Projection::Oblique(oblique), Mistakes::NONE),
+            11 => (
+                Projection::Oblique(oblique),
+                Mistakes::one(Mistake::EyeMissing),
+            ),
+            _ => (
+                Projection::Fisheye(crate::Fisheye { fov: 3.0 }),
+                Mistakes::NONE,
+            ),
+        };
+        Camera::new(frame, projection, size.0, size.1)
+            .ok()?
+            .with_mistakes(mistakes)
+            .ok()
+    }
+
     proptest! {
         /// A block's rays through a sample per pixel are the rays of its pixels one at a
         /// time, bit for bit, for every shortcut and the general rule: thin lenses round
@@ -326,55 +417,8 @@ mod tests {
             len in (0u32..10, 0u32..10),
             seed in any::<u64>(),
         ) {
-            let frame = Frame::from_eye_view_up(eye.into(), view.into(), DVec3::Y);
-            prop_assume!(frame.is_ok());
-            let (aperture, focus, distance) = lens;
-            let pinhole = Perspective { distance, viewport: viewport.into(), shift: shift.into() };
-            let thin = crate::ThinLens::new(pinhole, aperture, focus);
-            let orthographic = crate::Orthographic { viewport: viewport.into(), lens: None };
-            let oblique = crate::Oblique {
-                viewport: viewport.into(),
-                ratio: slant.0,
-                angle: slant.1,
-            };
-            let (projection, mistakes) = match family {
-                0 => (Projection::ThinLens(thin), Mistakes::NONE),
-                1 => (
-                    Projection::ThinLens(crate::ThinLens {
-                        iris: crate::Iris::new(6, 0.3).unwrap(),
-                        ..thin
-                    }),
-                    Mistakes::NONE,
-                ),
-                2 => (
-                    Projection::ThinLens(crate::ThinLens {
-                        tilt: 0.2,
-                        focus: focus.max(distance * 2.0),
-                        ..thin
-                    }),
-                    Mistakes::NONE,
-                ),
-                3 => (Projection::ThinLens(thin), Mistakes::one(Mistake::PixelCorner)),
-                4 => (Projection::Perspective(pinhole), Mistakes::NONE),
-                5 => (Projection::Perspective(pinhole), Mistakes::one(Mistake::PixelCorner)),
-                6 => (Projection::Perspective(pinhole), Mistakes::one(Mistake::EyeMissing)),
-                7 => (Projection::Orthographic(orthographic), Mistakes::NONE),
-                8 => (
-                    Projection::Orthographic(crate::Orthographic {
-                        lens: Some(crate::Lens { aperture, focus }),
-                        ..orthographic
-                    }),
-                    Mistakes::NONE,
-                ),
-                9 => (Projection::Orthographic(orthographic), Mistakes::one(Mistake::EyeMissing)),
-                10 => (Projection::Oblique(oblique), Mistakes::NONE),
-                11 => (Projection::Oblique(oblique), Mistakes::one(Mistake::EyeMissing)),
-                _ => (Projection::Fisheye(crate::Fisheye { fov: 3.0 }), Mistakes::NONE),
-            };
-            let camera = Camera::new(frame.unwrap(), projection, size.0, size.1);
-            prop_assume!(camera.is_ok());
-            let camera = camera.unwrap().with_mistakes(mistakes);
-            prop_assume!(camera.is_ok());
+            let camera = family_camera(family, eye, view, viewport, shift, lens, slant, size);
+            prop_assume!(camera.is_some());
             let camera = camera.unwrap();
             // Each pixel's own sample, from its row and column.
             let sample = |row: u32, col: u32| {
@@ -419,6 +463,54 @@ mod tests {
                     camera.generate_sampled_block_rays_avx2(rows, cols, &samples, take);
                 }
                 same_rays(lanes, expected)?;
+            }
+        }
+
+        /// The box of a block's rays holds every ray of its pixels, through any film
+        /// point and any lens point, for every family whose rays are affine; the others
+        /// (a tilted lens, mistakes, a fisheye) have none.
+        #[test]
+        fn ray_bounds_hold_every_ray_of_the_region(
+            eye in (coordinate(), coordinate(), coordinate()),
+            view in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+            family in 0usize..13,
+            viewport in (0.1..10.0f64, 0.1..10.0f64),
+            shift in (-1.0..1.0f64, -1.0..1.0f64),
+            lens in (0.001..1.0f64, 0.5..20.0f64, 0.2..3.0f64),
+            slant in (0.0..2.0f64, -4.0..4.0f64),
+            size in (1u32..2000, 1u32..2000),
+            start in (0u32..2000, 0u32..2000),
+            len in (1u32..10, 1u32..10),
+            samples in prop::collection::vec(
+                (0u32..10, 0u32..10, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64),
+                16,
+            ),
+        ) {
+            let camera = family_camera(family, eye, view, viewport, shift, lens, slant, size);
+            prop_assume!(camera.is_some());
+            let camera = camera.unwrap();
+            let corners = [
+                DVec2::new(f64::from(start.1), f64::from(start.0)),
+                DVec2::new(f64::from(start.1 + len.1), f64::from(start.0 + len.0)),
+            ];
+            let bounds = camera.ray_bounds(corners);
+            let affine = matches!(family, 0 | 1 | 4 | 7 | 8 | 10);
+            prop_assert_eq!(bounds.is_some(), affine);
+            let Some(bounds) = bounds else { return Ok(()) };
+            // Within the box but for the rounding of the corners' own arithmetic.
+            let inside = |v: DVec3, [low, high]: [DVec3; 2]| {
+                let margin = 1e-12 * (1.0 + low.abs().max(high.abs()).max_element());
+                v.cmpge(low - margin).all() && v.cmple(high + margin).all()
+            };
+            // Samples anywhere in the block's pixels, lens points at the edge of the
+            // square and inside it.
+            for (k, &(row, col, fx, fy, lx, ly)) in samples.iter().enumerate() {
+                let (row, col) = (start.0 + row % len.0, start.1 + col % len.1);
+                let p_lens = if k % 2 == 0 { DVec2::new(lx.round(), ly) } else { DVec2::new(lx, ly) };
+                let sample = CameraSample { p_film: DVec2::new(fx, fy), p_lens };
+                let ray = camera.generate_ray(row, col, sample).unwrap();
+                prop_assert!(inside(ray.origin, bounds.origin), "{ray:?} {bounds:?}");
+                prop_assert!(inside(ray.direction, bounds.direction), "{ray:?} {bounds:?}");
             }
         }
 

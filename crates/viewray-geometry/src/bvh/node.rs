@@ -58,7 +58,7 @@ impl Node {
     }
 
     /// The box of child `slot`, as stored.
-    fn child_bounds(&self, slot: usize) -> Aabb {
+    pub(crate) fn child_bounds(&self, slot: usize) -> Aabb {
         let p = &self.planes;
         Aabb::new(
             Vec3::new(p[0][slot], p[1][slot], p[2][slot]),
@@ -158,6 +158,38 @@ impl Bvh {
         let child = root.children[slot];
         let every_item = decode_leaf(child) == (0, self.item_order.len() as u32);
         (child & LEAF != 0 && every_item).then(|| root.child_bounds(slot))
+    }
+
+    /// Whether `leaf(start, count)` is true for some leaf inside boxes that `enters`
+    /// accepts all the way down from the root: a walk of the hierarchy for questions
+    /// about a whole set of rays at once (see `world/region.rs`), which descends only
+    /// into the children whose stored box `enters` says the set may enter.
+    pub(crate) fn any_leaf_entered(
+        &self,
+        enters: impl Fn(&Aabb) -> bool,
+        mut leaf: impl FnMut(u32, u32) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = vec![0_u32];
+        while let Some(node) = stack.pop() {
+            let node = &self.nodes[node as usize];
+            for (slot, &child) in node.children.iter().enumerate() {
+                if child == EMPTY_REF || !enters(&node.child_bounds(slot)) {
+                    continue;
+                }
+                if child & LEAF == 0 {
+                    stack.push(child);
+                } else {
+                    let (start, count) = decode_leaf(child);
+                    if leaf(start, count) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
     }
 
     /// Checks the structure: every child box holds its subtree, leaves tile the items.

@@ -15,6 +15,7 @@ use crate::{Aabb, GeometryError, Instance, Plane, Ray, Sphere, Triangle};
 
 mod flat;
 mod loose;
+mod region;
 
 use self::flat::{BoxLanes, Flat, SlabLanes};
 use self::loose::Loose;

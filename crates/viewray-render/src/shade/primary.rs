@@ -1,7 +1,9 @@
 //! The block driver: a block's viewing rays traced together and shaded by the view's
 //! mode, Flat, Normals and Depth sample by sample, Lit as one batch.
 
-use glam::Vec3;
+use std::ops::Range;
+
+use glam::{DVec2, Vec3};
 use viewray_geometry::{ObjectHit, Ray};
 use viewray_scene::{Material, Shading};
 
@@ -24,6 +26,24 @@ impl Shader<'_> {
             Shading::Flat => self.scene.materials().iter().any(|m| m.grid.is_some()),
             Shading::Normals | Shading::Depth => false,
         }
+    }
+
+    /// Whether every viewing ray of the pixels `rows x cols`, through any sample,
+    /// surely hits nothing ([`Camera::ray_bounds`], [`World::surely_missed_by`]): then
+    /// each sees the background, and the renderer need not make the rays at all (the
+    /// sky above a ground plane, the background around a model). `false` for cameras
+    /// whose rays the camera cannot bound.
+    ///
+    /// [`Camera::ray_bounds`]: viewray_camera::Camera::ray_bounds
+    /// [`World::surely_missed_by`]: viewray_geometry::World::surely_missed_by
+    pub(crate) fn sees_only_background(&self, rows: Range<u32>, cols: Range<u32>) -> bool {
+        let corners = [
+            DVec2::new(f64::from(cols.start), f64::from(rows.start)),
+            DVec2::new(f64::from(cols.end), f64::from(rows.end)),
+        ];
+        self.camera
+            .ray_bounds(corners)
+            .is_some_and(|rays| self.scene.world().surely_missed_by(&rays))
     }
 
     /// The value stored where a ray hits nothing (or where a camera has no ray).
