@@ -363,7 +363,7 @@ impl Camera {
     /// `corners[1]` (continuous image coordinates, as [`Camera::generate_ray_through`]
     /// takes them), at any point of the lens: all the rays a block of pixels can take,
     /// whatever its samples, so that a renderer can ask the world about them at once
-    /// ([`World::surely_missed_by`]).
+    /// ([`World::reach`]).
     ///
     /// The planar families' rays are affine in the image point and in the lens point
     /// (`e + r (lx U + ly V)` and `f / d (u + sx, v + sy, -d) - r (lx, ly, 0)` for a thin
@@ -372,7 +372,7 @@ impl Camera {
     /// the cameras whose rays are not affine: the panoramic ones, a tilted lens, and a
     /// camera with mistakes.
     ///
-    /// [`World::surely_missed_by`]: viewray_geometry::World::surely_missed_by
+    /// [`World::reach`]: viewray_geometry::World::reach
     pub fn ray_bounds(&self, corners: [DVec2; 2]) -> Option<RayBounds> {
         let affine = match &self.projection {
             Projection::Perspective(_) | Projection::Orthographic(_) | Projection::Oblique(_) => {

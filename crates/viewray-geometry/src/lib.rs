@@ -24,7 +24,7 @@
 //! # Map
 //!
 //! - [`Ray`], [`DRay`]: rays in `f32` (tracing) and `f64` (camera arithmetic);
-//!   [`RayBounds`]: a box of rays, which [`World::surely_missed_by`] may rule out whole.
+//!   [`RayBounds`]: a box of rays, whose [`Reach`] in a world [`World::reach`] tells.
 //! - [`Sphere`], [`Plane`], [`Triangle`], [`Aabb`] (the `Box` primitive and the BVH's
 //!   bound; [`Aabb::corners`] is the one home of a box's corners): analytic shapes, each
 //!   with `closest_hit`.
@@ -139,4 +139,4 @@ pub use instance::Instance;
 pub use mesh::{Mesh, MeshData, TriangleHit};
 pub use ray::{DRay, Ray, RayBounds};
 pub use shapes::{Plane, Sphere, Triangle};
-pub use world::{Object, ObjectHit, World};
+pub use world::{Object, ObjectHit, Reach, World};

@@ -71,10 +71,10 @@ impl DRay {
 /// A box of rays: every ray whose origin lies in the box from `origin[0]` to
 /// `origin[1]` and whose direction lies in the box from `direction[0]` to
 /// `direction[1]`, such as all the viewing rays a block of pixels can take (any film
-/// point in its pixels, any point of the lens). [`World::surely_missed_by`] says
-/// whether every one of them misses everything.
+/// point in its pixels, any point of the lens). [`World::reach`] says what any of them
+/// may meet.
 ///
-/// [`World::surely_missed_by`]: crate::World::surely_missed_by
+/// [`World::reach`]: crate::World::reach
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RayBounds {
     /// The least and the greatest origin, coordinate by coordinate.

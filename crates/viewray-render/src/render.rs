@@ -7,7 +7,7 @@ use std::sync::{Mutex, PoisonError};
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 use viewray_camera::{Camera, CameraSample};
-use viewray_geometry::{DRay, ObjectHit, Ray};
+use viewray_geometry::{DRay, ObjectHit, Ray, Reach};
 use viewray_scene::{Scene, Shading};
 
 use crate::image::{Image, PixelKind};
@@ -203,9 +203,9 @@ struct TileBuffers {
     seeds: Vec<PixelSeed>,
     /// A block's camera samples, row by row.
     samples: [CameraSample; BLOCK_RAYS],
-    /// For each block of the tile, in the order `render` takes them, whether all its
-    /// rays surely hit nothing ([`Shader::sees_only_background`]).
-    background_blocks: Vec<bool>,
+    /// For each block of the tile, in the order `render` takes them, what its rays
+    /// may meet ([`Shader::block_reach`]).
+    reach: Vec<Reach>,
 }
 
 impl TileBuffers {
@@ -220,7 +220,7 @@ impl TileBuffers {
             lit: LitScratch::default(),
             seeds: Vec::with_capacity(pixels),
             samples: [CameraSample::CENTER; BLOCK_RAYS],
-            background_blocks: Vec::new(),
+            reach: Vec::new(),
         }
     }
 
@@ -232,6 +232,12 @@ impl TileBuffers {
     /// pixel by pixel.
     fn render(&mut self, tile: &Tile, setup: &TileSetup<'_>, samples: u32) -> u64 {
         self.start(tile, setup);
+        self.render_started(tile, setup, samples)
+    }
+
+    /// [`TileBuffers::render`] of a tile [`TileBuffers::start`] has set up.
+    #[inline]
+    fn render_started(&mut self, tile: &Tile, setup: &TileSetup<'_>, samples: u32) -> u64 {
         let mut rays = 0;
         for index in 0..samples {
             let mut first_seed = 0;
@@ -246,10 +252,11 @@ impl TileBuffers {
                         first_seed,
                     };
                     first_seed += block.pixels().0.len() * block.pixels().1.len();
-                    rays += if self.background_blocks[number] {
+                    let reach = self.reach[number];
+                    rays += if reach == Reach::Nothing {
                         self.add_background(&block, setup.shader)
                     } else {
-                        self.render_block(&block, setup, &mut NoRecorder)
+                        self.render_block(&block, setup, reach, &mut NoRecorder)
                     };
                     number += 1;
                 }
@@ -285,13 +292,12 @@ impl TileBuffers {
                 }
             }
         }
-        // The blocks whose rays need not be made (a few box tests per block).
-        self.background_blocks.clear();
+        // What each block's rays may meet (a few box tests per block).
+        self.reach.clear();
         for block_row in block_starts(tile.row, tile.height) {
             for block_col in block_starts(tile.col, tile.width) {
                 let (rows, cols) = Block::pixels_at(tile, block_row, block_col);
-                let background = shader.sees_only_background(rows, cols);
-                self.background_blocks.push(background);
+                self.reach.push(shader.block_reach(rows, cols));
             }
         }
         self.pixels.clear();
@@ -311,7 +317,7 @@ impl TileBuffers {
     }
 
     /// Adds the background to every pixel of `block`, whose rays all surely hit nothing
-    /// ([`Shader::sees_only_background`]): what tracing them would add, in the same
+    /// ([`Shader::block_reach`]): what tracing them would add, in the same
     /// order, without making them; returns the number of rays they count for (the
     /// camera has one for each pixel).
     #[inline]
@@ -330,13 +336,15 @@ impl TileBuffers {
 
     /// Traces sample `block.index` of the block of pixels at `(block.row, block.col)`
     /// (at most [`BLOCK_SIZE`] square, inside its tile) and adds each value to its
-    /// pixel; returns the number of rays traced. `recorder` is told the numbers of the
+    /// pixel; returns the number of rays traced. The rays meet the planes alone where
+    /// `reach` says they meet no bounded object. `recorder` is told the numbers of the
     /// pixel it follows, if that pixel is in the block.
     #[inline]
     fn render_block<R: Recorder>(
         &mut self,
         block: &Block<'_>,
         setup: &TileSetup<'_>,
+        reach: Reach,
         recorder: &mut R,
     ) -> u64 {
         let &Block {
@@ -395,7 +403,11 @@ impl TileBuffers {
         // right length) and shade them together, each sample's value added straight to
         // its pixel.
         let (block_rays, hits) = (&self.rays[..count], &mut self.hits[..count]);
-        shader.trace_primary(block_rays, hits);
+        if reach == Reach::Planes {
+            shader.trace_primary_planes(block_rays, hits);
+        } else {
+            shader.trace_primary(block_rays, hits);
+        }
         if R::ACTIVE
             && let Some(i) = recorder.followed_ray()
         {
@@ -663,7 +675,7 @@ pub(crate) fn trace_pixel_with<R: Recorder>(
     };
     let mut buffers = TileBuffers::new(size);
     buffers.start(&tile, &setup);
-    buffers.render_block(&block, &setup, recorder);
+    buffers.render_block(&block, &setup, Reach::Anything, recorder);
     buffers.pixels[((row - tile.row) * tile.width + (col - tile.col)) as usize]
 }
 
@@ -676,6 +688,90 @@ fn block_starts(start: u32, len: u32) -> std::iter::StepBy<std::ops::Range<u32>>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The spheres on the ground of the animation demos through their thin lens and
+    /// through a pinhole looking a little down: sky, open ground and objects.
+    fn lens_and_pinhole_views(scene: &Scene) -> [View; 2] {
+        let lens = View::of(scene);
+        let frame = viewray_camera::Frame::from_eye_view_up(
+            glam::DVec3::new(0.0, 0.6, 0.0),
+            glam::DVec3::new(0.0, -0.1, -1.0),
+            glam::DVec3::Y,
+        )
+        .unwrap();
+        let projection = viewray_camera::Projection::Perspective(viewray_camera::Perspective {
+            distance: 1.0,
+            viewport: DVec2::new(1.2, 0.9),
+            shift: DVec2::ZERO,
+        });
+        let pinhole = Camera::new(frame, projection, 48, 36).unwrap();
+        [
+            lens,
+            View {
+                camera: pinhole,
+                ..lens
+            },
+        ]
+    }
+
+    #[test]
+    fn blocks_that_meet_nothing_or_planes_render_as_traced() {
+        let scene = viewray_scene::SceneLoader::text(
+            include_str!("../../viewray-animation/scenes/spheres.ron"),
+            std::path::Path::new("spheres.ron"),
+        )
+        .load()
+        .unwrap()
+        .scene;
+        for view in lens_and_pinhole_views(&scene) {
+            let view = View {
+                camera: view.camera.with_image_size(48, 36).unwrap(),
+                samples: 4,
+                ..view
+            };
+            let shader = Shader::new(
+                &scene,
+                &view,
+                MAX_REFLECTION_DEPTH,
+                DepthMap::new(&view.camera),
+            );
+            let strata = Strata::new(4).with_lens(view.camera.projection().has_lens());
+            let setup = TileSetup {
+                shader: &shader,
+                camera: &view.camera,
+                strata: &strata,
+                spacing: 0.5,
+            };
+            let tile = Tile {
+                row: 0,
+                col: 0,
+                width: 48,
+                height: 36,
+            };
+            let mut decided = TileBuffers::new(48);
+            let decided_rays = decided.render(&tile, &setup, 4);
+            // Every kind of block is there: the sky, the open ground, the spheres.
+            for reach in [Reach::Nothing, Reach::Planes, Reach::Anything] {
+                assert!(
+                    decided.reach.contains(&reach),
+                    "{reach:?}: {:?}",
+                    decided.reach
+                );
+            }
+            let mut traced = TileBuffers::new(48);
+            traced.start(&tile, &setup);
+            traced.reach.fill(Reach::Anything);
+            let traced_rays = traced.render_started(&tile, &setup, 4);
+            assert_eq!(decided_rays, traced_rays);
+            let bits = |pixels: &[Vec3]| -> Vec<[u32; 3]> {
+                pixels
+                    .iter()
+                    .map(|p| p.to_array().map(f32::to_bits))
+                    .collect()
+            };
+            assert_eq!(bits(&decided.pixels), bits(&traced.pixels));
+        }
+    }
 
     #[test]
     fn tiles_cover_the_image_once() {

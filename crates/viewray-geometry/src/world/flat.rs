@@ -133,7 +133,7 @@ impl BoxLanes {
 /// Up to four rays in lanes (see [`ray_lanes`](crate::packet::ray_lanes)) and the mask of
 /// the lanes that hold a ray that can hit anything.
 #[inline(always)]
-fn ray_lanes(rays: &[Ray]) -> (RayLanes, u32) {
+pub(super) fn ray_lanes(rays: &[Ray]) -> (RayLanes, u32) {
     debug_assert!(rays.len() <= 4);
     let (origin, direction, traceable) = crate::packet::ray_lanes(rays, 0);
     let present = (1 << rays.len()) - 1;
@@ -160,22 +160,7 @@ impl World {
             let mut t_max = Vec4::splat(t_range.end);
             let mut best = [None; 4];
             // Planes first, as the packets' `closest_planes`.
-            for (object, plane) in self.plane_objects() {
-                let (hit, t) =
-                    plane.intersect_t_lanes(lanes.origin, lanes.direction, t_min_lanes, t_max);
-                let hit = hit & valid;
-                if hit != 0 {
-                    t_max = Vec4::select(lane_mask(hit), t, t_max);
-                    for lane in lanes_of(u64::from(hit)) {
-                        best[lane] = Some(RawHit {
-                            t: at(&t, lane),
-                            object,
-                            primitive: 0,
-                            barycentric: Vec2::ZERO,
-                        });
-                    }
-                }
-            }
+            self.closest_plane_lanes(&lanes, valid, t_min_lanes, &mut t_max, &mut best);
             let slabs = SlabLanes::new(lanes.origin, lanes.direction);
             let mut searching = valid;
             if let Some(leaf) = &flat.leaf {
@@ -195,6 +180,35 @@ impl World {
             }
             for (hit, raw) in hits.iter_mut().zip(&best) {
                 *hit = raw.as_ref().map(|raw| self.object_hit(*raw));
+            }
+        }
+    }
+
+    /// The closest hits of four rays `lanes` (those of `valid`) with the planes, from
+    /// `t_min` to below `t_max`, into `best`, with `t_max` brought down to each hit: the
+    /// arithmetic and order of the packets' `closest_planes`.
+    #[inline(always)]
+    pub(super) fn closest_plane_lanes(
+        &self,
+        lanes: &RayLanes,
+        valid: u32,
+        t_min: Vec4,
+        t_max: &mut Vec4,
+        best: &mut [Option<RawHit>; 4],
+    ) {
+        for (object, plane) in self.plane_objects() {
+            let (hit, t) = plane.intersect_t_lanes(lanes.origin, lanes.direction, t_min, *t_max);
+            let hit = hit & valid;
+            if hit != 0 {
+                *t_max = Vec4::select(lane_mask(hit), t, *t_max);
+                for lane in lanes_of(u64::from(hit)) {
+                    best[lane] = Some(RawHit {
+                        t: at(&t, lane),
+                        object,
+                        primitive: 0,
+                        barycentric: Vec2::ZERO,
+                    });
+                }
             }
         }
     }

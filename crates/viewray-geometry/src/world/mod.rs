@@ -19,6 +19,7 @@ mod region;
 
 use self::flat::{BoxLanes, Flat, SlabLanes};
 use self::loose::Loose;
+pub use self::region::Reach;
 
 /// How much larger than the box around a world's bounded objects the box of
 /// [`World::surely_clear`] is, per unit of the largest coordinate (plus one); a small

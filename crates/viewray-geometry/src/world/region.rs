@@ -1,11 +1,15 @@
 //! Boxes of rays ruled out whole: before a renderer makes a block's viewing rays, it asks
-//! whether every ray the block can take surely meets nothing, and if so makes none of
-//! them (the sky above a ground plane, the background around a model).
+//! what any ray the block can take may meet. If nothing, it makes none of them (the sky
+//! above a ground plane, the background around a model); if planes at most, it meets
+//! them with the planes alone, without packets or the hierarchy (the open ground).
 
-use glam::DVec3;
+use std::ops::Range;
 
-use super::{CLEAR_MARGIN, ClearBox, World};
-use crate::{Aabb, Plane, RayBounds};
+use glam::{DVec3, Vec4};
+
+use super::flat::ray_lanes;
+use super::{CLEAR_MARGIN, ClearBox, ObjectHit, World};
+use crate::{Aabb, Plane, Ray, RayBounds};
 
 /// How far a ray's coordinates may move between a [`RayBounds`] and the tracer, per unit
 /// of the largest coordinate of its origin (or direction): the camera's own arithmetic
@@ -17,23 +21,38 @@ const ROUNDING: f64 = 1e-6;
 /// plane test in `f32`.
 const PLANE_MARGIN: f64 = 1e-5;
 
+/// What the rays of a [`RayBounds`] may meet ([`World::reach`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reach {
+    /// Nothing: every ray surely meets nothing ahead of its origin.
+    Nothing,
+    /// Planes at most: every ray surely misses every bounded object, so that its
+    /// closest hit is its closest plane's ([`World::closest_plane_hits`]).
+    Planes,
+    /// Anything, as far as the test can tell.
+    Anything,
+}
+
 impl World {
-    /// Whether every ray of `rays`, rounded to `f32` as the tracer takes it, surely
-    /// meets nothing ahead of its origin (`t >= 0`): each passes outside every bounded
-    /// object's box enlarged (by [`CLEAR_MARGIN`] of the largest coordinate of the
-    /// box around them all and of the rays' origins, plus one: far above the rounding
-    /// of the box tests every query makes before it tests an object), found down the
-    /// hierarchy through the boxes they may enter; and each plane lies behind every
-    /// origin with every direction turned away from it (or ahead of every origin with
-    /// every direction turned away). Then [`World::closest_objects`] would find no hit
-    /// for any of them.
+    /// What the rays of `rays`, rounded to `f32` as the tracer takes them, may meet
+    /// ahead of their origins (`t >= 0`).
     ///
-    /// The test is of the whole box of rays, one axis at a time: `false` says only
-    /// that some ray of the box may hit something. A world with a single bounded
-    /// object, which rays meet without a box test, rules out no box of rays.
-    pub fn surely_missed_by(&self, rays: &RayBounds) -> bool {
+    /// Every bounded object is surely missed when each ray passes outside its box
+    /// enlarged (by [`CLEAR_MARGIN`] of the largest coordinate of the box around them
+    /// all and of the rays' origins, plus one: far above the rounding of the box tests
+    /// every query makes before it tests an object), found down the hierarchy through
+    /// the boxes the rays may enter. A plane is surely missed when it lies behind every
+    /// origin with every direction turned away from it (or ahead of every origin with
+    /// every direction turned away). [`World::closest_objects`] then finds no hit, or
+    /// only the planes', for any of them.
+    ///
+    /// The test is of the whole box of rays, one axis at a time: it answers
+    /// [`Reach::Anything`] whenever some ray of the box may hit a bounded object. A world
+    /// with a single bounded object, which rays meet without a box test, rules out no
+    /// ray.
+    pub fn reach(&self, rays: &RayBounds) -> Reach {
         let rays = widened(rays);
-        let bounded = match self.clear_box {
+        let bounded_missed = match self.clear_box {
             ClearBox::Nothing => true,
             ClearBox::Unknown => false,
             ClearBox::Around(_) => {
@@ -55,10 +74,44 @@ impl World {
                 !reached
             }
         };
-        bounded
-            && self
-                .plane_objects()
-                .all(|(_, plane)| misses_plane(&rays, plane))
+        if !bounded_missed {
+            Reach::Anything
+        } else if self
+            .plane_objects()
+            .all(|(_, plane)| misses_plane(&rays, plane))
+        {
+            Reach::Nothing
+        } else {
+            Reach::Planes
+        }
+    }
+
+    /// The closest hits of rays that meet no bounded object (rays of a box for which
+    /// [`World::reach`] answered [`Reach::Planes`] or [`Reach::Nothing`]): their closest
+    /// planes, four rays at a time, with the arithmetic, order and ties of
+    /// [`World::closest_objects`], which for such rays finds the same hits, bit for bit.
+    /// For other rays the hits of bounded objects are missing.
+    ///
+    /// # Panics
+    ///
+    /// When `rays` and `hits` differ in length.
+    pub fn closest_plane_hits(
+        &self,
+        rays: &[Ray],
+        t_range: Range<f32>,
+        hits: &mut [Option<ObjectHit>],
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit per ray");
+        let t_min = Vec4::splat(t_range.start);
+        for (rays, hits) in rays.chunks(4).zip(hits.chunks_mut(4)) {
+            let (lanes, valid) = ray_lanes(rays);
+            let mut t_max = Vec4::splat(t_range.end);
+            let mut best = [None; 4];
+            self.closest_plane_lanes(&lanes, valid, t_min, &mut t_max, &mut best);
+            for (hit, raw) in hits.iter_mut().zip(&best) {
+                *hit = raw.as_ref().map(|raw| self.object_hit(*raw));
+            }
+        }
     }
 }
 
@@ -74,7 +127,7 @@ fn widened(rays: &RayBounds) -> RayBounds {
     }
 }
 
-/// The margin of [`World::surely_missed_by`]'s boxes: [`CLEAR_MARGIN`] of the largest
+/// The margin of [`World::reach`]'s boxes: [`CLEAR_MARGIN`] of the largest
 /// coordinate of the box around every bounded object, `around`, and of the rays'
 /// origins, plus one.
 fn box_margin(rays: &RayBounds, around: Aabb) -> f64 {
@@ -162,7 +215,7 @@ mod tests {
     use glam::{DVec2, Vec3};
 
     use super::*;
-    use crate::{DRay, Object, Ray, Sphere};
+    use crate::{DRay, Object, Sphere};
 
     /// A ground plane `y = 0` under two spheres.
     fn ground_and_spheres() -> World {
@@ -197,29 +250,32 @@ mod tests {
     }
 
     #[test]
-    fn the_sky_is_missed_and_the_ground_and_objects_are_not() {
+    fn the_sky_meets_nothing_the_open_ground_only_the_plane() {
         let world = ground_and_spheres();
         let eye = DVec3::new(0.0, 0.6, 0.0);
-        // Upward, above every sphere: missed, with a pinhole and with a lens.
-        assert!(world.surely_missed_by(&beam(eye, 0.0, DVec3::new(0.0, 2.5, -1.0), 0.1)));
-        assert!(world.surely_missed_by(&beam(eye, 0.3, DVec3::new(0.0, 4.0, -1.0), 0.1)));
-        // Down to the ground, at a sphere, and level toward the horizon: not missed.
-        for target in [
-            DVec3::new(0.0, -0.5, -1.0),
-            DVec3::new(-1.0, 0.5, -4.0),
-            DVec3::new(1.0, 1.9, -6.0),
-            DVec3::new(3.0, 0.6, -1.0),
-        ] {
-            assert!(
-                !world.surely_missed_by(&beam(eye, 0.0, target, 0.01)),
-                "{target}"
-            );
-        }
-        // Upward but from a lens wide enough to reach the big sphere's top: not missed.
-        assert!(!world.surely_missed_by(&beam(eye, 1.5, DVec3::new(1.0, 2.5, -6.0), 0.1)));
+        let reach = |spread, target, size| world.reach(&beam(eye, spread, target, size));
+        // Upward, above every sphere, with a pinhole and with a lens.
+        assert_eq!(reach(0.0, DVec3::new(0.0, 2.5, -1.0), 0.1), Reach::Nothing);
+        assert_eq!(reach(0.3, DVec3::new(0.0, 4.0, -1.0), 0.1), Reach::Nothing);
+        // Down to the ground in front of the spheres, and level toward the horizon
+        // beside them.
+        assert_eq!(reach(0.0, DVec3::new(0.0, -0.5, -1.0), 0.1), Reach::Planes);
+        assert_eq!(reach(0.0, DVec3::new(3.0, 0.6, -1.0), 0.01), Reach::Planes);
+        // At a sphere, at the big sphere's top, and upward from a lens wide enough to
+        // reach that top.
+        assert_eq!(
+            reach(0.0, DVec3::new(-1.0, 0.5, -4.0), 0.01),
+            Reach::Anything
+        );
+        assert_eq!(
+            reach(0.0, DVec3::new(1.0, 1.9, -6.0), 0.01),
+            Reach::Anything
+        );
+        assert_eq!(reach(1.5, DVec3::new(1.0, 2.5, -6.0), 0.1), Reach::Anything);
         // Below the ground looking down: the plane is behind every origin.
         let below = DVec3::new(0.0, -1.0, 0.0);
-        assert!(world.surely_missed_by(&beam(below, 0.1, DVec3::new(0.0, -2.0, -1.0), 0.1)));
+        let down = beam(below, 0.1, DVec3::new(0.0, -2.0, -1.0), 0.1);
+        assert_eq!(world.reach(&down), Reach::Nothing);
     }
 
     #[test]
@@ -228,9 +284,19 @@ mod tests {
             center: Vec3::new(0.0, 0.0, -5.0),
             radius: 1.0,
         });
+        let ground = Object::Plane(Plane {
+            point: Vec3::new(0.0, -1.0, 0.0),
+            normal: Vec3::Y,
+        });
         let away = beam(DVec3::ZERO, 0.0, DVec3::new(0.0, 0.0, 1.0), 0.1);
-        assert!(!World::new(vec![sphere]).unwrap().surely_missed_by(&away));
-        assert!(World::new(vec![]).unwrap().surely_missed_by(&away));
+        let reach = |objects: Vec<Object>| World::new(objects).unwrap().reach(&away);
+        assert_eq!(reach(vec![sphere.clone()]), Reach::Anything);
+        assert_eq!(reach(vec![]), Reach::Nothing);
+        let down = beam(DVec3::ZERO, 0.0, DVec3::new(0.0, -1.0, 1.0), 0.1);
+        assert_eq!(
+            World::new(vec![ground]).unwrap().reach(&down),
+            Reach::Planes
+        );
     }
 
     /// Numbers from a fixed seed (SplitMix64), uniform in `[low, high)`.
@@ -257,7 +323,7 @@ mod tests {
     #[test]
     fn a_box_said_missed_holds_no_ray_that_hits() {
         let mut numbers = Numbers(0x0b0c_5eed);
-        let mut missed = 0;
+        let (mut missed, mut planes) = (0, 0);
         for _ in 0..4_000 {
             // Spheres and a triangle about the origin, a plane through a random point;
             // beams from near the origin (some grazing the plane) with and without a lens.
@@ -294,10 +360,13 @@ mod tests {
                 target = eye + along - n * n.dot(along) + n * numbers.within(-1e-6, 1e-6);
                 size = numbers.within(0.0, 1e-6);
             }
-            if !world.surely_missed_by(&beam(eye, spread, target, size)) {
-                continue;
+            let reach = world.reach(&beam(eye, spread, target, size));
+            match reach {
+                Reach::Nothing => missed += 1,
+                Reach::Planes => planes += 1,
+                Reach::Anything => continue,
             }
-            missed += 1;
+            let mut rays = Vec::new();
             // The corners' rays and rays inside, as the tracer takes them.
             for k in 0..40 {
                 let corner = |numbers: &mut Numbers| {
@@ -315,12 +384,31 @@ mod tests {
                 };
                 let o = eye + (corner(&mut numbers) * spread).extend(0.0);
                 let to = target + (corner(&mut numbers) * size).extend(0.0);
-                let ray: Ray = DRay::new(o, to - o).as_ray();
-                let hit = world.closest_object(&ray, f32::MIN_POSITIVE..f32::INFINITY);
-                assert!(hit.is_none(), "{ray:?} hits {hit:?} in a box said missed");
+                rays.push(DRay::new(o, to - o).as_ray());
+            }
+            // Nothing hit, or the planes' hits alone, as every query finds them.
+            let t_range = f32::MIN_POSITIVE..f32::INFINITY;
+            let mut hits = vec![None; rays.len()];
+            world.closest_objects(&rays, t_range.clone(), &mut hits);
+            let mut plane_hits = vec![None; rays.len()];
+            world.closest_plane_hits(&rays, t_range.clone(), &mut plane_hits);
+            for ((ray, hit), plane_hit) in rays.iter().zip(&hits).zip(&plane_hits) {
+                let alone = world.closest_object(ray, t_range.clone());
+                let bits = |h: &Option<ObjectHit>| h.map(|h| (h.t.to_bits(), h.object));
+                assert_eq!(bits(hit), bits(&alone), "{ray:?}");
+                assert_eq!(bits(hit), bits(plane_hit), "{ray:?}: {reach:?}");
+                if reach == Reach::Nothing {
+                    assert!(
+                        hit.is_none(),
+                        "{ray:?} hits {hit:?} in a box said to meet nothing"
+                    );
+                }
             }
         }
-        // Both answers are common: the test checks many missed boxes.
-        assert!(missed > 800, "only {missed} boxes missed");
+        // Every answer is common: the test checks many boxes of each.
+        assert!(
+            missed > 400 && planes > 400,
+            "{missed} missed, {planes} planes"
+        );
     }
 }

@@ -4,7 +4,7 @@
 use std::ops::Range;
 
 use glam::{DVec2, Vec3};
-use viewray_geometry::{ObjectHit, Ray};
+use viewray_geometry::{ObjectHit, Ray, Reach};
 use viewray_scene::{Material, Shading};
 
 use super::Shader;
@@ -28,22 +28,24 @@ impl Shader<'_> {
         }
     }
 
-    /// Whether every viewing ray of the pixels `rows x cols`, through any sample,
-    /// surely hits nothing ([`Camera::ray_bounds`], [`World::surely_missed_by`]): then
-    /// each sees the background, and the renderer need not make the rays at all (the
-    /// sky above a ground plane, the background around a model). `false` for cameras
-    /// whose rays the camera cannot bound.
+    /// What the viewing rays of the pixels `rows x cols`, through any sample, may meet
+    /// ([`Camera::ray_bounds`], [`World::reach`]): nothing, and then each sees the
+    /// background and the renderer need not make them at all (the sky above a ground
+    /// plane, the background around a model); planes at most, and then they are traced
+    /// against the planes alone ([`Shader::trace_primary_planes`]: the open ground);
+    /// or anything. [`Reach::Anything`] for cameras whose rays the camera cannot bound.
     ///
     /// [`Camera::ray_bounds`]: viewray_camera::Camera::ray_bounds
-    /// [`World::surely_missed_by`]: viewray_geometry::World::surely_missed_by
-    pub(crate) fn sees_only_background(&self, rows: Range<u32>, cols: Range<u32>) -> bool {
+    /// [`World::reach`]: viewray_geometry::World::reach
+    pub(crate) fn block_reach(&self, rows: Range<u32>, cols: Range<u32>) -> Reach {
         let corners = [
             DVec2::new(f64::from(cols.start), f64::from(rows.start)),
             DVec2::new(f64::from(cols.end), f64::from(rows.end)),
         ];
-        self.camera
-            .ray_bounds(corners)
-            .is_some_and(|rays| self.scene.world().surely_missed_by(&rays))
+        match self.camera.ray_bounds(corners) {
+            Some(rays) => self.scene.world().reach(&rays),
+            None => Reach::Anything,
+        }
     }
 
     /// The value stored where a ray hits nothing (or where a camera has no ray).
@@ -58,6 +60,16 @@ impl Shader<'_> {
         self.scene
             .world()
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
+    }
+
+    /// [`Shader::trace_primary`] for viewing rays that meet no bounded object (those of
+    /// a block whose [`Shader::block_reach`] is [`Reach::Planes`]): the planes alone,
+    /// the same hits.
+    #[inline]
+    pub(crate) fn trace_primary_planes(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
+        self.scene
+            .world()
+            .closest_plane_hits(rays, T_MIN..f32::INFINITY, hits);
     }
 
     /// The values of what the viewing rays `rays` see, given their closest hits (from
