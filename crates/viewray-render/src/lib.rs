@@ -71,7 +71,13 @@
 //! is traced block by block: the viewing rays of 8 x 8 neighbouring pixels go to
 //! [`World::closest_objects`](viewray_geometry::World::closest_objects) as one packet
 //! (same hits as ray by ray, a fraction of the work), and each pixel still adds its
-//! samples in index order. Flat shading of a plain colour and Depth shading need no
+//! samples in index order. Before a tile traces anything, it asks of each block what
+//! any of its rays may meet, whatever its samples
+//! ([`Camera::ray_bounds`](viewray_camera::Camera::ray_bounds),
+//! [`World::reach`](viewray_geometry::World::reach)): a block that surely meets nothing
+//! (the sky) makes no rays, its pixels getting the background once per sample as its
+//! misses would; one that meets planes at most (the open ground) traces its rays
+//! against the planes alone. Flat shading of a plain colour and Depth shading need no
 //! normals, so they skip the surface details. Lit shading works on the block's hits
 //! together: their shadow rays toward each light go to
 //! [`World::any_hits`](viewray_geometry::World::any_hits) as one batch, their reflected
