@@ -143,6 +143,17 @@ pub(super) fn ray_lanes(rays: &[Ray]) -> (RayLanes, u32) {
     )
 }
 
+/// The raw hit of a plane, object `object`, at `t`.
+#[inline(always)]
+pub(super) fn plane_hit(t: f32, object: u32) -> RawHit {
+    RawHit {
+        t,
+        object,
+        primitive: 0,
+        barycentric: Vec2::ZERO,
+    }
+}
+
 impl World {
     /// [`World::closest_objects`] of a small world, four rays at a time (see the
     /// module's notes).
@@ -160,7 +171,10 @@ impl World {
             let mut t_max = Vec4::splat(t_range.end);
             let mut best = [None; 4];
             // Planes first, as the packets' `closest_planes`.
-            self.closest_plane_lanes(&lanes, valid, t_min_lanes, &mut t_max, &mut best);
+            let (found, planes) = self.closest_plane_lanes(&lanes, valid, t_min_lanes, &mut t_max);
+            for lane in lanes_of(u64::from(found)) {
+                best[lane] = Some(plane_hit(at(&t_max, lane), planes[lane]));
+            }
             let slabs = SlabLanes::new(lanes.origin, lanes.direction);
             let mut searching = valid;
             if let Some(leaf) = &flat.leaf {
@@ -185,8 +199,10 @@ impl World {
     }
 
     /// The closest hits of four rays `lanes` (those of `valid`) with the planes, from
-    /// `t_min` to below `t_max`, into `best`, with `t_max` brought down to each hit: the
-    /// arithmetic and order of the packets' `closest_planes`.
+    /// `t_min` to below `t_max`, with the arithmetic and order of the packets'
+    /// `closest_planes`: `t_max` is brought down to each hit's `t`; returns the lanes
+    /// that hit a plane and each one's plane. (Kept in registers: hits written to memory
+    /// lane by lane and read back whole waited on the stores.)
     #[inline(always)]
     pub(super) fn closest_plane_lanes(
         &self,
@@ -194,23 +210,20 @@ impl World {
         valid: u32,
         t_min: Vec4,
         t_max: &mut Vec4,
-        best: &mut [Option<RawHit>; 4],
-    ) {
+    ) -> (u32, [u32; 4]) {
+        let (mut found, mut objects) = (0, [0; 4]);
         for (object, plane) in self.plane_objects() {
             let (hit, t) = plane.intersect_t_lanes(lanes.origin, lanes.direction, t_min, *t_max);
             let hit = hit & valid;
             if hit != 0 {
                 *t_max = Vec4::select(lane_mask(hit), t, *t_max);
                 for lane in lanes_of(u64::from(hit)) {
-                    best[lane] = Some(RawHit {
-                        t: at(&t, lane),
-                        object,
-                        primitive: 0,
-                        barycentric: Vec2::ZERO,
-                    });
+                    objects[lane] = object;
                 }
+                found |= hit;
             }
         }
+        (found, objects)
     }
 
     /// The closest hits of the rays of `lanes` (low four bits) of `rays` with the

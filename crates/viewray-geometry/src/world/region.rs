@@ -7,7 +7,7 @@ use std::ops::Range;
 
 use glam::{DVec3, Vec4};
 
-use super::flat::ray_lanes;
+use super::flat::{plane_hit, ray_lanes};
 use super::{CLEAR_MARGIN, ClearBox, ObjectHit, World};
 use crate::{Aabb, Plane, Ray, RayBounds};
 
@@ -106,10 +106,19 @@ impl World {
         for (rays, hits) in rays.chunks(4).zip(hits.chunks_mut(4)) {
             let (lanes, valid) = ray_lanes(rays);
             let mut t_max = Vec4::splat(t_range.end);
-            let mut best = [None; 4];
-            self.closest_plane_lanes(&lanes, valid, t_min, &mut t_max, &mut best);
-            for (hit, raw) in hits.iter_mut().zip(&best) {
-                *hit = raw.as_ref().map(|raw| self.object_hit(*raw));
+            let (found, planes) = self.closest_plane_lanes(&lanes, valid, t_min, &mut t_max);
+            let t = t_max.to_array();
+            for (lane, hit) in hits.iter_mut().enumerate() {
+                // A plane's hit names no face: `object_hit`'s, without its look-up.
+                *hit = (found & 1 << lane != 0).then(|| {
+                    let raw = plane_hit(t[lane], planes[lane]);
+                    ObjectHit {
+                        t: raw.t,
+                        object: raw.object,
+                        primitive: 0,
+                        raw,
+                    }
+                });
             }
         }
     }
