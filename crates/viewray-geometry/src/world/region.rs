@@ -38,9 +38,9 @@ impl World {
     /// ahead of their origins (`t >= 0`).
     ///
     /// Every bounded object is surely missed when each ray passes outside its box
-    /// enlarged (by [`CLEAR_MARGIN`] of the largest coordinate of the box around them
-    /// all and of the rays' origins, plus one: far above the rounding of the box tests
-    /// every query makes before it tests an object), found down the hierarchy through
+    /// enlarged by a thousandth of one plus the largest coordinate of the box around
+    /// them all and of the rays' origins (far above the rounding of the box tests every
+    /// query makes before it tests an object), found down the hierarchy through
     /// the boxes the rays may enter. A plane is surely missed when it lies behind every
     /// origin with every direction turned away from it (or ahead of every origin with
     /// every direction turned away). [`World::closest_objects`] then finds no hit, or
