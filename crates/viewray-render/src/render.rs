@@ -336,9 +336,9 @@ impl TileBuffers {
 
     /// Traces sample `block.index` of the block of pixels at `(block.row, block.col)`
     /// (at most [`BLOCK_SIZE`] square, inside its tile) and adds each value to its
-    /// pixel; returns the number of rays traced. The rays meet the planes alone where
-    /// `reach` says they meet no bounded object. `recorder` is told the numbers of the
-    /// pixel it follows, if that pixel is in the block.
+    /// pixel; returns the number of rays traced. The rays meet only what `reach` says
+    /// they may meet (see [`Shader::trace_primary_within`]). `recorder` is told the
+    /// numbers of the pixel it follows, if that pixel is in the block.
     #[inline]
     fn render_block<R: Recorder>(
         &mut self,
@@ -403,11 +403,7 @@ impl TileBuffers {
         // right length) and shade them together, each sample's value added straight to
         // its pixel.
         let (block_rays, hits) = (&self.rays[..count], &mut self.hits[..count]);
-        if reach == Reach::Planes {
-            shader.trace_primary_planes(block_rays, hits);
-        } else {
-            shader.trace_primary(block_rays, hits);
-        }
+        shader.trace_primary_within(reach, block_rays, hits);
         if R::ACTIVE
             && let Some(i) = recorder.followed_ray()
         {
@@ -750,13 +746,16 @@ mod tests {
             };
             let mut decided = TileBuffers::new(48);
             let decided_rays = decided.render(&tile, &setup, 4);
-            // Every kind of block is there: the sky, the open ground, the spheres.
-            for reach in [Reach::Nothing, Reach::Planes, Reach::Anything] {
-                assert!(
-                    decided.reach.contains(&reach),
-                    "{reach:?}: {:?}",
-                    decided.reach
-                );
+            // Every kind of block is there: the sky, the open ground, a sphere alone on
+            // it, and more than one object.
+            let kinds: [fn(&Reach) -> bool; 4] = [
+                |r| *r == Reach::Nothing,
+                |r| *r == Reach::Planes,
+                |r| matches!(r, Reach::One(_)),
+                |r| *r == Reach::Anything,
+            ];
+            for kind in kinds {
+                assert!(decided.reach.iter().any(kind), "{:?}", decided.reach);
             }
             let mut traced = TileBuffers::new(48);
             traced.start(&tile, &setup);

@@ -164,6 +164,21 @@ impl World {
         t_range: Range<f32>,
         hits: &mut [Option<ObjectHit>],
     ) {
+        self.closest_flat_among(flat.leaf.as_ref(), &flat.objects, rays, t_range, hits);
+    }
+
+    /// The closest hits of `rays` with the planes and the bounded objects of
+    /// `objects` (in their order, each behind its own enlarged box), four rays at a
+    /// time, after the leaf's box `leaf` if there is one: [`World::closest_flat`]'s
+    /// query, for any few objects that are all a batch of rays can meet.
+    pub(super) fn closest_flat_among(
+        &self,
+        leaf: Option<&BoxLanes>,
+        objects: &[(u32, BoxLanes)],
+        rays: &[Ray],
+        t_range: Range<f32>,
+        hits: &mut [Option<ObjectHit>],
+    ) {
         let t_min = t_range.start;
         let t_min_lanes = Vec4::splat(t_min);
         for (rays, hits) in rays.chunks(4).zip(hits.chunks_mut(4)) {
@@ -177,11 +192,11 @@ impl World {
             }
             let slabs = SlabLanes::new(lanes.origin, lanes.direction);
             let mut searching = valid;
-            if let Some(leaf) = &flat.leaf {
+            if let Some(leaf) = leaf {
                 searching &= leaf.rays_hitting(&slabs, t_min_lanes, t_max);
             }
             if searching != 0 {
-                for (object, bounds) in &flat.objects {
+                for (object, bounds) in objects {
                     let inside = searching & bounds.rays_hitting(&slabs, t_min_lanes, t_max);
                     if inside != 0 {
                         let group = GroupBest {

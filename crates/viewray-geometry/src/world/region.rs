@@ -1,14 +1,16 @@
 //! Boxes of rays ruled out whole: before a renderer makes a block's viewing rays, it asks
 //! what any ray the block can take may meet. If nothing, it makes none of them (the sky
 //! above a ground plane, the background around a model); if planes at most, it meets
-//! them with the planes alone, without packets or the hierarchy (the open ground).
+//! them with the planes alone, without packets or the hierarchy (the open ground); if
+//! one sphere or triangle besides, with it alone (the ground around a ball).
 
 use std::ops::Range;
 
 use glam::{DVec3, Vec4};
 
 use super::flat::{plane_hit, ray_lanes};
-use super::{CLEAR_MARGIN, ClearBox, ObjectHit, World};
+use super::loose::Loose;
+use super::{CLEAR_MARGIN, ClearBox, ObjectHit, World, enlarged};
 use crate::{Aabb, Plane, Ray, RayBounds};
 
 /// How far a ray's coordinates may move between a [`RayBounds`] and the tracer, per unit
@@ -29,6 +31,10 @@ pub enum Reach {
     /// Planes at most: every ray surely misses every bounded object, so that its
     /// closest hit is its closest plane's ([`World::closest_plane_hits`]).
     Planes,
+    /// Planes and this one bounded object at most, a sphere or a triangle: every ray
+    /// surely misses every other, so that its closest hit is found among these
+    /// ([`World::closest_hits_with`]).
+    One(u32),
     /// Anything, as far as the test can tell.
     Anything,
 }
@@ -46,10 +52,13 @@ impl World {
     /// every direction turned away). [`World::closest_objects`] then finds no hit, or
     /// only the planes', for any of them.
     ///
+    /// Where one bounded object alone may be met, a sphere or a triangle, the answer is
+    /// [`Reach::One`] of it.
+    ///
     /// The test is of the whole box of rays, one axis at a time: it answers
-    /// [`Reach::Anything`] whenever some ray of the box may hit a bounded object. A world
-    /// with a single bounded object, which rays meet without a box test, rules out no
-    /// ray.
+    /// [`Reach::Anything`] whenever some ray of the box may hit two bounded objects, or a
+    /// box or a mesh. A world with a single bounded object, which rays meet without a box
+    /// test, rules out no ray.
     pub fn reach(&self, rays: &RayBounds) -> Reach {
         let rays = widened(rays);
         let bounded_missed = match self.clear_box {
@@ -59,19 +68,32 @@ impl World {
                 // Down the hierarchy through the boxes the rays may enter, to the
                 // objects' own boxes: a box around every object is too loose for a
                 // lens's rays, which start all over the aperture.
+                // The one object met, if only one may be (a loose shape: meshes keep
+                // their packets); the walk stops at a second.
                 let margin = box_margin(&rays, self.bvh.bounds());
                 let enters = |bounds: &Aabb| !misses_box(&rays, *bounds, margin);
-                let reached = self.bvh.any_leaf_entered(enters, |start, count| {
+                let mut one = None;
+                let several = self.bvh.any_leaf_entered(enters, |start, count| {
                     let (start, count) = (start as usize, count as usize);
                     self.leaf_objects[start..start + count]
                         .iter()
-                        .any(|&object| {
+                        .filter(|&&object| {
                             self.objects[object as usize]
                                 .bounds()
                                 .is_none_or(|bounds| enters(&bounds))
                         })
+                        .any(|&object| {
+                            let loose = Loose::of(&self.objects[object as usize]).is_some();
+                            let first = one.is_none() && loose;
+                            one = Some(object);
+                            !first
+                        })
                 });
-                !reached
+                match (several, one) {
+                    (true, _) => return Reach::Anything,
+                    (false, Some(object)) => return Reach::One(object),
+                    (false, None) => true,
+                }
             }
         };
         if !bounded_missed {
@@ -84,6 +106,31 @@ impl World {
         } else {
             Reach::Planes
         }
+    }
+
+    /// The closest hits of rays that meet no bounded object but `object`, a sphere or a
+    /// triangle (rays of a box for which [`World::reach`] answered [`Reach::One`] of
+    /// it): their closest planes, then the object behind its own enlarged box, four rays
+    /// at a time with the arithmetic, order and ties of [`World::closest_objects`],
+    /// which for such rays finds the same hits, bit for bit (the planes win ties, as in
+    /// every query). For other rays the hits of other bounded objects are missing.
+    ///
+    /// # Panics
+    ///
+    /// When `rays` and `hits` differ in length, or `object` is not a bounded object.
+    pub fn closest_hits_with(
+        &self,
+        object: u32,
+        rays: &[Ray],
+        t_range: Range<f32>,
+        hits: &mut [Option<ObjectHit>],
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit per ray");
+        let bounds = self.objects[object as usize]
+            .bounds()
+            .expect("a bounded object");
+        let objects = [(object, enlarged(bounds))];
+        self.closest_flat_among(None, &objects, rays, t_range, hits);
     }
 
     /// The closest hits of rays that meet no bounded object (rays of a box for which
@@ -259,7 +306,7 @@ mod tests {
     }
 
     #[test]
-    fn the_sky_meets_nothing_the_open_ground_only_the_plane() {
+    fn the_sky_meets_nothing_the_open_ground_only_the_plane_a_sphere_itself() {
         let world = ground_and_spheres();
         let eye = DVec3::new(0.0, 0.6, 0.0);
         let reach = |spread, target, size| world.reach(&beam(eye, spread, target, size));
@@ -270,17 +317,14 @@ mod tests {
         // beside them.
         assert_eq!(reach(0.0, DVec3::new(0.0, -0.5, -1.0), 0.1), Reach::Planes);
         assert_eq!(reach(0.0, DVec3::new(3.0, 0.6, -1.0), 0.01), Reach::Planes);
-        // At a sphere, at the big sphere's top, and upward from a lens wide enough to
-        // reach that top.
-        assert_eq!(
-            reach(0.0, DVec3::new(-1.0, 0.5, -4.0), 0.01),
-            Reach::Anything
-        );
-        assert_eq!(
-            reach(0.0, DVec3::new(1.0, 1.9, -6.0), 0.01),
-            Reach::Anything
-        );
+        // At a sphere (object 1), at the big sphere's top (object 2), and upward from a
+        // lens a little wider (still missing the small sphere) to that top.
+        assert_eq!(reach(0.0, DVec3::new(-1.0, 0.5, -4.0), 0.01), Reach::One(1));
+        assert_eq!(reach(0.0, DVec3::new(1.0, 1.9, -6.0), 0.01), Reach::One(2));
+        assert_eq!(reach(0.3, DVec3::new(1.0, 2.2, -6.0), 0.05), Reach::One(2));
+        // A lens so wide that its rays may reach both spheres, and a beam over both.
         assert_eq!(reach(1.5, DVec3::new(1.0, 2.5, -6.0), 0.1), Reach::Anything);
+        assert_eq!(reach(0.0, DVec3::new(0.0, 0.5, -5.0), 1.5), Reach::Anything);
         // Below the ground looking down: the plane is behind every origin.
         let below = DVec3::new(0.0, -1.0, 0.0);
         let down = beam(below, 0.1, DVec3::new(0.0, -2.0, -1.0), 0.1);
@@ -332,7 +376,7 @@ mod tests {
     #[test]
     fn a_box_said_missed_holds_no_ray_that_hits() {
         let mut numbers = Numbers(0x0b0c_5eed);
-        let (mut missed, mut planes) = (0, 0);
+        let (mut missed, mut planes, mut ones) = (0, 0, 0);
         for _ in 0..4_000 {
             // Spheres and a triangle about the origin, a plane through a random point;
             // beams from near the origin (some grazing the plane) with and without a lens.
@@ -373,6 +417,7 @@ mod tests {
             match reach {
                 Reach::Nothing => missed += 1,
                 Reach::Planes => planes += 1,
+                Reach::One(_) => ones += 1,
                 Reach::Anything => continue,
             }
             let mut rays = Vec::new();
@@ -400,7 +445,12 @@ mod tests {
             let mut hits = vec![None; rays.len()];
             world.closest_objects(&rays, t_range.clone(), &mut hits);
             let mut plane_hits = vec![None; rays.len()];
-            world.closest_plane_hits(&rays, t_range.clone(), &mut plane_hits);
+            match reach {
+                Reach::One(object) => {
+                    world.closest_hits_with(object, &rays, t_range.clone(), &mut plane_hits);
+                }
+                _ => world.closest_plane_hits(&rays, t_range.clone(), &mut plane_hits),
+            }
             for ((ray, hit), plane_hit) in rays.iter().zip(&hits).zip(&plane_hits) {
                 let alone = world.closest_object(ray, t_range.clone());
                 let bits = |h: &Option<ObjectHit>| h.map(|h| (h.t.to_bits(), h.object));
@@ -416,8 +466,8 @@ mod tests {
         }
         // Every answer is common: the test checks many boxes of each.
         assert!(
-            missed > 400 && planes > 400,
-            "{missed} missed, {planes} planes"
+            missed > 400 && planes > 400 && ones > 400,
+            "{missed} missed, {planes} planes, {ones} one object"
         );
     }
 }

@@ -31,9 +31,10 @@ impl Shader<'_> {
     /// What the viewing rays of the pixels `rows x cols`, through any sample, may meet
     /// ([`Camera::ray_bounds`], [`World::reach`]): nothing, and then each sees the
     /// background and the renderer need not make them at all (the sky above a ground
-    /// plane, the background around a model); planes at most, and then they are traced
-    /// against the planes alone ([`Shader::trace_primary_planes`]: the open ground);
-    /// or anything. [`Reach::Anything`] for cameras whose rays the camera cannot bound.
+    /// plane, the background around a model); planes at most, or planes and one sphere
+    /// or triangle, and then they are traced against those alone
+    /// ([`Shader::trace_primary_within`]: the open ground, the ground around a ball); or
+    /// anything. [`Reach::Anything`] for cameras whose rays the camera cannot bound.
     ///
     /// [`Camera::ray_bounds`]: viewray_camera::Camera::ray_bounds
     /// [`World::reach`]: viewray_geometry::World::reach
@@ -62,14 +63,23 @@ impl Shader<'_> {
             .closest_objects(rays, T_MIN..f32::INFINITY, hits);
     }
 
-    /// [`Shader::trace_primary`] for viewing rays that meet no bounded object (those of
-    /// a block whose [`Shader::block_reach`] is [`Reach::Planes`]): the planes alone,
-    /// the same hits.
+    /// [`Shader::trace_primary`] for the viewing rays of a block whose
+    /// [`Shader::block_reach`] is `reach`: for [`Reach::Planes`] the planes alone, for
+    /// [`Reach::One`] the planes and that object alone, otherwise the whole world; the
+    /// same hits.
     #[inline]
-    pub(crate) fn trace_primary_planes(&self, rays: &[Ray], hits: &mut [Option<ObjectHit>]) {
-        self.scene
-            .world()
-            .closest_plane_hits(rays, T_MIN..f32::INFINITY, hits);
+    pub(crate) fn trace_primary_within(
+        &self,
+        reach: Reach,
+        rays: &[Ray],
+        hits: &mut [Option<ObjectHit>],
+    ) {
+        let world = self.scene.world();
+        match reach {
+            Reach::Planes => world.closest_plane_hits(rays, T_MIN..f32::INFINITY, hits),
+            Reach::One(object) => world.closest_hits_with(object, rays, T_MIN..f32::INFINITY, hits),
+            Reach::Nothing | Reach::Anything => self.trace_primary(rays, hits),
+        }
     }
 
     /// The values of what the viewing rays `rays` see, given their closest hits (from
