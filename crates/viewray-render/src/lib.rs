@@ -76,10 +76,11 @@
 //! ([`Camera::ray_bounds`](viewray_camera::Camera::ray_bounds),
 //! [`World::reach`](viewray_geometry::World::reach)): a block that surely meets nothing
 //! (the sky) makes no rays, its pixels getting the background once per sample as its
-//! misses would; one that meets planes at most (the open ground) traces its rays
-//! against the planes alone. Flat shading of a plain colour and Depth shading need no
-//! normals, so they skip the surface details. Lit shading works on the block's hits
-//! together: their shadow rays toward each light go to
+//! misses would; one that meets planes at most (the open ground), or planes and one
+//! sphere or triangle (the ground around a ball), traces its rays against those alone.
+//! Flat shading of a plain colour and Depth shading need no normals, so they skip the
+//! surface details. Lit shading works on the block's hits together: their shadow rays
+//! toward each light go to
 //! [`World::any_hits`](viewray_geometry::World::any_hits) as one batch, their reflected
 //! rays to `closest_objects`, and the reflected hits are shaded as a batch one bounce
 //! deeper. The lighting itself is worked out four samples at a time, light by light,
