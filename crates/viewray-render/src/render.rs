@@ -272,32 +272,33 @@ impl TileBuffers {
         rays
     }
 
-    /// Makes the pixels of `tile` black and their ray differentials unknown, and works
-    /// out their seeds if they take several samples.
+    /// Makes the pixels of `tile` black and their ray differentials unknown, works out
+    /// what each block's rays may meet, and the seeds of the pixels of the blocks that
+    /// trace rays if they take several samples.
     #[inline]
     fn start(&mut self, tile: &Tile, setup: &TileSetup<'_>) {
         let shader = setup.shader;
         let pixel_count = tile.width as usize * tile.height as usize;
+        let seeded = setup.strata.shared_sample().is_none();
         self.seeds.clear();
-        if setup.strata.shared_sample().is_none() {
-            // Block by block as `render` takes them, each block's row by row, so that
-            // a block's seeds are one slice.
-            for block_row in block_starts(tile.row, tile.height) {
-                for block_col in block_starts(tile.col, tile.width) {
-                    let (rows, cols) = Block::pixels_at(tile, block_row, block_col);
-                    for row in rows {
-                        self.seeds
-                            .extend(cols.clone().map(|col| PixelSeed::new(row, col)));
-                    }
-                }
-            }
-        }
-        // What each block's rays may meet (a few box tests per block).
         self.reach.clear();
+        // Block by block as `render` takes them, each block's row by row, so that a
+        // block's seeds are one slice. A block that meets nothing (a few box tests)
+        // draws no samples: its seeds only hold its place.
         for block_row in block_starts(tile.row, tile.height) {
             for block_col in block_starts(tile.col, tile.width) {
                 let (rows, cols) = Block::pixels_at(tile, block_row, block_col);
-                self.reach.push(shader.block_reach(rows, cols));
+                let reach = shader.block_reach(rows.clone(), cols.clone());
+                self.reach.push(reach);
+                if !seeded {
+                    continue;
+                }
+                for row in rows {
+                    self.seeds.extend(cols.clone().map(|col| match reach {
+                        Reach::Nothing => PixelSeed::default(),
+                        _ => PixelSeed::new(row, col),
+                    }));
+                }
             }
         }
         self.pixels.clear();

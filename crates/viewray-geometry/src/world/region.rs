@@ -75,19 +75,17 @@ impl World {
                 let mut one = None;
                 let several = self.bvh.any_leaf_entered(enters, |start, count| {
                     let (start, count) = (start as usize, count as usize);
-                    self.leaf_objects[start..start + count]
-                        .iter()
-                        .filter(|&&object| {
-                            self.objects[object as usize]
-                                .bounds()
-                                .is_none_or(|bounds| enters(&bounds))
-                        })
-                        .any(|&object| {
-                            let loose = Loose::of(&self.objects[object as usize]).is_some();
-                            let first = one.is_none() && loose;
-                            one = Some(object);
-                            !first
-                        })
+                    for &object in &self.leaf_objects[start..start + count] {
+                        let shape = &self.objects[object as usize];
+                        if !shape.bounds().is_none_or(|bounds| enters(&bounds)) {
+                            continue;
+                        }
+                        if one.is_some() || Loose::of(shape).is_none() {
+                            return true;
+                        }
+                        one = Some(object);
+                    }
+                    false
                 });
                 match (several, one) {
                     (true, _) => return Reach::Anything,
